@@ -1,0 +1,45 @@
+# The two commands of the README: `make demo` and `make test`. Both install what is missing first.
+BUILD      ?= build
+ASAN_BUILD ?= build-asan
+JOBS       ?= $(shell nproc)
+CMAKE_GEN  := -G Ninja
+DEMO_OUT   ?= demo-output
+
+.PHONY: all deps configure build demo test test-release test-asan bench fuzz clean
+
+all: build
+
+deps:
+	@bash scripts/install-deps.sh
+
+$(BUILD)/build.ninja: | deps
+	cmake -S . -B $(BUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=Release
+
+configure: $(BUILD)/build.ninja
+
+build: deps configure
+	cmake --build $(BUILD) -j $(JOBS)
+
+demo: build
+	bash scripts/demo.sh $(BUILD)/tool/shoremesh $(DEMO_OUT)
+
+# Release tests, then the same suite under AddressSanitizer + UBSan (SHOREMESH_SKIP_ASAN=1 skips it).
+test: test-release test-asan
+
+test-release: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+test-asan: deps
+	@if [ -n "$$SHOREMESH_SKIP_ASAN" ]; then echo "sanitizer run skipped (SHOREMESH_SKIP_ASAN set)"; else \
+	  cmake -S . -B $(ASAN_BUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSHOREMESH_SANITIZE=ON -DSHOREMESH_BUILD_BENCH=OFF && \
+	  cmake --build $(ASAN_BUILD) -j $(JOBS) && \
+	  cd $(ASAN_BUILD) && SHOREMESH_SANITIZER_BUILD=1 ctest --output-on-failure -j $(JOBS); fi
+
+bench: build
+	bash bench/run.sh $(BUILD)
+
+fuzz: deps
+	bash scripts/fuzz.sh
+
+clean:
+	rm -rf $(BUILD) $(ASAN_BUILD) $(DEMO_OUT)

@@ -1,0 +1,40 @@
+#pragma once
+// Errors as typed exceptions that carry their context (file, line, point index), caught once at the tool
+// boundary and printed for a person. InputError is the user's data (exit code 1); everything else that
+// escapes is an internal error (exit code 3).
+#include <cstddef>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace shoremesh {
+
+class InputError : public std::runtime_error {
+ public:
+  explicit InputError(const std::string& what, std::string file = {}, std::optional<std::size_t> line = {})
+      : std::runtime_error(compose(what, file, line)), file_(std::move(file)), line_(line), message_(what) {}
+
+  const std::string& file() const { return file_; }
+  std::optional<std::size_t> line() const { return line_; }  // 1-based line (or element index)
+  const std::string& message() const { return message_; }    // without the file:line prefix
+
+ private:
+  static std::string compose(const std::string& what, const std::string& file, std::optional<std::size_t> line) {
+    std::string s;
+    if (!file.empty()) s += file;
+    if (line) s += (s.empty() ? "line " : ":") + std::to_string(*line);
+    if (!s.empty()) s += ": ";
+    return s + what;
+  }
+  std::string file_;
+  std::optional<std::size_t> line_;
+  std::string message_;
+};
+
+// A parameter choice the algorithm cannot honour (rho <= 1, beta <= rho, too few colours for Lemma 6.1).
+class ParameterError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+}  // namespace shoremesh

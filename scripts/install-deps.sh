@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs the Debian packages shoremesh needs to build, test and run its demo.
+# Idempotent: installs only what is missing, so `make demo` and `make test` can call it every time.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libcgal-dev libgmp-dev libmpfr-dev libboost-dev      # Delaunay, exact arithmetic
+  voro++-dev                                           # independent 3D Voronoi verifier
+  libopencv-dev                                        # coastline tracing
+  libgeographiclib-dev                                 # GPS projections
+  libopenimageio-dev                                   # previews, GeoTIFF tags
+  libpugixml-dev nlohmann-json3-dev                    # GPX (XML) and GeoJSON parsers
+  libcli11-dev                                         # command line
+  libtbb-dev
+  libgtest-dev libgmock-dev libbenchmark-dev           # tests and benchmarks
+  python3-meshio python3-numpy gmsh                    # third-party readers of our exports (tests)
+)
+if [ "${1:-}" = "--list" ]; then printf '%s\n' "${packages[@]}"; exit 0; fi
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then exit 0; fi
+
+echo "shoremesh: installing missing Debian packages: ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
