@@ -1,0 +1,43 @@
+#pragma once
+// The algorithm's parameters (paper, section 9) and their validation.
+#include <cmath>
+#include <cstdint>
+
+namespace shoremesh {
+
+template <int D>
+struct Parameters {
+  static_assert(D == 2 || D == 3);
+  // Quality: every output vertex's Voronoi cell (clipped to the box) lies within rho * NN of it.
+  double rho = std::sqrt(2.0);
+  // Picking region outer radius: Steiner points go at distance in [rho*NN, beta*NN).
+  double beta = D == 2 ? 2.0 : 2.0 * std::sqrt(2.0) / std::sqrt(3.0);
+};
+
+// The derived constants every part of the engine agrees on. Construct through `derive`, which refuses
+// parameters the theory does not support (throws ParameterError with the reason).
+template <int D>
+struct DerivedParameters {
+  double rho = 0;         // as given
+  double rho_squared = 0; // the canonical value every exact test uses (2 exactly for the default)
+  double beta = 0;
+  double beta_squared = 0;
+  int kappa = 0;          // colours per axis: kappa^D periodic tiles (Lemma 6.1)
+  static DerivedParameters derive(const Parameters<D>& p);
+  // l(r) = rho^(r - 1/2) / sqrt(D): side of the rank-r colour tiles.
+  double tile_side(int rank) const;
+};
+
+// Counters for benchmarks and for spotting broken invariants (a growing leaves-per-query means trouble).
+struct Counters {
+  std::uint64_t dispatches = 0;
+  std::uint64_t fills = 0;
+  std::uint64_t clipped_voronoi_calls = 0;
+  std::uint64_t steiner_points = 0;
+  std::uint64_t predicate_calls = 0;   // sign decisions made by the filtered predicates
+  std::uint64_t exact_fallbacks = 0;   // of those, decided by exact rational arithmetic
+  std::uint64_t leaves_visited = 0;    // by neighbour searches
+  std::uint64_t operations() const { return dispatches + fills; }
+};
+
+}  // namespace shoremesh
