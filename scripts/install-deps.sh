@@ -9,7 +9,7 @@ packages=(
   voro++-dev                                           # independent 3D Voronoi verifier
   libopencv-dev                                        # coastline tracing
   libgeographiclib-dev                                 # GPS projections
-  libopenimageio-dev                                   # previews, GeoTIFF tags
+  libopenimageio-dev openimageio-tools                 # previews, GeoTIFF tags (its CMake targets name the tools)
   libpugixml-dev nlohmann-json3-dev                    # GPX (XML) and GeoJSON parsers
   libcli11-dev                                         # command line
   libtbb-dev

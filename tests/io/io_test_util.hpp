@@ -1,0 +1,55 @@
+#pragma once
+// Helpers for the io tests: a scratch directory for generated (often malformed) files, and data paths.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+#include "shoremesh/error.hpp"
+
+namespace shoremesh::io::test {
+
+inline std::string shared_data(const std::string& rel) { return std::string(SHOREMESH_SHARED_DATA_DIR) + "/" + rel; }
+inline std::string samples(const std::string& rel) { return std::string(SHOREMESH_SAMPLES_DIR) + "/" + rel; }
+
+// A fresh temporary directory removed at the end of the test.
+class ScratchDir {
+ public:
+  ScratchDir() {
+    std::random_device rd;
+    path_ = std::filesystem::temp_directory_path() / ("shoremesh-io-" + std::to_string(rd()) + std::to_string(rd()));
+    std::filesystem::create_directories(path_);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+
+  std::string write(const std::string& name, const std::string& content) const {
+    const auto p = path_ / name;
+    std::ofstream(p, std::ios::binary) << content;
+    return p.string();
+  }
+  std::string path(const std::string& name) const { return (path_ / name).string(); }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// Runs f, expects an InputError, and returns it for inspection.
+template <class F>
+InputError expect_input_error(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "expected shoremesh::InputError";
+  return InputError("no error thrown");
+}
+
+}  // namespace shoremesh::io::test
