@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace shoremesh {
 
@@ -35,6 +36,22 @@ class InputError : public std::runtime_error {
 class ParameterError : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;
+};
+
+}  // namespace shoremesh
+
+namespace shoremesh {
+
+// An input error about particular points, by their 0-based index in the input given to the engine, so
+// that a caller that knows where each point came from (a file line) can say so.
+class PointInputError : public InputError {
+ public:
+  PointInputError(const std::string& what, std::vector<std::size_t> points)
+      : InputError(what), points_(std::move(points)) {}
+  const std::vector<std::size_t>& points() const { return points_; }
+
+ private:
+  std::vector<std::size_t> points_;
 };
 
 }  // namespace shoremesh

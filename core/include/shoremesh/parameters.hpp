@@ -12,6 +12,8 @@ struct Parameters {
   double rho = std::sqrt(2.0);
   // Picking region outer radius: Steiner points go at distance in [rho*NN, beta*NN).
   double beta = D == 2 ? 2.0 : 2.0 * std::sqrt(2.0) / std::sqrt(3.0);
+  // Colours per axis; 0 derives the smallest kappa that satisfies Lemma 6.1 (16 for the defaults).
+  int kappa = 0;
 };
 
 // The derived constants every part of the engine agrees on. Construct through `derive`, which refuses
