@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 
@@ -13,6 +14,11 @@ namespace shoremesh::io::test {
 
 inline std::string shared_data(const std::string& rel) { return std::string(SHOREMESH_SHARED_DATA_DIR) + "/" + rel; }
 inline std::string samples(const std::string& rel) { return std::string(SHOREMESH_SAMPLES_DIR) + "/" + rel; }
+
+inline std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
 
 // A fresh temporary directory removed at the end of the test.
 class ScratchDir {

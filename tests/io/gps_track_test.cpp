@@ -1,0 +1,303 @@
+#include "shoremesh/io/gps_track.hpp"
+
+#include <GeographicLib/Geodesic.hpp>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "io_test_util.hpp"
+#include "shoremesh/io/point_file.hpp"
+
+using namespace shoremesh;
+using namespace shoremesh::io;
+using shoremesh::io::test::expect_input_error;
+using shoremesh::io::test::shared_data;
+using ::testing::HasSubstr;
+
+namespace {
+
+const std::string kCerknica = shared_data("gpx/cerknicko-jezero.gpx");
+
+double geodesic_distance(const LonLat& a, const LonLat& b) {
+  double s12 = 0;
+  GeographicLib::Geodesic::WGS84().Inverse(a.lat, a.lon, b.lat, b.lon, s12);
+  return s12;
+}
+
+// Largest relative difference between planar distances after projection and geodesic distances, over
+// consecutive points and over pairs i, i + n/2 (long distances across the data).
+double max_distance_error(const std::vector<LonLat>& ll, const Projection& proj) {
+  double worst = 0;
+  auto check = [&](std::size_t i, std::size_t j) {
+    const double g = geodesic_distance(ll[i], ll[j]);
+    if (g < 1.0) return;  // repeated fixes
+    const Point2 a = proj.forward(ll[i]), b = proj.forward(ll[j]);
+    worst = std::max(worst, std::abs(std::hypot(a[0] - b[0], a[1] - b[1]) - g) / g);
+  };
+  for (std::size_t i = 0; i + 1 < ll.size(); ++i) check(i, i + 1);
+  for (std::size_t i = 0; i < ll.size() / 2; ++i) check(i, i + ll.size() / 2);
+  return worst;
+}
+
+std::vector<LonLat> track_lonlat(const GpsData& d) {
+  std::vector<LonLat> out;
+  for (const auto& s : d.sequences)
+    if (s.kind == GpsSequence::Kind::TrackSegment)
+      for (const auto& p : s.points) out.push_back({p.lon, p.lat});
+  return out;
+}
+
+std::string gpx_with(const std::string& body, const std::string& version = "1.1") {
+  return "<?xml version=\"1.0\"?>\n<gpx version=\"" + version +
+         "\" creator=\"test\" xmlns=\"http://www.topografix.com/GPX/1/1\">\n" + body + "</gpx>\n";
+}
+
+// A closed walk around a circle (radius r metres at 46N, 8E), n points, start repeated at the end.
+std::string circle_walk_gpx(double radius, int n, bool figure_eight = false) {
+  std::string body = "<trk><name>walk</name><trkseg>\n";
+  const double lat0 = 46, lon0 = 8, mlat = 111132.0, mlon = 111320.0 * std::cos(lat0 * std::numbers::pi / 180);
+  for (int i = 0; i <= n; ++i) {
+    const double t = 2 * std::numbers::pi * (i % n) / n;
+    const double x = radius * std::sin(t), y = figure_eight ? radius * std::sin(t) * std::cos(t) : radius * std::cos(t);
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "<trkpt lat=\"%.9f\" lon=\"%.9f\"><ele>1</ele></trkpt>\n", lat0 + y / mlat, lon0 + x / mlon);
+    body += buf;
+  }
+  return gpx_with(body + "</trkseg></trk>\n");
+}
+
+}  // namespace
+
+TEST(GpxTrack, ReadsRealGpx10TracksAndWaypoints) {
+  const auto d = read_gpx(kCerknica);
+  EXPECT_EQ(d.version, "1.0");
+  std::size_t track_points = 0, waypoints = 0, segments = 0;
+  for (const auto& s : d.sequences) {
+    if (s.kind == GpsSequence::Kind::TrackSegment) {
+      track_points += s.points.size();
+      ++segments;
+    }
+    if (s.kind == GpsSequence::Kind::Waypoints) waypoints += s.points.size();
+  }
+  EXPECT_EQ(track_points, 296u);
+  EXPECT_EQ(waypoints, 7u);
+  EXPECT_EQ(segments, 7u);  // 8 tracks, one with an empty segment
+  for (const auto& s : d.sequences)
+    for (const auto& p : s.points) {
+      EXPECT_GE(p.lat, 45.73);
+      EXPECT_LE(p.lat, 45.80);
+      EXPECT_GE(p.lon, 14.28);
+      EXPECT_LE(p.lon, 14.38);
+      EXPECT_GT(p.line, 0u);
+    }
+}
+
+TEST(GpxTrack, ProjectedDistancesMatchGeodesic) {
+  const auto ll = track_lonlat(read_gpx(kCerknica));
+  const auto utm = Projection::choose(ll, ProjectionChoice::Utm, kCerknica);
+  EXPECT_EQ(utm.describe(), "UTM zone 33N (WGS84)");
+  const double utm_error = max_distance_error(ll, utm);
+  const auto tm = Projection::choose(ll, ProjectionChoice::LocalTransverseMercator, kCerknica);
+  const double tm_error = max_distance_error(ll, tm);
+  EXPECT_LT(utm_error, 1e-3);
+  EXPECT_LT(tm_error, 1e-3);
+  EXPECT_LT(tm_error, 1e-4);  // scale 1 on the data's own meridian
+  RecordProperty("utm_max_relative_distance_error", std::to_string(utm_error));
+  RecordProperty("local_tm_max_relative_distance_error", std::to_string(tm_error));
+  std::printf("max relative distance error: UTM %.3g, local TM %.3g\n", utm_error, tm_error);
+}
+
+TEST(Projection, LonLatRoundTripsWithin1e9Degrees) {
+  std::vector<std::pair<Projection, std::vector<LonLat>>> cases;
+  cases.push_back({Projection::utm_ups(33, true), track_lonlat(read_gpx(kCerknica))});
+  cases.push_back({Projection::utm_ups(33, false), {{14.3, -45.7}, {17.9, -0.1}, {12.1, -79.0}}});
+  cases.push_back({Projection::utm_ups(0, true), {{0, 90}, {-120, 85}, {179.9, 84.1}, {45, 88}}});
+  cases.push_back({Projection::utm_ups(0, false), {{10, -90}, {-60, -81}, {170, -85}}});
+  cases.push_back({Projection::local_transverse_mercator(180, -16.5), {{179.9, -16.4}, {-179.8, -16.6}, {-180, -17}}});
+  cases.push_back({Projection::local_transverse_mercator(-88.2, 47.6), {{-92.5, 46.2}, {-84, 49.2}, {-88, 47}}});
+  double worst = 0;
+  for (const auto& [proj, pts] : cases)
+    for (const auto& p : pts) {
+      const LonLat back = proj.reverse(proj.forward(p));
+      double dlon = std::remainder(back.lon - p.lon, 360.0);
+      if (std::abs(p.lat) == 90) dlon = 0;  // longitude is arbitrary at a pole
+      worst = std::max({worst, std::abs(dlon), std::abs(back.lat - p.lat)});
+      EXPECT_LE(std::abs(dlon), 1e-9) << proj.describe() << " " << p.lon << "," << p.lat;
+      EXPECT_LE(std::abs(back.lat - p.lat), 1e-9) << proj.describe() << " " << p.lon << "," << p.lat;
+    }
+  std::printf("worst lon/lat round trip: %.3g degrees\n", worst);
+}
+
+TEST(Projection, TrackAcrossZoneBoundaryKeepsOneZone) {
+  // 11.9E .. 12.1E crosses the boundary of UTM zones 32 and 33: one zone is used for all points.
+  std::vector<LonLat> ll;
+  for (int i = 0; i <= 20; ++i) ll.push_back({11.9 + 0.01 * i, 46.0 + 0.001 * i});
+  const auto p = Projection::choose(ll, ProjectionChoice::Utm);
+  EXPECT_TRUE(p.zone() == 32 || p.zone() == 33);
+  EXPECT_LT(max_distance_error(ll, p), 1e-3);
+}
+
+TEST(Projection, TrackAcrossAntimeridianWorks) {
+  std::vector<LonLat> ll;
+  for (int i = 0; i <= 40; ++i) ll.push_back({179.8 + 0.01 * i - (179.8 + 0.01 * i > 180 ? 360 : 0), -16.8 + 0.002 * i});
+  for (auto choice : {ProjectionChoice::Utm, ProjectionChoice::LocalTransverseMercator}) {
+    const auto p = Projection::choose(ll, choice);
+    // 180E is a UTM zone edge, 3 degrees from the central meridian, where UTM's scale reaches 1.0009.
+    EXPECT_LT(max_distance_error(ll, p), choice == ProjectionChoice::Utm ? 1.5e-3 : 1e-5) << p.describe();
+    // Consecutive points stay about 1.1 km apart: no jump of 40,000 km at the antimeridian.
+    for (std::size_t i = 0; i + 1 < ll.size(); ++i) {
+      const Point2 a = p.forward(ll[i]), b = p.forward(ll[i + 1]);
+      EXPECT_LT(std::hypot(a[0] - b[0], a[1] - b[1]), 1500.0);
+    }
+  }
+  EXPECT_NEAR(std::abs(Projection::choose(ll, ProjectionChoice::LocalTransverseMercator).lon0()), 180.0, 0.2);
+}
+
+TEST(Projection, TrackOverThePoleWorks) {
+  std::vector<LonLat> ll;
+  for (int i = 0; i < 36; ++i) ll.push_back({-180.0 + 10 * i, 89.9});  // a 22 km circle around the north pole
+  const auto ups = Projection::choose(ll, ProjectionChoice::Utm);
+  EXPECT_EQ(ups.zone(), 0);
+  EXPECT_TRUE(ups.north());
+  EXPECT_LT(max_distance_error(ll, ups), 1e-2);  // UPS scale is 0.994 at the pole (by design)
+  const auto tm = Projection::choose(ll, ProjectionChoice::LocalTransverseMercator);
+  EXPECT_LT(max_distance_error(ll, tm), 1e-3);
+}
+
+TEST(Projection, DataTooWideForOneProjectionIsAClearError) {
+  std::vector<LonLat> ll{{-50, 0}, {0, 0}, {50, 0}};
+  const auto e = expect_input_error([&] { Projection::choose(ll, ProjectionChoice::Utm, "wide.gpx"); });
+  EXPECT_EQ(e.file(), "wide.gpx");
+  EXPECT_THAT(e.message(), HasSubstr("central meridian"));
+  EXPECT_THROW(Projection::choose({{0, 0}, {180, 0}}, ProjectionChoice::Utm), InputError);
+}
+
+TEST(Projection, WktAndProjStringNameTheZone) {
+  const auto p = Projection::utm_ups(16, true);
+  EXPECT_THAT(p.wkt(), HasSubstr("AUTHORITY[\"EPSG\",\"32616\"]"));
+  EXPECT_EQ(p.proj4(), "+proj=utm +zone=16 +datum=WGS84 +units=m +no_defs");
+  EXPECT_THAT(Projection::local_transverse_mercator(14.3, 45.7).wkt(), HasSubstr("\"central_meridian\",14.3"));
+  EXPECT_TRUE(Projection().wkt().empty());
+}
+
+TEST(GpxTrack, GpsToInputProjectsAndResamples) {
+  const auto d = read_gpx(kCerknica);
+  TrackOptions opt;
+  opt.spacing = 20;
+  // One of these walks ends 20-40 m from its start but crosses itself: as a closed walk it is reported.
+  const auto e = expect_input_error([&] { gps_to_input(d, kCerknica, opt); });
+  EXPECT_EQ(e.line(), 1204u);
+  EXPECT_THAT(e.message(), HasSubstr("self-intersecting rings"));
+  opt.close_tolerance = 0;  // keep every walk open
+  const auto set = gps_to_input(d, kCerknica, opt);
+  EXPECT_TRUE(set.domain.empty());
+  EXPECT_EQ(set.units, Units::Metres);
+  EXPECT_EQ(set.projection.zone(), 33);
+  EXPECT_GT(set.points.size(), 50u);
+  EXPECT_LE(set.points.size(), d.point_count());
+  EXPECT_EQ(set.points.size(), set.origins.size());
+  for (std::size_t i = 0; i < set.points.size(); ++i) {
+    const auto& o = set.origins[i];
+    EXPECT_GT(o.location, 0u);
+    const LonLat ll = set.projection.reverse(set.points[i]);
+    EXPECT_NEAR(ll.lat, 45.76, 0.05);
+    EXPECT_NEAR(ll.lon, 14.33, 0.06);
+  }
+}
+
+TEST(GpxTrack, ClosedShorelineWalkBecomesARing) {
+  shoremesh::io::test::ScratchDir dir;
+  const auto path = dir.write("walk.gpx", circle_walk_gpx(1000, 400));
+  TrackOptions opt;
+  opt.spacing = 100;
+  opt.smooth_window = 2;
+  const auto set = gps_to_input(read_gpx(path), path, opt);
+  ASSERT_EQ(set.domain.rings.size(), 1u);
+  const auto& ring = set.domain.rings[0];
+  EXPECT_EQ(ring.role, RingRole::Shore);
+  EXPECT_NEAR(static_cast<double>(ring.points.size()), 2 * std::numbers::pi * 1000 / 100, 8.0);
+  for (std::size_t i = 0; i < ring.points.size(); ++i) {
+    const auto& a = ring.points[i];
+    const auto& b = ring.points[(i + 1) % ring.points.size()];
+    const double d = std::hypot(a[0] - b[0], a[1] - b[1]);
+    EXPECT_GE(d, 100.0 - 1e-6) << i;  // the closing edge too: nothing closer than the spacing
+    EXPECT_LE(d, 140.0) << i;
+  }
+}
+
+TEST(GpxTrack, SelfIntersectingWalkIsReported) {
+  shoremesh::io::test::ScratchDir dir;
+  const auto path = dir.write("eight.gpx", circle_walk_gpx(1000, 200, true));
+  const auto e = expect_input_error([&] { gps_to_input(read_gpx(path), path); });
+  EXPECT_EQ(e.file(), path);
+  EXPECT_TRUE(e.line().has_value());
+  EXPECT_THAT(e.message(), HasSubstr("self-intersecting"));
+}
+
+TEST(GpxTrack, TruncatedFileNamesFileAndLine) {
+  const std::string text = shoremesh::io::test::read_file(kCerknica);
+  const std::string cut = text.substr(0, text.size() / 2);
+  const auto e = expect_input_error([&] { parse_gpx_text(cut, "cut.gpx"); });
+  EXPECT_EQ(e.file(), "cut.gpx");
+  ASSERT_TRUE(e.line().has_value());
+  EXPECT_GT(*e.line(), 100u);
+  EXPECT_THAT(e.message(), HasSubstr("malformed XML"));
+}
+
+TEST(GpxTrack, MalformedInputsGetClearErrors) {
+  struct Case {
+    std::string text, expect;
+    std::size_t line;
+  };
+  const std::vector<Case> cases{
+      {"<gpx version=\"1.1\"><trk><trkseg><trkpt lat=\"1\" lon=\"2\"></trkseg></trk></gpx>", "malformed XML", 1},
+      {"<?xml version=\"1.0\"?>\n<kml><Placemark/></kml>\n", "not a GPX file", 2},
+      {gpx_with("<wpt lat=\"45\" lon=\"14\"/>\n<wpt lon=\"14\"/>\n"), "without a lat attribute", 4},
+      {gpx_with("<wpt lat=\"45abc\" lon=\"14\"/>\n"), "is not a number", 3},
+      {gpx_with("<wpt lat=\"nan\" lon=\"14\"/>\n"), "not a finite number", 3},
+      {gpx_with("<wpt lat=\"95\" lon=\"14\"/>\n"), "out of range", 3},
+      {gpx_with("<wpt lat=\"45\" lon=\"14\"><ele>high</ele></wpt>\n"), "<ele>", 3},
+      {gpx_with("<wpt lat=\"45\" lon=\"14\"/>\n", "2.0"), "unsupported GPX version", 2},
+      {gpx_with("<trk><trkseg></trkseg></trk>\n"), "no points", 0},
+      {"", "", 0},
+  };
+  for (const auto& c : cases) {
+    const auto e = expect_input_error([&] { parse_gpx_text(c.text, "t.gpx"); });
+    EXPECT_EQ(e.file(), "t.gpx");
+    EXPECT_THAT(e.message(), HasSubstr(c.expect)) << c.text;
+    if (c.line) {
+      EXPECT_EQ(e.line(), c.line) << c.text;
+    }
+  }
+}
+
+TEST(TrackCsv, ColumnsFoundByHeaderName) {
+  const std::string text = "time,Longitude,\"Latitude\",ele\n2010-08-05T14:00:00Z,14.3,45.7,550\n"
+                           "2010-08-05T14:00:10Z,14.301,45.701,\n";
+  EXPECT_TRUE(csv_header_has_lat_lon(text));
+  EXPECT_FALSE(csv_header_has_lat_lon("x,y\n1,2\n"));
+  const auto d = parse_track_csv_text(text, "t.csv");
+  ASSERT_EQ(d.point_count(), 2u);
+  const auto& p = d.sequences[0].points;
+  EXPECT_DOUBLE_EQ(p[0].lon, 14.3);
+  EXPECT_DOUBLE_EQ(p[0].lat, 45.7);
+  EXPECT_EQ(p[0].ele, 550.0);
+  EXPECT_FALSE(p[1].ele.has_value());
+  EXPECT_EQ(p[1].line, 3u);
+}
+
+TEST(TrackCsv, MalformedRowsNameFileAndLine) {
+  auto e = expect_input_error([] { parse_track_csv_text("lat,lon\n45,14\n45.1,abc\n", "t.csv"); });
+  EXPECT_EQ(e.line(), 3u);
+  EXPECT_THAT(e.message(), HasSubstr("lon column: \"abc\" is not a number"));
+  e = expect_input_error([] { parse_track_csv_text("lat,lon\n45,inf\n", "t.csv"); });
+  EXPECT_THAT(e.message(), HasSubstr("not a finite number"));
+  e = expect_input_error([] { parse_track_csv_text("lat,lon\n45,14,3\n", "t.csv"); });
+  EXPECT_EQ(e.line(), 2u);
+  e = expect_input_error([] { parse_track_csv_text("x,y\n45,14\n", "t.csv"); });
+  EXPECT_THAT(e.message(), HasSubstr("no lat/lon columns"));
+  e = expect_input_error([] { parse_track_csv_text("lat,lon\n", "t.csv"); });
+  EXPECT_EQ(e.message(), "no points");
+}

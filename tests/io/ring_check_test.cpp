@@ -1,0 +1,139 @@
+#include "shoremesh/io/ring_check.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "../../io/src/input/exact_orient.hpp"
+#include "io_test_util.hpp"
+#include "shoremesh/io/input_set.hpp"
+
+using namespace shoremesh;
+using namespace shoremesh::io;
+using ::testing::HasSubstr;
+
+namespace {
+
+__extension__ typedef __int128 int128;  // GCC/Clang extension, exact 2x64-bit products
+
+int exact_int128_sign(long long ax, long long ay, long long bx, long long by, long long cx, long long cy) {
+  const int128 d = static_cast<int128>(ax - cx) * (by - cy) - static_cast<int128>(ay - cy) * (bx - cx);
+  return (d > 0) - (d < 0);
+}
+
+Domain2 domain_of(std::vector<std::vector<Point2>> rings) {
+  Domain2 d;
+  for (auto& r : rings) d.rings.push_back({std::move(r), RingRole::Shore});
+  return d;
+}
+
+}  // namespace
+
+TEST(ExactOrient, MatchesInt128OnNearlyCollinearPoints) {
+  // Integer coordinates below 2^52 are exact doubles and their determinant fits in 128 bits; scaling by 2^-40
+  // keeps everything exact. Nearly collinear triples defeat plain double evaluation.
+  std::mt19937_64 rng(7);
+  std::uniform_int_distribution<long long> coord(-(1LL << 50), 1LL << 50), small(-3, 3);
+  int naive_wrong = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const long long ax = coord(rng), ay = coord(rng), bx = coord(rng), by = coord(rng);
+    // c near the line ab, between a and b.
+    const long long cx = ax + (bx - ax) / 3 + small(rng), cy = ay + (by - ay) / 3 + small(rng);
+    const double s = std::ldexp(1.0, -40);
+    const Point2 a{ax * s, ay * s}, b{bx * s, by * s}, c{cx * s, cy * s};
+    const int expect = exact_int128_sign(ax, ay, bx, by, cx, cy);
+    ASSERT_EQ(detail::orient2d_sign(a, b, c), expect) << i;
+    const double naive = (a[0] - c[0]) * (b[1] - c[1]) - (a[1] - c[1]) * (b[0] - c[0]);
+    naive_wrong += ((naive > 0) - (naive < 0)) != expect;
+  }
+  EXPECT_GT(naive_wrong, 0) << "the test should include cases plain doubles get wrong";
+  std::printf("plain double orientation wrong in %d of 200000 near-collinear cases; exact: 0\n", naive_wrong);
+}
+
+TEST(RingCheck, ValidNestedRingsPassAndGetRolesByNesting) {
+  auto d = domain_of({{{0, 0}, {10, 0}, {10, 10}, {0, 10}},
+                      {{2, 2}, {2, 8}, {8, 8}, {8, 2}},
+                      {{4, 4}, {6, 4}, {6, 6}, {4, 6}},
+                      {{20, 0}, {30, 0}, {25, 5}}});
+  EXPECT_FALSE(find_ring_defect(d).has_value());
+  assign_roles_by_nesting(d);
+  EXPECT_EQ(d.rings[0].role, RingRole::Shore);
+  EXPECT_EQ(d.rings[1].role, RingRole::Island);
+  EXPECT_EQ(d.rings[2].role, RingRole::Shore);  // a pond on the island
+  EXPECT_EQ(d.rings[3].role, RingRole::Shore);
+}
+
+TEST(RingCheck, BowTieIsReported) {
+  const auto defect = find_ring_defect(domain_of({{{0, 0}, {10, 10}, {10, 0}, {0, 10}}}));
+  ASSERT_TRUE(defect.has_value());
+  EXPECT_EQ(defect->kind, RingDefect::Kind::Intersection);
+  EXPECT_EQ(defect->describe(), "ring 1 edge 1-2 crosses its own ring 1 edge 3-4");
+}
+
+TEST(RingCheck, TouchingRingsAndVertexOnEdgeAreReported) {
+  // An island whose vertex lies exactly on the shore's edge.
+  EXPECT_TRUE(find_ring_defect(domain_of({{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {{5, 0}, {6, 2}, {4, 2}}})).has_value());
+  // A spike folding back along its own edge.
+  EXPECT_TRUE(find_ring_defect(domain_of({{{0, 0}, {10, 0}, {5, 0}, {5, 5}}})).has_value());
+  // Crossing rings.
+  EXPECT_TRUE(find_ring_defect(domain_of({{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {{5, 5}, {15, 5}, {15, 6}}})).has_value());
+}
+
+TEST(RingCheck, TooFewPointsAndRepeatedVertex) {
+  auto d = find_ring_defect(domain_of({{{0, 0}, {1, 0}}}));
+  ASSERT_TRUE(d.has_value());
+  EXPECT_EQ(d->kind, RingDefect::Kind::TooFewPoints);
+  d = find_ring_defect(domain_of({{{0, 0}, {1, 0}, {1, 0}, {0, 1}}}));
+  ASSERT_TRUE(d.has_value());
+  EXPECT_EQ(d->kind, RingDefect::Kind::RepeatedVertex);
+}
+
+TEST(RingCheck, CheckRingsNamesFileAndLine) {
+  InputSet set;
+  set.sources.push_back({"lake.poly", Source::Location::Line});
+  const std::vector<Point2> ring{{0, 0}, {10, 10}, {10, 0}, {0, 10}};
+  set.ring_offsets.push_back(0);
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    set.points.push_back(ring[i]);
+    set.origins.push_back({0, 0, 20 + i});
+  }
+  set.domain.rings.push_back({ring, RingRole::Shore});
+  const auto e = shoremesh::io::test::expect_input_error([&] { check_rings(set); });
+  EXPECT_EQ(e.file(), "lake.poly");
+  EXPECT_EQ(e.line(), 20u);
+  EXPECT_THAT(e.message(), HasSubstr("self-intersecting rings: ring 1 edge 1-2 crosses its own ring 1 edge 3-4 (at lake.poly:22"));
+}
+
+TEST(RingCheck, ManyEdgesSweepIsFast) {
+  // A 200,000-vertex star-shaped ring: valid, checked in well under a second.
+  std::vector<Point2> ring;
+  for (int i = 0; i < 200000; ++i) {
+    const double t = 2 * 3.141592653589793 * i / 200000, r = 1000 + 10 * std::sin(50 * t);
+    ring.push_back({r * std::cos(t), r * std::sin(t)});
+  }
+  EXPECT_FALSE(find_ring_defect(domain_of({ring})).has_value());
+}
+
+TEST(InputSetMerge, SameProjectionRequiredAndOriginsRenumbered) {
+  InputSet a, b;
+  a.units = b.units = Units::Metres;
+  a.projection = b.projection = Projection::utm_ups(33, true);
+  a.sources.push_back({"a.gpx", Source::Location::Line});
+  a.points = {{0, 0}, {1, 0}};
+  a.origins = {{0, PointOrigin::kNoRing, 3}, {0, PointOrigin::kNoRing, 4}};
+  b.sources.push_back({"b.csv", Source::Location::Line});
+  b.points = {{5, 5}};
+  b.origins = {{0, PointOrigin::kNoRing, 9}};
+  const auto m = merge({a, b});
+  ASSERT_EQ(m.points.size(), 3u);
+  EXPECT_EQ(describe_origin(m, 2), "b.csv:9");
+  b.points = {{1, 0}};
+  auto e = shoremesh::io::test::expect_input_error([&] { merge({a, b}); });
+  EXPECT_EQ(e.message(), "duplicate point: b.csv:9 repeats a.gpx:4");
+  b.projection = Projection::utm_ups(34, true);
+  e = shoremesh::io::test::expect_input_error([&] { merge({a, b}); });
+  EXPECT_THAT(e.message(), HasSubstr("different projections"));
+  EXPECT_EQ(e.file(), "b.csv");
+}
