@@ -1,0 +1,96 @@
+#pragma once
+// The Delaunay mesh of the engine's output points: triangles (2D) or tetrahedra (3D), kept alive in a CGAL
+// triangulation so that a dynamic update of the point set changes the mesh only where the points changed.
+// In 2D, a domain (a lake shore and its islands) keeps only the elements inside the water.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "shoremesh/box_transform.hpp"
+#include "shoremesh/domain.hpp"
+#include "shoremesh/mesh_element.hpp"
+#include "shoremesh/mesh_quality.hpp"
+#include "shoremesh/mesh_shoreline.hpp"
+#include "shoremesh/point.hpp"
+
+namespace shoremesh {
+
+// A change of the engine's output, in the form the dynamic engine reports it. Removals happen first.
+template <int D>
+struct PointChange {
+  std::vector<Point<D>> removed;
+  std::vector<Point<D>> added;
+  std::size_t added_input_count = 0;  // the first added_input_count points of `added` are input points
+};
+
+// What a change did to the mesh (elements inside the water only): the elements that disappeared and the
+// ones that appeared, each once, corners sorted. An element removed and recreated by the same change is
+// in neither list.
+template <int D>
+struct MeshDelta {
+  std::vector<ElementCorners<D>> removed;
+  std::vector<ElementCorners<D>> added;
+  bool empty() const { return removed.empty() && added.empty(); }
+};
+
+template <int D>
+class MeshTriangulation;  // core/src/mesh.cpp: the CGAL triangulation with its vertex map
+
+template <int D>
+class Mesh {
+  static_assert(D == 2 || D == 3);
+
+ public:
+  // The Delaunay mesh of `points`, of which the first `input_count` are input points and the rest Steiner
+  // points. Points must be finite and pairwise distinct (InputError naming the first duplicate otherwise).
+  Mesh(std::span<const Point<D>> points, std::size_t input_count);
+  // The same, keeping only the triangles inside the water of `domain` (even-odd rule over its rings).
+  Mesh(std::span<const Point2> points, std::size_t input_count, const Domain2& domain)
+    requires(D == 2);
+  ~Mesh();
+  Mesh(Mesh&&) noexcept;
+  Mesh& operator=(Mesh&&) noexcept;
+
+  // The current points. A dynamic update renumbers them: a removed point's slot takes the last point.
+  const std::vector<Point<D>>& points() const { return points_; }
+  const std::vector<PointKind>& kinds() const { return kinds_; }
+  const Domain2& domain() const { return domain_; }
+
+  // The elements inside the water (all finite Delaunay elements without a domain), positively oriented.
+  std::vector<Element<D>> elements() const;
+  std::size_t element_count() const;
+
+  // Applies a change of the point set with CGAL's incremental removal and insertion; afterwards the mesh
+  // is the Delaunay mesh of the new point set. Throws InputError (and changes nothing) when a removed
+  // point is not in the mesh or an added point already is (or is given twice).
+  MeshDelta<D> apply(const PointChange<D>& change);
+
+  // Element quality against the bound that rho-well-spacedness guarantees. The guarantee covers the
+  // elements whose circumcentre lies in `box` (the engine's box; the points' bounding box by default).
+  QualityReport<D> quality(double rho, std::optional<BoxTransform<D>> box = {}) const;
+
+  // Whether the mesh respects the domain's rings: each ring segment must be a chain of mesh edges.
+  ShorelineReport shoreline_crossings() const
+    requires(D == 2);
+
+  // CGAL's structural and Delaunay validity check plus the point bookkeeping; throws std::logic_error
+  // naming the first broken invariant.
+  void check_valid() const;
+
+ private:
+  void build(std::span<const Point<D>> points, std::size_t input_count);
+
+  std::vector<Point<D>> points_;
+  std::vector<PointKind> kinds_;
+  Domain2 domain_;
+  std::unique_ptr<MeshTriangulation<D>> triangulation_;
+};
+
+using Mesh2 = Mesh<2>;
+using Mesh3 = Mesh<3>;
+
+}  // namespace shoremesh

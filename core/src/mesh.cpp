@@ -1,0 +1,510 @@
+// The CGAL side of Mesh<D>: a Delaunay triangulation kept alive between updates, with a map from exact
+// coordinates to vertex handles so that the points a dynamic update names are found in O(1).
+// All of CGAL's heavy templates live in this translation unit.
+#include "shoremesh/mesh.hpp"
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <iterator>
+#include <limits>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <utility>
+
+#include "shoremesh/error.hpp"
+#include "shoremesh/mesh_water.hpp"
+
+namespace shoremesh {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+// Per dimension: the triangulation type and the few calls whose names differ between 2D and 3D.
+template <int D>
+struct Cgal;
+
+template <>
+struct Cgal<2> {
+  using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, Kernel>;
+  using Fb = CGAL::Triangulation_face_base_with_info_2<bool, Kernel>;  // info: inside the water
+  using Triangulation = CGAL::Delaunay_triangulation_2<Kernel, CGAL::Triangulation_data_structure_2<Vb, Fb>>;
+  using Vertex = Triangulation::Vertex_handle;
+  using Face = Triangulation::Face_handle;
+
+  static Kernel::Point_2 to_cgal(const Point2& p) { return {p[0], p[1]}; }
+  static Point2 from_cgal(const Kernel::Point_2& p) { return {p.x(), p.y()}; }
+
+  template <class F>
+  static void for_each_finite_face(const Triangulation& t, F&& f) {
+    for (Face face : t.finite_face_handles()) f(face);
+  }
+  template <class F>
+  static void for_each_incident_finite_face(const Triangulation& t, Vertex v, F&& f) {
+    auto c = t.incident_faces(v), done = c;
+    do {
+      if (!t.is_infinite(c)) f(Face(c));
+    } while (++c != done);
+  }
+  static std::vector<Vertex> adjacent_finite_vertices(const Triangulation& t, Vertex v) {
+    std::vector<Vertex> out;
+    auto c = t.incident_vertices(v), done = c;
+    do {
+      if (!t.is_infinite(c)) out.push_back(c);
+    } while (++c != done);
+    return out;
+  }
+  static std::vector<Face> conflicts(const Triangulation& t, const Kernel::Point_2& p) {
+    std::vector<Face> out;
+    t.get_conflicts(p, std::back_inserter(out), t.locate(p));
+    return out;
+  }
+};
+
+template <>
+struct Cgal<3> {
+  using Vb = CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, Kernel>;
+  using Cb = CGAL::Delaunay_triangulation_cell_base_3<Kernel>;
+  using Triangulation = CGAL::Delaunay_triangulation_3<Kernel, CGAL::Triangulation_data_structure_3<Vb, Cb>>;
+  using Vertex = Triangulation::Vertex_handle;
+  using Face = Triangulation::Cell_handle;
+
+  static Kernel::Point_3 to_cgal(const Point3& p) { return {p[0], p[1], p[2]}; }
+  static Point3 from_cgal(const Kernel::Point_3& p) { return {p.x(), p.y(), p.z()}; }
+
+  template <class F>
+  static void for_each_finite_face(const Triangulation& t, F&& f) {
+    for (Face cell : t.finite_cell_handles()) f(cell);
+  }
+  template <class F>
+  static void for_each_incident_finite_face(const Triangulation& t, Vertex v, F&& f) {
+    std::vector<Face> cells;
+    t.finite_incident_cells(v, std::back_inserter(cells));
+    for (Face c : cells) f(c);
+  }
+  static std::vector<Vertex> adjacent_finite_vertices(const Triangulation& t, Vertex v) {
+    std::vector<Vertex> out;
+    t.finite_adjacent_vertices(v, std::back_inserter(out));
+    return out;
+  }
+  static std::vector<Face> conflicts(const Triangulation& t, const Kernel::Point_3& p) {
+    std::vector<Face> out;
+    t.find_conflicts(p, t.locate(p), CGAL::Emptyset_iterator(), std::back_inserter(out));
+    return out;
+  }
+};
+
+// Exact coordinates as the key (-0 and +0 are the same point).
+template <int D>
+struct PointHash {
+  std::size_t operator()(const Point<D>& p) const {
+    std::size_t h = 0;
+    for (double x : p) h = h * 0x9E3779B97F4A7C15ull + std::hash<std::uint64_t>{}(std::bit_cast<std::uint64_t>(x + 0.0));
+    return h;
+  }
+};
+
+template <int D>
+std::string describe(const Point<D>& p) {
+  std::string s = "(";
+  for (int i = 0; i < D; ++i) s += (i ? ", " : "") + std::to_string(p[i]);
+  return s + ")";
+}
+
+template <int D>
+bool finite(const Point<D>& p) {
+  return std::all_of(p.begin(), p.end(), [](double x) { return std::isfinite(x); });
+}
+
+}  // namespace
+
+template <int D>
+class MeshTriangulation {
+ public:
+  using C = Cgal<D>;
+  using Triangulation = typename C::Triangulation;
+  using Vertex = typename C::Vertex;
+  using Face = typename C::Face;
+  using Key = ElementCorners<D>;
+
+  explicit MeshTriangulation(const Domain2& domain) : water_(domain) {}
+
+  Triangulation triangulation;
+  std::unordered_map<Point<D>, Vertex, PointHash<D>> vertex_of;
+
+  void build(std::span<const Point<D>> points) {
+    std::vector<std::pair<decltype(C::to_cgal(points[0])), std::uint32_t>> input;
+    input.reserve(points.size());
+    for (std::uint32_t i = 0; i < points.size(); ++i) input.emplace_back(C::to_cgal(points[i]), i);
+    triangulation.insert(input.begin(), input.end());  // spatially sorted bulk insertion
+    for (Vertex v : triangulation.finite_vertex_handles()) vertex_of.emplace(C::from_cgal(v->point()), v);
+    C::for_each_finite_face(triangulation, [&](Face f) { classify(f); });
+  }
+
+  bool in_water(Face f) const {
+    if constexpr (D == 2) return f->info();
+    else return true;
+  }
+
+  Element<D> element(Face f) const {
+    Element<D> e;
+    for (int i = 0; i <= D; ++i) e[i] = f->vertex(i)->info();
+    return e;
+  }
+
+  Key key(Face f) const {
+    Key k;
+    for (int i = 0; i <= D; ++i) k[i] = C::from_cgal(f->vertex(i)->point());
+    std::sort(k.begin(), k.end());
+    return k;
+  }
+
+  // The water side of a triangle is the side of its centroid: the mesh's elements do not cross the rings
+  // when the sampling is fine enough (shoreline_crossings says where it is not).
+  void classify(Face f) {
+    if constexpr (D == 2) {
+      const auto c = CGAL::centroid(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
+      f->info() = water_.in_water({c.x(), c.y()});
+    }
+  }
+
+  WaterSide classify_point(const Point2& p) const { return water_.classify(p); }
+
+  // The keys of the water elements incident to any of `vertices`.
+  std::set<Key> incident_keys(const std::vector<Vertex>& vertices) const {
+    std::set<Key> keys;
+    for (Vertex v : vertices)
+      C::for_each_incident_finite_face(triangulation, v, [&](Face f) {
+        if (in_water(f)) keys.insert(key(f));
+      });
+    return keys;
+  }
+
+  std::set<Key> all_keys() const {
+    std::set<Key> keys;
+    if (triangulation.dimension() < D) return keys;
+    C::for_each_finite_face(triangulation, [&](Face f) {
+      if (in_water(f)) keys.insert(key(f));
+    });
+    return keys;
+  }
+
+  // Net change over a batch: an element removed then recreated (or created then removed) cancels.
+  struct Accumulator {
+    std::set<Key> gone, born;
+    void remove(const Key& k) {
+      if (!born.erase(k)) gone.insert(k);
+    }
+    void add(const Key& k) {
+      if (!gone.erase(k)) born.insert(k);
+    }
+    void record(const std::set<Key>& before, const std::set<Key>& after) {
+      for (const Key& k : before)
+        if (!after.count(k)) remove(k);
+      for (const Key& k : after)
+        if (!before.count(k)) add(k);
+    }
+  };
+
+  void remove(const Point<D>& p, std::vector<Point<D>>& points, std::vector<PointKind>& kinds, Accumulator& acc) {
+    const Vertex v = vertex_of.at(p);
+    const std::uint32_t slot = v->info();
+    if (triangulation.dimension() < D) {
+      const std::set<Key> before = all_keys();
+      triangulation.remove(v);
+      acc.record(before, all_keys());
+    } else {
+      // The faces destroyed are those around v; the faces created fill its star and have only link
+      // vertices as corners. Comparing the faces around the link before and after catches both.
+      const std::vector<Vertex> link = C::adjacent_finite_vertices(triangulation, v);
+      const std::set<Key> before = incident_keys(link);
+      triangulation.remove(v);
+      std::set<Key> after;
+      if (triangulation.dimension() == D) {
+        for (Vertex u : link)
+          C::for_each_incident_finite_face(triangulation, u, [&](Face f) {
+            classify(f);
+            if (in_water(f)) after.insert(key(f));
+          });
+      }
+      acc.record(before, after);
+    }
+    vertex_of.erase(p);
+    // Keep the point array compact: the last point moves into the freed slot.
+    const std::size_t last = points.size() - 1;
+    if (slot != last) {
+      points[slot] = points[last];
+      kinds[slot] = kinds[last];
+      vertex_of.at(points[slot])->info() = slot;
+    }
+    points.pop_back();
+    kinds.pop_back();
+  }
+
+  void insert(const Point<D>& p, PointKind kind, std::vector<Point<D>>& points, std::vector<PointKind>& kinds,
+              Accumulator& acc) {
+    const auto cp = C::to_cgal(p);
+    const bool full = triangulation.dimension() == D;
+    std::set<Key> before;
+    if (full) {
+      // The faces whose circumsphere contains p are exactly the ones the insertion destroys.
+      for (Face f : C::conflicts(triangulation, cp))
+        if (!triangulation.is_infinite(f) && in_water(f)) acc.remove(key(f));
+    } else {
+      before = all_keys();
+    }
+    const Vertex v = triangulation.insert(cp);
+    v->info() = static_cast<std::uint32_t>(points.size());
+    points.push_back(p);
+    kinds.push_back(kind);
+    vertex_of.emplace(p, v);
+    if (full) {
+      C::for_each_incident_finite_face(triangulation, v, [&](Face f) {
+        classify(f);
+        if (in_water(f)) acc.add(key(f));
+      });
+    } else {
+      C::for_each_finite_face(triangulation, [&](Face f) { classify(f); });
+      acc.record(before, all_keys());
+    }
+  }
+
+ private:
+  WaterTest water_;
+};
+
+template <int D>
+Mesh<D>::Mesh(std::span<const Point<D>> points, std::size_t input_count) {
+  build(points, input_count);
+}
+
+template <int D>
+Mesh<D>::Mesh(std::span<const Point2> points, std::size_t input_count, const Domain2& domain)
+  requires(D == 2)
+    : domain_(domain) {
+  build(points, input_count);
+}
+
+template <int D>
+Mesh<D>::~Mesh() = default;
+template <int D>
+Mesh<D>::Mesh(Mesh&&) noexcept = default;
+template <int D>
+Mesh<D>& Mesh<D>::operator=(Mesh&&) noexcept = default;
+
+template <int D>
+void Mesh<D>::build(std::span<const Point<D>> points, std::size_t input_count) {
+  if (input_count > points.size()) throw InputError("input_count exceeds the number of points");
+  if (points.size() >= std::numeric_limits<std::uint32_t>::max()) throw InputError("too many points for a mesh");
+  std::unordered_map<Point<D>, std::size_t, PointHash<D>> seen;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!finite<D>(points[i])) throw InputError("point " + std::to_string(i) + " is not finite", {}, i + 1);
+    if (const auto [it, fresh] = seen.emplace(points[i], i); !fresh)
+      throw InputError("point " + std::to_string(i) + " " + describe<D>(points[i]) + " repeats point " +
+                           std::to_string(it->second),
+                       {}, i + 1);
+  }
+  points_.assign(points.begin(), points.end());
+  kinds_.assign(points.size(), PointKind::Steiner);
+  std::fill_n(kinds_.begin(), input_count, PointKind::Input);
+  triangulation_ = std::make_unique<MeshTriangulation<D>>(domain_);
+  triangulation_->build(points_);
+}
+
+template <int D>
+std::vector<Element<D>> Mesh<D>::elements() const {
+  std::vector<Element<D>> out;
+  const auto& t = *triangulation_;
+  if (t.triangulation.dimension() < D) return out;
+  Cgal<D>::for_each_finite_face(t.triangulation, [&](auto f) {
+    if (t.in_water(f)) out.push_back(t.element(f));
+  });
+  return out;
+}
+
+template <int D>
+std::size_t Mesh<D>::element_count() const {
+  const auto& t = *triangulation_;
+  if (t.triangulation.dimension() < D) return 0;
+  std::size_t n = 0;
+  Cgal<D>::for_each_finite_face(t.triangulation, [&](auto f) { n += t.in_water(f); });
+  return n;
+}
+
+template <int D>
+MeshDelta<D> Mesh<D>::apply(const PointChange<D>& change) {
+  auto& t = *triangulation_;
+  // Validate everything first, so that a bad change leaves the mesh as it was.
+  if (change.added_input_count > change.added.size())
+    throw InputError("added_input_count exceeds the number of added points");
+  std::unordered_map<Point<D>, std::size_t, PointHash<D>> removed;
+  for (std::size_t i = 0; i < change.removed.size(); ++i) {
+    const Point<D>& p = change.removed[i];
+    if (!t.vertex_of.count(p)) throw InputError("removed point " + describe<D>(p) + " is not in the mesh", {}, i + 1);
+    if (!removed.emplace(p, i).second) throw InputError("removed point " + describe<D>(p) + " is given twice", {}, i + 1);
+  }
+  std::unordered_map<Point<D>, std::size_t, PointHash<D>> added;
+  for (std::size_t i = 0; i < change.added.size(); ++i) {
+    const Point<D>& p = change.added[i];
+    if (!finite<D>(p)) throw InputError("added point " + std::to_string(i) + " is not finite", {}, i + 1);
+    if (t.vertex_of.count(p) && !removed.count(p))
+      throw InputError("added point " + describe<D>(p) + " is already in the mesh", {}, i + 1);
+    if (!added.emplace(p, i).second) throw InputError("added point " + describe<D>(p) + " is given twice", {}, i + 1);
+  }
+
+  typename MeshTriangulation<D>::Accumulator acc;
+  for (const Point<D>& p : change.removed) t.remove(p, points_, kinds_, acc);
+  for (std::size_t i = 0; i < change.added.size(); ++i)
+    t.insert(change.added[i], i < change.added_input_count ? PointKind::Input : PointKind::Steiner, points_, kinds_, acc);
+  return {{acc.gone.begin(), acc.gone.end()}, {acc.born.begin(), acc.born.end()}};
+}
+
+template <int D>
+QualityReport<D> Mesh<D>::quality(double rho, std::optional<BoxTransform<D>> box) const {
+  const std::vector<Element<D>> e = elements();
+  return quality_report<D>(points_, e, rho, box);
+}
+
+template <int D>
+void Mesh<D>::check_valid() const {
+  const auto& t = *triangulation_;
+  if (!t.triangulation.is_valid()) throw std::logic_error("mesh: CGAL triangulation is not valid");
+  if (t.triangulation.number_of_vertices() != points_.size() || t.vertex_of.size() != points_.size() ||
+      kinds_.size() != points_.size())
+    throw std::logic_error("mesh: vertex count, vertex map and point list disagree");
+  for (auto v : t.triangulation.finite_vertex_handles()) {
+    const std::uint32_t i = v->info();
+    if (i >= points_.size() || points_[i] != Cgal<D>::from_cgal(v->point()))
+      throw std::logic_error("mesh: vertex " + describe<D>(Cgal<D>::from_cgal(v->point())) + " has a stale index");
+  }
+}
+
+// Walks each ring segment a->b through the triangulation: along mesh edges lying on it while there are
+// some, otherwise across the triangles it passes through, counting the edges it crosses. Every decision is
+// an exact orientation test.
+template <int D>
+ShorelineReport Mesh<D>::shoreline_crossings() const
+  requires(D == 2)
+{
+  using C = Cgal<2>;
+  const auto& t = *triangulation_;
+  const auto& dt = t.triangulation;
+  ShorelineReport report;
+  auto segment_distance = [](const Kernel::Point_2& a, const Kernel::Point_2& b, const Kernel::Point_2& p) {
+    return std::sqrt(CGAL::to_double(CGAL::squared_distance(Kernel::Segment_2(a, b), p)));
+  };
+
+  for (std::size_t r = 0; r < domain_.rings.size(); ++r) {
+    const auto& ring = domain_.rings[r].points;
+    for (std::size_t s = 0; s < ring.size(); ++s) {
+      const Point2& a = ring[s];
+      const Point2& b = ring[(s + 1) % ring.size()];
+      if (a == b) continue;
+      ++report.segments;
+      ShoreSegmentIssue issue;
+      issue.ring = r, issue.segment = s, issue.a = a, issue.b = b;
+      const auto pa = C::to_cgal(a), pb = C::to_cgal(b);
+      const auto ia = t.vertex_of.find(a), ib = t.vertex_of.find(b);
+      if (ia == t.vertex_of.end() || ib == t.vertex_of.end() || dt.dimension() < 2) {
+        issue.endpoint_missing = true;
+        for (const auto& p : {pa, pb})
+          if (dt.number_of_vertices() > 0 && !t.vertex_of.count(C::from_cgal(p)))
+            issue.depth = std::max(issue.depth, std::sqrt(CGAL::to_double(
+                                                    CGAL::squared_distance(dt.nearest_vertex(p)->point(), p))));
+        report.issues.push_back(issue);
+        continue;
+      }
+      const auto vb = ib->second;
+      auto v = ia->second;
+      bool uncovered = false;
+      std::vector<C::Face> passed;
+      while (v != vb) {
+        // A mesh edge from v along the segment towards b?
+        C::Vertex next;
+        for (auto w : C::adjacent_finite_vertices(dt, v))
+          if (w == vb || (CGAL::orientation(pa, pb, w->point()) == CGAL::COLLINEAR &&
+                          CGAL::collinear_are_strictly_ordered_along_line(v->point(), w->point(), pb))) {
+            next = w;
+            break;
+          }
+        if (next != C::Vertex()) {
+          v = next;
+          continue;
+        }
+        uncovered = true;
+        // The triangle (v, p, q) at v whose angle the segment enters: b left of v->p and right of v->q.
+        C::Face f;
+        C::Vertex p, q;
+        C::for_each_incident_finite_face(dt, v, [&](C::Face g) {
+          const int i = g->index(v);
+          const auto gp = g->vertex(dt.ccw(i)), gq = g->vertex(dt.cw(i));
+          if (CGAL::orientation(v->point(), gp->point(), pb) == CGAL::LEFT_TURN &&
+              CGAL::orientation(v->point(), gq->point(), pb) == CGAL::RIGHT_TURN)
+            f = g, p = gp, q = gq;
+        });
+        if (f == C::Face()) throw std::logic_error("shoreline walk: no triangle at a ring vertex contains the segment");
+        // Cross edges (p, q), p right and q left of the line, until a vertex on the segment is reached.
+        C::Vertex behind = v;
+        while (true) {
+          passed.push_back(f);
+          ++issue.crossing_edges;
+          issue.depth = std::max(issue.depth, std::min(segment_distance(pa, pb, p->point()),
+                                                       segment_distance(pa, pb, q->point())));
+          const C::Face g = f->neighbor(f->index(behind));
+          if (dt.is_infinite(g)) throw std::logic_error("shoreline walk left the convex hull");
+          passed.push_back(g);
+          const auto w = g->vertex(3 - g->index(p) - g->index(q));
+          const CGAL::Orientation o = CGAL::orientation(pa, pb, w->point());
+          if (w == vb || o == CGAL::COLLINEAR) {
+            v = w;
+            break;
+          }
+          if (o == CGAL::LEFT_TURN) behind = q, q = w;
+          else behind = p, p = w;
+          f = g;
+        }
+      }
+      if (!uncovered) {
+        ++report.covered;
+        continue;
+      }
+      std::sort(passed.begin(), passed.end());
+      passed.erase(std::unique(passed.begin(), passed.end()), passed.end());
+      for (C::Face f : passed)
+        if (t.in_water(f)) issue.crossing_elements.push_back(t.element(f));
+      report.issues.push_back(std::move(issue));
+    }
+  }
+  for (const auto& issue : report.issues) report.worst_depth = std::max(report.worst_depth, issue.depth);
+  return report;
+}
+
+std::string ShorelineReport::summary() const {
+  std::string s = std::to_string(covered) + " of " + std::to_string(segments) + " shore segments are mesh edges";
+  if (ok()) return s + "\n";
+  s += "; the sampling is too coarse along " + std::to_string(issues.size()) +
+       " segments: mesh edges reach up to " + std::to_string(worst_depth) + " across the shoreline\n";
+  for (const auto& i : issues) {
+    s += "  ring " + std::to_string(i.ring) + " segment " + std::to_string(i.segment) + " " + describe<2>(i.a) +
+         "-" + describe<2>(i.b) + ": ";
+    s += i.endpoint_missing ? "an end is not a mesh point (" + std::to_string(i.depth) + " from the nearest)"
+                            : std::to_string(i.crossing_edges) + " crossing edges, depth " + std::to_string(i.depth);
+    s += "\n";
+  }
+  return s;
+}
+
+template class Mesh<2>;
+template class Mesh<3>;
+
+}  // namespace shoremesh

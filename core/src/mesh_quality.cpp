@@ -1,0 +1,203 @@
+#include "shoremesh/mesh_quality.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+
+namespace shoremesh {
+
+namespace {
+
+template <int D>
+Point<D> sub(const Point<D>& a, const Point<D>& b) {
+  Point<D> r;
+  for (int i = 0; i < D; ++i) r[i] = a[i] - b[i];
+  return r;
+}
+
+template <int D>
+double dot(const Point<D>& a, const Point<D>& b) {
+  double s = 0;
+  for (int i = 0; i < D; ++i) s += a[i] * b[i];
+  return s;
+}
+
+Point3 cross(const Point3& a, const Point3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+double degrees(double radians) { return radians * 180.0 / std::numbers::pi; }
+
+double angle_between(double cosine) { return degrees(std::acos(std::clamp(cosine, -1.0, 1.0))); }
+
+// Circumcentre relative to corner 0, solving the linear system 2 (p_i - p_0) . x = |p_i - p_0|^2 by
+// Cramer's rule (a numerical construction, used for reporting only).
+Point2 circumcentre_offset(const Point2& u, const Point2& v) {
+  const double det = 2 * (u[0] * v[1] - u[1] * v[0]);
+  const double uu = dot<2>(u, u), vv = dot<2>(v, v);
+  const double inf = std::numeric_limits<double>::infinity();
+  if (det == 0) return {inf, inf};
+  return {(uu * v[1] - vv * u[1]) / det, (vv * u[0] - uu * v[0]) / det};
+}
+
+Point3 circumcentre_offset(const Point3& u, const Point3& v, const Point3& w) {
+  const Point3 vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
+  const double det = 2 * dot<3>(u, vw);
+  const double inf = std::numeric_limits<double>::infinity();
+  if (det == 0) return {inf, inf, inf};
+  const double uu = dot<3>(u, u), vv = dot<3>(v, v), ww = dot<3>(w, w);
+  Point3 r;
+  for (int i = 0; i < 3; ++i) r[i] = (uu * vw[i] + vv * wu[i] + ww * uv[i]) / det;
+  return r;
+}
+
+void add_to(Histogram& h, double value) {
+  const double t = (value - h.low) / h.bin_width();
+  const std::size_t last = h.counts.size() - 1;
+  const std::size_t bin = !(t > 0) ? 0 : std::min(last, static_cast<std::size_t>(t));  // NaN/inf go to the ends
+  ++h.counts[std::isnan(value) ? last : bin];
+}
+
+}  // namespace
+
+template <int D>
+ElementShape<D> element_shape(const ElementCorners<D>& c) {
+  ElementShape<D> s;
+  for (int i = 0; i < D; ++i) {
+    double sum = 0;
+    for (const auto& p : c) sum += p[i];
+    s.centroid[i] = sum / (D + 1);
+  }
+  double shortest = std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= D; ++i)
+    for (int j = i + 1; j <= D; ++j) shortest = std::min(shortest, std::sqrt(dot<D>(sub<D>(c[i], c[j]), sub<D>(c[i], c[j]))));
+
+  Point<D> offset;
+  if constexpr (D == 2) {
+    offset = circumcentre_offset(sub<2>(c[1], c[0]), sub<2>(c[2], c[0]));
+    s.min_angle = 180;
+    s.max_angle = 0;
+    for (int i = 0; i < 3; ++i) {
+      const Point2 u = sub<2>(c[(i + 1) % 3], c[i]), v = sub<2>(c[(i + 2) % 3], c[i]);
+      const double a = angle_between(dot<2>(u, v) / std::sqrt(dot<2>(u, u) * dot<2>(v, v)));
+      s.min_angle = std::min(s.min_angle, a);
+      s.max_angle = std::max(s.max_angle, a);
+    }
+  } else {
+    offset = circumcentre_offset(sub<3>(c[1], c[0]), sub<3>(c[2], c[0]), sub<3>(c[3], c[0]));
+    // The dihedral angle at edge (i, j) is the angle between the two faces that share it, measured
+    // through the normals of the faces opposite k and l.
+    s.min_angle = 180;
+    s.max_angle = 0;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        int k = 0;
+        while (k == i || k == j) ++k;
+        int l = 6 - i - j - k;
+        const Point3 e = sub<3>(c[j], c[i]);
+        // Components of (k - i) and (l - i) perpendicular to the edge; their angle is the dihedral angle.
+        auto perpendicular = [&](const Point3& p) {
+          const Point3 q = sub<3>(p, c[i]);
+          const double t = dot<3>(q, e) / dot<3>(e, e);
+          return Point3{q[0] - t * e[0], q[1] - t * e[1], q[2] - t * e[2]};
+        };
+        const Point3 a = perpendicular(c[k]), b = perpendicular(c[l]);
+        const double angle = angle_between(dot<3>(a, b) / std::sqrt(dot<3>(a, a) * dot<3>(b, b)));
+        s.min_angle = std::min(s.min_angle, angle);
+        s.max_angle = std::max(s.max_angle, angle);
+      }
+  }
+  for (int i = 0; i < D; ++i) s.circumcentre[i] = c[0][i] + offset[i];
+  s.radius_edge = std::sqrt(dot<D>(offset, offset)) / shortest;
+  if (std::isnan(s.radius_edge)) s.radius_edge = std::numeric_limits<double>::infinity();
+  return s;
+}
+
+template <int D>
+QualityReport<D> quality_report(std::span<const Point<D>> points, std::span<const Element<D>> elements, double rho,
+                                std::optional<BoxTransform<D>> box, std::size_t worst_count) {
+  QualityReport<D> r;
+  r.elements = elements.size();
+  r.rho = rho;
+  r.min_angle_bound = D == 2 ? degrees(std::asin(std::min(1.0, 1.0 / (2 * rho)))) : 0.0;
+  r.min_angle_histogram = {0, D == 2 ? 60.0 : 75.0, std::vector<std::size_t>(D == 2 ? 12 : 15)};
+  r.radius_edge_histogram = {0.5, 3.0, std::vector<std::size_t>(25)};
+
+  Point<D> low, high;
+  if (box) {
+    low = box->origin;
+    for (int i = 0; i < D; ++i) high[i] = low[i] + box->side;
+  } else {
+    low.fill(std::numeric_limits<double>::infinity());
+    high.fill(-std::numeric_limits<double>::infinity());
+    for (const auto& p : points)
+      for (int i = 0; i < D; ++i) low[i] = std::min(low[i], p[i]), high[i] = std::max(high[i], p[i]);
+  }
+  auto in_box = [&](const Point<D>& p) {
+    for (int i = 0; i < D; ++i)
+      if (!(low[i] <= p[i] && p[i] <= high[i])) return false;
+    return true;
+  };
+
+  // A radius-edge ratio a few ulps above rho is rounding in the construction, not a broken guarantee.
+  const double tolerance = rho * (1 + 1e-12);
+  std::vector<WorstElement<D>> shapes;
+  shapes.reserve(elements.size());
+  r.min_angle = r.min_radius_edge = std::numeric_limits<double>::infinity();
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    ElementCorners<D> corners;
+    for (int i = 0; i <= D; ++i) corners[i] = points[elements[e][i]];
+    const ElementShape<D> s = element_shape<D>(corners);
+    r.min_angle = std::min(r.min_angle, s.min_angle);
+    r.max_angle = std::max(r.max_angle, s.max_angle);
+    r.min_radius_edge = std::min(r.min_radius_edge, s.radius_edge);
+    r.max_radius_edge = std::max(r.max_radius_edge, s.radius_edge);
+    const bool meets = s.radius_edge <= tolerance;
+    r.meeting_bound += meets;
+    if (in_box(s.circumcentre)) {
+      ++r.covered;
+      r.covered_meeting_bound += meets;
+      r.covered_max_radius_edge = std::max(r.covered_max_radius_edge, s.radius_edge);
+    }
+    add_to(r.min_angle_histogram, s.min_angle);
+    add_to(r.radius_edge_histogram, s.radius_edge);
+    shapes.push_back({e, s});
+  }
+  if (elements.empty()) r.min_angle = r.min_radius_edge = 0;
+  const std::size_t k = std::min(worst_count, shapes.size());
+  std::partial_sort(shapes.begin(), shapes.begin() + static_cast<std::ptrdiff_t>(k), shapes.end(),
+                    [](const auto& a, const auto& b) { return a.shape.radius_edge > b.shape.radius_edge; });
+  r.worst.assign(shapes.begin(), shapes.begin() + static_cast<std::ptrdiff_t>(k));
+  return r;
+}
+
+template <int D>
+std::string QualityReport<D>::summary() const {
+  std::ostringstream out;
+  out << elements << (D == 2 ? " triangles" : " tetrahedra") << "; " << (D == 2 ? "angles " : "dihedral angles ")
+      << min_angle << ".." << max_angle << " deg; radius-edge " << min_radius_edge << ".." << max_radius_edge << "\n";
+  out << "bound for rho = " << rho << ": radius-edge <= " << rho;
+  if (D == 2) out << " (minimum angle >= " << min_angle_bound << " deg)";
+  out << "; met by " << covered_meeting_bound << " of " << covered << " covered elements (circumcentre in the box), "
+      << meeting_bound << " of " << elements << " overall; worst covered " << covered_max_radius_edge << "\n";
+  for (const auto& w : worst) {
+    out << "  element " << w.element << " at (";
+    for (int i = 0; i < D; ++i) out << (i ? ", " : "") << w.shape.centroid[i];
+    out << "): radius-edge " << w.shape.radius_edge << ", angles " << w.shape.min_angle << ".." << w.shape.max_angle
+        << "\n";
+  }
+  return out.str();
+}
+
+template ElementShape<2> element_shape<2>(const ElementCorners<2>&);
+template ElementShape<3> element_shape<3>(const ElementCorners<3>&);
+template QualityReport<2> quality_report<2>(std::span<const Point2>, std::span<const Element<2>>, double,
+                                            std::optional<BoxTransform<2>>, std::size_t);
+template QualityReport<3> quality_report<3>(std::span<const Point3>, std::span<const Element<3>>, double,
+                                            std::optional<BoxTransform<3>>, std::size_t);
+template struct QualityReport<2>;
+template struct QualityReport<3>;
+
+}  // namespace shoremesh

@@ -1,0 +1,77 @@
+#include "shoremesh/mesh_water.hpp"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace shoremesh {
+
+namespace {
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+CGAL::Orientation orientation(const Point2& a, const Point2& b, const Point2& c) {
+  return CGAL::orientation(Kernel::Point_2(a[0], a[1]), Kernel::Point_2(b[0], b[1]), Kernel::Point_2(c[0], c[1]));
+}
+}  // namespace
+
+WaterTest::WaterTest(const Domain2& domain) {
+  double y_high = 0;
+  for (const Ring& ring : domain.rings) {
+    const std::size_t n = ring.points.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Point2& a = ring.points[i];
+      const Point2& b = ring.points[(i + 1) % n];
+      if (a == b) continue;
+      if (empty_) {
+        y_low_ = y_high = a[1];
+        empty_ = false;
+      }
+      y_low_ = std::min({y_low_, a[1], b[1]});
+      y_high = std::max({y_high, a[1], b[1]});
+      edges_.push_back({a, b});
+    }
+  }
+  if (empty_) return;
+  // About four edges per slab on average; the slab index is only a filter, every decision stays exact.
+  const std::size_t slab_count = std::max<std::size_t>(1, edges_.size() / 4);
+  slab_height_ = (y_high - y_low_) / static_cast<double>(slab_count);
+  if (!(slab_height_ > 0)) slab_height_ = 1;
+  slabs_.resize(slab_count);
+  for (std::uint32_t e = 0; e < edges_.size(); ++e) {
+    const auto [lo, hi] = std::minmax(edges_[e].a[1], edges_[e].b[1]);
+    for (std::size_t s = slab_of(lo); s <= slab_of(hi); ++s) slabs_[s].push_back(e);
+  }
+}
+
+// Monotone in y, so an edge spanning [lo, hi] is found from any query height inside that range.
+std::size_t WaterTest::slab_of(double y) const {
+  const double s = std::floor((y - y_low_) / slab_height_);
+  if (!(s > 0)) return 0;
+  return std::min(static_cast<std::size_t>(s), slabs_.size() - 1);
+}
+
+WaterSide WaterTest::classify(const Point2& p) const {
+  if (empty_) return WaterSide::Water;
+  bool inside = false;
+  for (std::uint32_t e : slabs_[slab_of(p[1])]) {
+    const Point2& a = edges_[e].a;
+    const Point2& b = edges_[e].b;
+    // Half-open rule on y (exact comparisons): a vertex at the ray's height is counted once.
+    const bool a_above = a[1] > p[1];
+    const bool b_above = b[1] > p[1];
+    if (a_above == b_above) {
+      // A horizontal edge at the point's height: the point may lie on it.
+      if (a[1] == p[1] && b[1] == p[1] && std::min(a[0], b[0]) <= p[0] && p[0] <= std::max(a[0], b[0]))
+        return WaterSide::OnRing;
+      continue;
+    }
+    const CGAL::Orientation o = orientation(a, b, p);
+    if (o == CGAL::COLLINEAR) return WaterSide::OnRing;
+    // The edge crosses the rightward ray from p iff p is left of an upward edge or right of a downward one.
+    if ((b_above && o == CGAL::LEFT_TURN) || (a_above && o == CGAL::RIGHT_TURN)) inside = !inside;
+  }
+  return inside ? WaterSide::Water : WaterSide::Land;
+}
+
+}  // namespace shoremesh

@@ -1,0 +1,124 @@
+// The mesh after dynamic updates must be the Delaunay mesh of the new point set, and the reported delta
+// must be exactly the difference. Points are random doubles: with probability one no four are co-circular
+// (no five co-spherical), so the Delaunay mesh is unique and element lists can be compared exactly.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <set>
+
+#include "mesh_test_util.hpp"
+#include "shoremesh/error.hpp"
+#include "shoremesh/mesh.hpp"
+
+namespace shoremesh {
+namespace {
+
+using mesh_test::corner_list;
+using mesh_test::random_points;
+
+template <int D>
+void check_random_changes(std::size_t n, int steps, std::uint32_t seed) {
+  std::vector<Point<D>> points = random_points<D>(n, seed);
+  Mesh<D> mesh(points, n / 2);
+  mesh.check_valid();
+  std::mt19937 rng(seed + 1);
+  for (int step = 0; step < steps; ++step) {
+    // Remove up to 5 current points and add up to 5 new ones (some far outside, growing the hull).
+    PointChange<D> change;
+    std::shuffle(points.begin(), points.end(), rng);
+    const std::size_t k = rng() % 6;
+    change.removed.assign(points.end() - static_cast<std::ptrdiff_t>(k), points.end());
+    points.resize(points.size() - k);
+    auto fresh = random_points<D>(rng() % 6, seed * 1000 + static_cast<std::uint32_t>(step));
+    if (step % 7 == 0 && !fresh.empty()) fresh[0][0] += 3;
+    change.added = fresh;
+    change.added_input_count = fresh.size() / 2;
+    points.insert(points.end(), fresh.begin(), fresh.end());
+
+    const auto before = corner_list(mesh);
+    const MeshDelta<D> delta = mesh.apply(change);
+    mesh.check_valid();
+    const auto after = corner_list(mesh);
+    ASSERT_EQ(after, corner_list(Mesh<D>(points, 0))) << "step " << step << ": not the Delaunay mesh of the points";
+
+    // before - removed + added == after, with removed a subset of before and added disjoint from it.
+    std::set<ElementCorners<D>> expected(before.begin(), before.end());
+    for (const auto& e : delta.removed) ASSERT_EQ(expected.erase(e), 1u) << "step " << step;
+    for (const auto& e : delta.added) ASSERT_TRUE(expected.insert(e).second) << "step " << step;
+    ASSERT_EQ(std::vector<ElementCorners<D>>(expected.begin(), expected.end()), after) << "step " << step;
+    ASSERT_EQ(mesh.points().size(), points.size());
+  }
+}
+
+TEST(MeshIncremental, RandomChangesEqualFromScratch2D) { check_random_changes<2>(400, 60, 7); }
+TEST(MeshIncremental, RandomChangesEqualFromScratch3D) { check_random_changes<3>(300, 40, 11); }
+
+TEST(MeshIncremental, GrowsFromFewPointsThroughLowerDimensions2D) {
+  Mesh2 mesh(std::vector<Point2>{{0.1, 0.2}}, 1);
+  EXPECT_EQ(mesh.element_count(), 0u);
+  MeshDelta<2> d = mesh.apply({{}, {{0.9, 0.3}}});
+  EXPECT_TRUE(d.empty());
+  d = mesh.apply({{}, {{0.4, 0.8}}});  // the first triangle
+  ASSERT_EQ(d.added.size(), 1u);
+  EXPECT_TRUE(d.removed.empty());
+  d = mesh.apply({{{0.9, 0.3}}, {}});  // back to a segment
+  EXPECT_EQ(d.removed.size(), 1u);
+  EXPECT_EQ(mesh.element_count(), 0u);
+  mesh.check_valid();
+}
+
+// Removing one point of a full mesh replaces exactly its star: deg(v) triangles go, deg(v) - 2 come.
+TEST(MeshIncremental, RemovalChangesOnlyTheStar) {
+  std::vector<Point2> points = random_points<2>(500, 3);
+  points.push_back({0.5, 0.5});  // surely interior
+  Mesh2 mesh(points, points.size());
+  std::size_t degree = 0;
+  const std::uint32_t centre = static_cast<std::uint32_t>(points.size() - 1);
+  for (const auto& e : mesh.elements()) degree += std::count(e.begin(), e.end(), centre);
+  const MeshDelta<2> d = mesh.apply({{{0.5, 0.5}}, {}});
+  EXPECT_EQ(d.removed.size(), degree);
+  EXPECT_EQ(d.added.size(), degree - 2);
+  for (const auto& e : d.removed) EXPECT_NE(std::find(e.begin(), e.end(), Point2{0.5, 0.5}), e.end());
+}
+
+TEST(MeshIncremental, KeepsInputAndSteinerKinds) {
+  Mesh2 mesh(random_points<2>(50, 5), 10);
+  PointChange<2> change;
+  change.added = {{2, 2}, {-1, 0.5}, {0.5, -1}};
+  change.added_input_count = 1;
+  mesh.apply(change);
+  const auto& pts = mesh.points();
+  const auto at = [&](Point2 p) { return mesh.kinds()[std::find(pts.begin(), pts.end(), p) - pts.begin()]; };
+  EXPECT_EQ(at({2, 2}), PointKind::Input);
+  EXPECT_EQ(at({-1, 0.5}), PointKind::Steiner);
+  EXPECT_EQ(std::count(mesh.kinds().begin(), mesh.kinds().end(), PointKind::Input), 11);
+}
+
+TEST(MeshIncremental, BadChangeThrowsAndLeavesMeshUnchanged) {
+  const auto points = random_points<2>(100, 9);
+  Mesh2 mesh(points, 100);
+  const auto before = corner_list(mesh);
+  EXPECT_THROW(mesh.apply({{{7, 7}}, {}}), InputError);                             // not in the mesh
+  EXPECT_THROW(mesh.apply({{points[0]}, {points[1]}}), InputError);                 // already present
+  EXPECT_THROW(mesh.apply({{points[0], points[0]}, {}}), InputError);               // removed twice
+  EXPECT_THROW(mesh.apply({{}, {{0.5, 0.123}, {0.5, 0.123}}}), InputError);         // added twice
+  EXPECT_EQ(corner_list(mesh), before);
+  // Removing a point and adding it back in one change is allowed and changes nothing.
+  EXPECT_TRUE(mesh.apply({{points[3]}, {points[3]}}).empty());
+  EXPECT_EQ(corner_list(mesh), before);
+  mesh.check_valid();
+}
+
+TEST(MeshIncremental, DuplicateInputPointIsNamed) {
+  const std::vector<Point2> pts{{0, 0}, {1, 0}, {0, 1}, {1, 0}};
+  try {
+    Mesh2 mesh(pts, 4);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("point 3"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace shoremesh

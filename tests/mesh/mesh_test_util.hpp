@@ -1,0 +1,185 @@
+#pragma once
+// Inputs for the mesh tests: random and lattice point sets, rings from the shared fish-and-rectangle PSLG
+// sampled along their segments, a scratch directory, and sorted element lists named by coordinates.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "shoremesh/domain.hpp"
+#include "shoremesh/mesh.hpp"
+
+namespace shoremesh::mesh_test {
+
+template <int D>
+std::vector<Point<D>> random_points(std::size_t n, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point<D>> pts(n);
+  for (auto& p : pts)
+    for (auto& x : p) x = u(rng);
+  return pts;
+}
+
+// A triangular lattice of spacing h over [0, side]^2, each point moved by up to `jitter` * h: well-spaced
+// for small jitter (Voronoi cells are near-regular hexagons of circumradius h / sqrt 3).
+inline std::vector<Point2> jittered_lattice(double side, double h, double jitter, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-jitter * h, jitter * h);
+  std::vector<Point2> pts;
+  const double row = h * std::sqrt(3.0) / 2;
+  for (int j = 0; j * row <= side; ++j)
+    for (int i = 0; i * h <= side; ++i) pts.push_back({i * h + (j % 2 ? h / 2 : 0) + u(rng), j * row + u(rng)});
+  return pts;
+}
+
+// The elements of a mesh named by their sorted corner coordinates, sorted: two meshes of the same points
+// are the same mesh iff these lists are equal.
+template <int D>
+std::vector<ElementCorners<D>> corner_list(const Mesh<D>& mesh) {
+  std::vector<ElementCorners<D>> out;
+  for (const auto& e : mesh.elements()) {
+    ElementCorners<D> c;
+    for (int i = 0; i <= D; ++i) c[i] = mesh.points()[e[i]];
+    std::sort(c.begin(), c.end());
+    out.push_back(c);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Closed rings from a Triangle .poly file: its segments chained into loops (every vertex of the shared
+// PSLGs has even degree). All rings get the Shore role; the even-odd rule decides the water.
+inline Domain2 rings_from_poly(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open " + path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) {
+    line = line.substr(0, line.find('#'));
+    if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(line);
+  }
+  std::size_t at = 0;
+  std::istringstream header(lines[at++]);
+  std::size_t n = 0;
+  header >> n;
+  std::map<long, Point2> vertex;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::istringstream l(lines[at++]);
+    long id;
+    Point2 p;
+    l >> id >> p[0] >> p[1];
+    vertex[id] = p;
+  }
+  std::istringstream seg_header(lines[at++]);
+  std::size_t m = 0;
+  seg_header >> m;
+  std::map<long, std::vector<std::pair<long, std::size_t>>> adjacent;  // neighbour and segment number
+  for (std::size_t i = 0; i < m; ++i) {
+    std::istringstream l(lines[at++]);
+    long id, a, b;
+    l >> id >> a >> b;
+    adjacent[a].push_back({b, i});
+    adjacent[b].push_back({a, i});
+  }
+  // Follow unused segments until back at the start. Vertices of degree 4 (two loops touching) are passed
+  // through; the even-odd rule only needs every segment in exactly one ring.
+  Domain2 domain;
+  std::vector<bool> used(m, false);
+  for (const auto& [start, unused] : adjacent) {
+    while (true) {
+      Ring ring;
+      long v = start;
+      do {
+        auto it = std::find_if(adjacent.at(v).begin(), adjacent.at(v).end(), [&](auto e) { return !used[e.second]; });
+        if (it == adjacent.at(v).end()) break;
+        used[it->second] = true;
+        ring.points.push_back(vertex.at(v));
+        v = it->first;
+      } while (v != start);
+      if (ring.points.empty()) break;
+      domain.rings.push_back(ring);
+    }
+  }
+  return domain;
+}
+
+// Subdivides every ring segment into pieces no longer than h; returns the new domain (the same rings with
+// the subdivision points inserted) so that the ring vertices are exactly the sample points.
+inline Domain2 subdivide(const Domain2& domain, double h) {
+  Domain2 out;
+  for (const Ring& ring : domain.rings) {
+    Ring r{{}, ring.role};
+    for (std::size_t i = 0; i < ring.points.size(); ++i) {
+      const Point2 a = ring.points[i], b = ring.points[(i + 1) % ring.points.size()];
+      const int k = std::max(1, static_cast<int>(std::ceil(std::hypot(b[0] - a[0], b[1] - a[1]) / h)));
+      for (int j = 0; j < k; ++j) r.points.push_back({a[0] + (b[0] - a[0]) * j / k, a[1] + (b[1] - a[1]) * j / k});
+    }
+    out.rings.push_back(r);
+  }
+  return out;
+}
+
+inline double distance_to_segment(const Point2& p, const Point2& a, const Point2& b) {
+  const double dx = b[0] - a[0], dy = b[1] - a[1];
+  const double t = std::clamp(((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy), 0.0, 1.0);
+  return std::hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy);
+}
+
+// Ring vertices first (the input points), then a jittered grid of spacing h over the rings' bounding box
+// (Steiner-like points), dropping grid points closer than `clearance` to any ring segment.
+inline std::vector<Point2> sample_domain(const Domain2& domain, double h, double clearance, std::uint32_t seed,
+                                         std::size_t& input_count) {
+  std::vector<Point2> pts;
+  std::set<Point2> seen;  // a vertex where two rings touch is one point
+  Point2 lo{1e300, 1e300}, hi{-1e300, -1e300};
+  for (const Ring& r : domain.rings)
+    for (const Point2& p : r.points) {
+      if (seen.insert(p).second) pts.push_back(p);
+      for (int i = 0; i < 2; ++i) lo[i] = std::min(lo[i], p[i]), hi[i] = std::max(hi[i], p[i]);
+    }
+  input_count = pts.size();
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-0.2 * h, 0.2 * h);
+  for (double y = lo[1] - h; y <= hi[1] + h; y += h)
+    for (double x = lo[0] - h; x <= hi[0] + h; x += h) {
+      const Point2 p{x + u(rng), y + u(rng)};
+      bool clear = true;
+      for (const Ring& r : domain.rings)
+        for (std::size_t i = 0; clear && i < r.points.size(); ++i)
+          clear = distance_to_segment(p, r.points[i], r.points[(i + 1) % r.points.size()]) >= clearance;
+      if (clear) pts.push_back(p);
+    }
+  return pts;
+}
+
+inline std::string shared_data(const std::string& rel) { return std::string(SHOREMESH_SHARED_DATA_DIR) + "/" + rel; }
+
+// A fresh directory under the system temporary directory, removed at the end of the test.
+class ScratchDir {
+ public:
+  ScratchDir() {
+    std::random_device rd;
+    path_ = std::filesystem::temp_directory_path() / ("shoremesh-mesh-" + std::to_string(rd()) + std::to_string(rd()));
+    std::filesystem::create_directories(path_);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  std::filesystem::path path(const std::string& name) const { return path_ / name; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+}  // namespace shoremesh::mesh_test
