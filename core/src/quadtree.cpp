@@ -132,6 +132,48 @@ NodeId Quadtree<D>::deepest_containing(int level, Coords c) const {
 }
 
 template <int D>
+int Quadtree<D>::box_level(const Point<D>& lo_in, const Point<D>& hi_in, Point<D>& lo, Point<D>& hi) {
+  double width = 0;
+  for (int i = 0; i < D; ++i) {
+    lo[i] = std::max(0.0, lo_in[i]);
+    hi[i] = std::min(1.0, hi_in[i]);
+    width = std::max(width, hi[i] - lo[i]);
+  }
+  if (!(width > 0)) return kMaxLevel;
+  return std::clamp(int(std::floor(-std::log2(width))), 0, kMaxLevel);
+}
+
+template <int D>
+void Quadtree<D>::begin_session() const {
+  if (++query_stamp_ == 0) {
+    std::fill(stamp_.begin(), stamp_.end(), 0u);
+    query_stamp_ = 1;
+  }
+}
+
+template <int D>
+void Quadtree<D>::covering_nodes(const Point<D>& lo_in, const Point<D>& hi_in, std::vector<NodeId>& out) const {
+  out.clear();
+  Point<D> lo, hi;
+  const int level = box_level(lo_in, hi_in, lo, hi);
+  const Coords first = cell_of(lo, level), last = cell_of(hi, level);
+  Coords c = first;
+  for (;;) {
+    const NodeId n = deepest_containing(level, c);
+    if (std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
+    int i = 0;
+    for (; i < D; ++i) {
+      if (c[i] < last[i]) {
+        ++c[i];
+        break;
+      }
+      c[i] = first[i];
+    }
+    if (i == D) break;
+  }
+}
+
+template <int D>
 NodeId Quadtree<D>::locate(const Point<D>& p, NodeId hint) const {
   int level = hint == kNoNode ? 0 : nodes_[hint].level;
   NodeId n = deepest_containing(level, cell_of(p, level));
@@ -180,6 +222,7 @@ void Quadtree<D>::for_each_neighbour_cell(int level, const Coords& c, int reach,
 
 template <int D>
 std::uint32_t Quadtree<D>::inputs_in_cell(int level, const Coords& c, std::span<const Point<D>> positions) const {
+  if (level > kMaxLevel) throw PointInputError("input points closer than the engine's resolution (2^-40 of the box side)", {});
   const NodeId n = deepest_containing(level, c);
   const Node& nd = nodes_[n];
   if (nd.level == level) return nd.input_count;
@@ -188,16 +231,52 @@ std::uint32_t Quadtree<D>::inputs_in_cell(int level, const Coords& c, std::span<
   return cell_of(positions[nd.input_vertex], level) == c ? 1u : 0u;
 }
 
+// The crowding rule, written once for the build (counts by Morton ranges) and for updates (counts from
+// the tree): a cell with one input is crowded when another input lies in the ring of finer cells
+// (kCrowdingMargin levels down) around it. Only same-size neighbours holding an input are looked into.
+template <int D>
+template <class Count>
+bool Quadtree<D>::crowded_by(int level, const Coords& c, std::uint32_t own, Count&& count) const {
+  if (own == 0) return false;
+  if (own >= 2) return true;
+  const int fine = level + kCrowdingMargin;
+  const std::int64_t s = std::int64_t(1) << kCrowdingMargin;
+  bool found = false;
+  for_each_neighbour_cell(level, c, 1, [&](const Coords& q) {
+    if (found || q == c || count(level, q) == 0) return;
+    // Fine cells of q within one fine cell of c's block.
+    std::array<std::int64_t, D> lo, hi, r;
+    for (int i = 0; i < D; ++i) {
+      lo[i] = std::max(std::int64_t(c[i]) * s - 1, std::int64_t(q[i]) * s);
+      hi[i] = std::min(std::int64_t(c[i]) * s + s, std::int64_t(q[i]) * s + s - 1);
+      r[i] = lo[i];
+    }
+    for (;;) {
+      Coords fc;
+      for (int i = 0; i < D; ++i) fc[i] = std::uint64_t(r[i]);
+      if (count(fine, fc) > 0) {
+        found = true;
+        return;
+      }
+      int i = 0;
+      for (; i < D; ++i) {
+        if (r[i] < hi[i]) {
+          ++r[i];
+          break;
+        }
+        r[i] = lo[i];
+      }
+      if (i == D) return;
+    }
+  });
+  return found;
+}
+
 template <int D>
 bool Quadtree<D>::crowded(NodeId n, std::span<const Point<D>> positions) const {
   const Node& nd = nodes_[n];
-  if (nd.input_count == 0) return false;
-  if (nd.input_count >= 2) return true;
-  bool found = false;
-  for_each_neighbour_cell(nd.level, nd.coords, 1, [&](const Coords& q) {
-    if (!found && q != nd.coords && inputs_in_cell(nd.level, q, positions) > 0) found = true;
-  });
-  return found;
+  return crowded_by(nd.level, nd.coords, nd.input_count,
+                    [&](int level, const Coords& q) { return inputs_in_cell(level, q, positions); });
 }
 
 // Calls f(node) for every node whose 3^D block contains p: at each level, the existing cells among the
@@ -340,17 +419,10 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
     tasks.pop_back();
     Node& nd = nodes_[t.node];
     nd.input_count = std::uint32_t(t.end - t.begin);
-    bool is_crowded = nd.input_count >= 2;
-    if (nd.input_count == 1) {
-      const int level = nd.level;
-      const Coords c = nd.coords;
-      for_each_neighbour_cell(level, c, 1, [&](const Coords& q) {
-        if (!is_crowded && q != c) {
-          auto [b, e] = range_of(level, q);
-          is_crowded = e > b;
-        }
-      });
-    }
+    const bool is_crowded = crowded_by(nd.level, nd.coords, nd.input_count, [&](int level, const Coords& q) {
+      auto [b, e] = range_of(level, q);
+      return std::uint32_t(e - b);
+    });
     if (!is_crowded) {
       if (nd.input_count == 1) {
         const VertexId v = ids[keyed[t.begin].index];
@@ -403,8 +475,11 @@ typename Quadtree<D>::Change Quadtree<D>::add_input(VertexId id, std::span<const
   // Leaves whose 3^D block contains p may have become crowded: at every level, the cells around p's.
   std::vector<NodeId> work;
   for_each_node_near(p, [&](NodeId n) {
-    if (nodes_[n].is_leaf() && nodes_[n].input_count > 0) work.push_back(n);
+    if (n != leaf && nodes_[n].is_leaf() && nodes_[n].input_count > 0) work.push_back(n);
   });
+  // p's own leaf first (the stack is LIFO): until it is split down, it may hold two inputs, and counts
+  // in the crowding test of its neighbours see only one of them.
+  work.push_back(leaf);
   std::vector<NodeId> balance_work, created;
   while (!work.empty()) {
     const NodeId n = work.back();

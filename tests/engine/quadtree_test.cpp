@@ -69,7 +69,7 @@ void random_edits_match_fresh_build(std::uint64_t seed) {
 TEST(Quadtree, RandomEditsEqualFreshBuild2D) { random_edits_match_fresh_build<2>(7); }
 TEST(Quadtree, RandomEditsEqualFreshBuild3D) { random_edits_match_fresh_build<3>(11); }
 
-TEST(Quadtree, BuildIsValidAndLeafSizeBelowNearestNeighbour) {
+TEST(Quadtree, LeafSizeApproximatesNearestNeighbour) {
   auto pts = random_points<2>(2000, 3);
   std::vector<VertexId> ids(pts.size());
   for (VertexId i = 0; i < ids.size(); ++i) ids[i] = i;
@@ -80,9 +80,10 @@ TEST(Quadtree, BuildIsValidAndLeafSizeBelowNearestNeighbour) {
     double nn = 1e9;
     for (VertexId u = 0; u < pts.size(); ++u)
       if (u != v) nn = std::min(nn, std::hypot(pts[u][0] - pts[v][0], pts[u][1] - pts[v][1]));
-    const double h = t.side(t.locate(pts[v]));
-    EXPECT_LT(h, nn);
-    EXPECT_GE(6 * std::sqrt(2.0) * h, nn);
+    const NodeId leaf = t.locate(pts[v]);
+    const double h = t.side(leaf);
+    EXPECT_LT(t.approximate_nn(leaf), nn);  // h/4 < NN <= 3 sqrt(2) h
+    EXPECT_GE(3 * std::sqrt(2.0) * h, nn);
   }
 }
 

@@ -1,0 +1,82 @@
+#pragma once
+// The Voronoi cell of one vertex v, clipped to a box, computed locally: start from a box around v and
+// cut it by the bisectors of nearby vertices. A convex polygon in 2D (cyclic edge list) and a convex
+// polyhedron in 3D (faces with vertex cycles). All decisions are exact (predicates.hpp); vertices are
+// kept symbolically as the D constraints that define them, with interval coordinates for the filter.
+// Degenerate inputs (grids: four co-circular points, eight co-spherical) give vertices that lie exactly
+// on a new plane; those are kept (sign 0 counts as inside), so no ad-hoc epsilon is ever needed.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "shoremesh/engine/ids.hpp"
+#include "shoremesh/engine/predicates.hpp"
+#include "shoremesh/point.hpp"
+
+namespace shoremesh::engine {
+
+// A half-space n.y <= b in coordinates relative to v (y = x - v), so the filter works on small numbers.
+template <int D>
+struct Constraint {
+  enum class Kind : std::uint8_t { Bisector, AxisMin, AxisMax };
+  Kind kind = Kind::Bisector;
+  int axis = 0;         // AxisMin: x[axis] >= value; AxisMax: x[axis] <= value
+  double value = 0;
+  VertexId other = kNoVertex;  // Bisector: the vertex whose bisector with v this is
+  Point<D> other_point{};
+  std::array<Interval, D> n{};
+  Interval b{};
+};
+
+template <int D>
+class ConvexCell {
+ public:
+  // The box [lo, hi] around v (v inside it). Call under a RoundingGuard, like every other member.
+  void reset(const Point<D>& v, const Point<D>& lo, const Point<D>& hi);
+  // Cuts by the bisector of v and w. Returns whether any part of the cell was cut away.
+  bool clip(VertexId w, const Point<D>& wp);
+
+  // Whether every vertex c of the cell has |c - v|^2 <= k |u - v|^2 (exact): v is rho-well-spaced with
+  // k = rho^2 and u its nearest neighbour.
+  bool within_scaled_distance(double k, const Point<D>& u);
+  // The vertex farthest from v (by interval midpoints; ties by coordinates): where Steiner points aim.
+  Point<D> farthest_vertex_offset() const;
+  // Vertices w whose bisector bounds the cell (the clipped Voronoi neighbours found so far).
+  void bisector_neighbours(std::vector<VertexId>& out) const;
+
+  // An upper bound on max |c - v|^2 over the cell's vertices: a bisector farther than twice this from v
+  // cannot cut the cell.
+  double max_vertex_distance2() const;
+  const Point<D>& site() const { return v_; }
+  std::size_t vertex_count() const { return verts_.size(); }
+  PredicateCounters& counters() { return counters_; }
+  const PredicateCounters& counters() const { return counters_; }
+
+ private:
+  struct Vertex {
+    std::array<std::uint16_t, D> planes{};  // the constraints that define it
+    std::array<Interval, D> y{};            // its position relative to v, enclosed
+    std::int32_t exact = -1;                // index into exact_ once computed
+  };
+  std::uint16_t add_constraint(const Constraint<D>& c);
+  Vertex make_vertex(const std::array<std::uint16_t, D>& planes);
+  const std::array<Exact, D>& exact_position(Vertex& vtx);
+  int side(Vertex& vtx, std::uint16_t plane);  // sign of n.y - b: > 0 outside
+  bool clip_by(std::uint16_t plane);
+
+  Point<D> v_{};
+  std::vector<Constraint<D>> constraints_;
+  std::vector<std::array<Exact, D>> exact_;
+  std::vector<Vertex> verts_, next_verts_;
+  std::vector<std::int8_t> signs_;
+  // 2D: edges_[i] is the constraint of the edge from vertex i to vertex i+1.
+  std::vector<std::uint16_t> edges_, next_edges_;
+  // 3D: face f is face_plane_[f] with vertex cycle face_verts_[face_begin_[f] .. face_begin_[f+1]).
+  std::vector<std::uint16_t> face_plane_, next_face_plane_;
+  std::vector<std::uint32_t> face_begin_, next_face_begin_;
+  std::vector<std::uint32_t> face_verts_, next_face_verts_;
+  std::vector<std::uint32_t> scratch_a_, scratch_b_, scratch_c_;
+  PredicateCounters counters_;
+};
+
+}  // namespace shoremesh::engine
