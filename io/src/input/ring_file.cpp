@@ -1,0 +1,110 @@
+#include "shoremesh/io/ring_file.hpp"
+
+#include <stdexcept>
+
+#include "input_builder.hpp"
+#include "shoremesh/error.hpp"
+#include "shoremesh/io/ring_check.hpp"
+#include "text_util.hpp"
+
+namespace shoremesh::io {
+
+namespace {
+
+// Groups of (point, line) separated by blank lines; throws on malformed lines when `strict`.
+template <class F>
+void for_each_group(std::string_view text, const std::string& name, F&& on_group) {
+  std::vector<Point2> pts;
+  std::vector<std::size_t> lines;
+  auto flush = [&] {
+    if (!pts.empty()) on_group(pts, lines);
+    pts.clear();
+    lines.clear();
+  };
+  detail::for_each_line(text, [&](std::string_view raw, std::size_t line) {
+    const auto trimmed = detail::trim(raw);
+    if (trimmed.empty()) return flush();
+    if (trimmed.front() == '#' || trimmed.front() == '>') return flush();  // comments and GMT segment headers
+    const auto fields = detail::split_fields(detail::strip_comment(trimmed));
+    if (fields.size() != 2) throw InputError("expected 2 numbers, found " + std::to_string(fields.size()) + " columns", name, line);
+    Point2 p{};
+    for (std::size_t c = 0; c < 2; ++c) {
+      const auto st = detail::parse_double(fields[c], p[c]);
+      if (st != detail::NumberStatus::Ok)
+        throw InputError("column " + std::to_string(c + 1) + ": " + detail::quoted(fields[c]) +
+                             (st == detail::NumberStatus::NotFinite ? " is not a finite number" : " is not a number"),
+                         name, line);
+    }
+    pts.push_back(p);
+    lines.push_back(line);
+  });
+  flush();
+}
+
+}  // namespace
+
+RingFile parse_ring_file_text(std::string_view text, const std::string& name) {
+  RingFile out;
+  for_each_group(text, name, [&](std::vector<Point2> pts, std::vector<std::size_t> lines) {
+    if (pts.size() >= 2 && pts.front() == pts.back()) {
+      pts.pop_back();
+      lines.pop_back();
+    }
+    if (pts.size() < 3)
+      throw InputError("a ring needs at least three points, this one has " + std::to_string(pts.size()), name, lines.front());
+    out.rings.push_back(std::move(pts));
+    out.lines.push_back(std::move(lines));
+  });
+  if (out.rings.empty()) throw InputError("no points", name);
+  return out;
+}
+
+RingFile read_ring_file(const std::string& path) { return parse_ring_file_text(detail::read_text_file(path), path); }
+
+bool looks_like_ring_file(std::string_view text) {
+  bool closed_group = false;
+  try {
+    for_each_group(text, "", [&](const std::vector<Point2>& pts, const std::vector<std::size_t>&) {
+      if (pts.size() >= 4 && pts.front() == pts.back()) closed_group = true;
+    });
+  } catch (const InputError&) {
+    return false;
+  }
+  return closed_group;
+}
+
+InputSet ring_file_to_input(const RingFile& rf, const std::string& file, bool lonlat,
+                            const std::optional<Projection>& projection, ProjectionChoice choice) {
+  InputSet set;
+  set.units = lonlat ? Units::Metres : Units::MapUnits;
+  if (lonlat) {
+    if (projection && !projection->is_none()) {
+      set.projection = *projection;
+    } else {
+      std::vector<LonLat> all;
+      for (const auto& r : rf.rings)
+        for (const auto& p : r) all.push_back({p[0], p[1]});
+      set.projection = Projection::choose(all, choice, file);
+    }
+    set.notes.push_back("projected lon/lat to metres with " + set.projection.describe());
+  }
+  detail::InputBuilder builder(set, file, Source::Location::Line);
+  for (std::size_t r = 0; r < rf.rings.size(); ++r) {
+    std::vector<Point2> pts = rf.rings[r];
+    if (lonlat) {
+      for (std::size_t k = 0; k < pts.size(); ++k) {
+        try {
+          pts[k] = set.projection.forward({pts[k][0], pts[k][1]});
+        } catch (const std::domain_error& e) {
+          throw InputError(e.what(), file, rf.lines[r][k]);
+        }
+      }
+    }
+    builder.add_ring(std::move(pts), RingRole::Shore, rf.lines[r]);
+  }
+  assign_roles_by_nesting(set.domain);
+  check_rings(set);
+  return set;
+}
+
+}  // namespace shoremesh::io
