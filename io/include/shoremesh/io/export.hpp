@@ -1,0 +1,73 @@
+#pragma once
+// Mesh exports: Gmsh .msh 4.1, VTK .vtu, Triangle/TetGen .node+.ele, ADCIRC fort.14, GeoJSON, and OBJ, PLY
+// and OFF surfaces. Every file is written atomically (io/atomic_file.hpp). Coordinates are written as
+// given, in the metric coordinates the engine meshed in (metres for geographic inputs), where the angle
+// guarantee holds; only GeoJSON (and fort.14, which ADCIRC reads in degrees) go through to_lonlat.
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "shoremesh/mesh.hpp"
+#include "shoremesh/mesh_boundary.hpp"
+
+namespace shoremesh::io {
+
+// What a writer reads: spans into storage the caller keeps alive (MeshSnapshot keeps it for a Mesh).
+template <int D>
+struct MeshView {
+  std::span<const Point<D>> points;
+  std::span<const Element<D>> elements;
+  std::span<const PointKind> kinds;          // per point; empty means every point is an input point
+  std::span<const BoundaryLoop> boundary;    // 2D: closed loops of nodes with their role (shore, island)
+  // 2D geographic inputs: the inverse of the projection the engine meshed in, metric -> {lon, lat} degrees.
+  std::function<Point2(const Point2&)> to_lonlat;
+  // ADCIRC: depth below the datum at a node (positive down); without it the depth column is 0.
+  std::function<double(const Point<D>&)> depth;
+};
+
+// A copy of a Mesh's points, elements, kinds and boundary, and a view of it.
+template <int D>
+class MeshSnapshot {
+ public:
+  explicit MeshSnapshot(const Mesh<D>& mesh);
+  MeshSnapshot(std::vector<Point<D>> points, std::vector<Element<D>> elements, std::vector<PointKind> kinds = {});
+  MeshView<D> view() const;
+  MeshView<D> view(std::function<Point2(const Point2&)> to_lonlat) const;
+
+ private:
+  std::vector<Point<D>> points_;
+  std::vector<Element<D>> elements_;
+  std::vector<PointKind> kinds_;
+  std::vector<BoundaryLoop> boundary_;
+};
+
+enum class ExportFormat { Gmsh, Vtu, Triangle, Adcirc, GeoJson, Obj, Ply, Off };
+
+// From the file name: .msh, .vtu, .node or .ele, fort.14 / .14 / .fort14, .geojson or .json, .obj, .ply,
+// .off (case-insensitive). Throws InputError naming the path for anything else.
+ExportFormat export_format_from_path(const std::filesystem::path& path);
+
+// Writes `view` to `path` in `format` (by default from the file name). The Triangle format writes two
+// files, path with .node and with .ele. Throws InputError for a format the dimension or the view cannot
+// give (GeoJSON without to_lonlat, fort.14 in 3D) and std::runtime_error naming the path when writing
+// fails; an existing file is left untouched in both cases.
+template <int D>
+void export_mesh(const std::filesystem::path& path, const MeshView<D>& view, std::optional<ExportFormat> format = {});
+
+// The individual writers, for callers that know what they want.
+template <int D>
+void write_gmsh(const std::filesystem::path& path, const MeshView<D>& view);
+template <int D>
+void write_vtu(const std::filesystem::path& path, const MeshView<D>& view);
+template <int D>
+void write_triangle(const std::filesystem::path& node_path, const MeshView<D>& view);  // also writes .ele
+void write_adcirc(const std::filesystem::path& path, const MeshView<2>& view);
+void write_geojson(const std::filesystem::path& path, const MeshView<2>& view);
+// OBJ, PLY and OFF: the triangles in 2D (z = 0), the boundary surface in 3D.
+template <int D>
+void write_surface(const std::filesystem::path& path, const MeshView<D>& view, ExportFormat format);
+
+}  // namespace shoremesh::io

@@ -1,0 +1,89 @@
+// The export entry point: the snapshot of a mesh, the format from a file name, and the dispatch.
+#include "shoremesh/io/export.hpp"
+
+#include <algorithm>
+#include <cctype>
+
+#include "shoremesh/error.hpp"
+
+namespace shoremesh::io {
+
+template <int D>
+MeshSnapshot<D>::MeshSnapshot(const Mesh<D>& mesh)
+    : MeshSnapshot(mesh.points(), mesh.elements(), mesh.kinds()) {}
+
+template <int D>
+MeshSnapshot<D>::MeshSnapshot(std::vector<Point<D>> points, std::vector<Element<D>> elements,
+                              std::vector<PointKind> kinds)
+    : points_(std::move(points)), elements_(std::move(elements)), kinds_(std::move(kinds)) {
+  if constexpr (D == 2) boundary_ = boundary_loops(points_, elements_);
+}
+
+template <int D>
+MeshView<D> MeshSnapshot<D>::view() const {
+  MeshView<D> v;
+  v.points = points_;
+  v.elements = elements_;
+  v.kinds = kinds_;
+  v.boundary = boundary_;
+  return v;
+}
+
+template <int D>
+MeshView<D> MeshSnapshot<D>::view(std::function<Point2(const Point2&)> to_lonlat) const {
+  MeshView<D> v = view();
+  v.to_lonlat = std::move(to_lonlat);
+  return v;
+}
+
+ExportFormat export_format_from_path(const std::filesystem::path& path) {
+  auto lower = [](std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+    return s;
+  };
+  const std::string name = lower(path.filename().string());
+  const std::string ext = lower(path.extension().string());
+  if (ext == ".msh") return ExportFormat::Gmsh;
+  if (ext == ".vtu") return ExportFormat::Vtu;
+  if (ext == ".node" || ext == ".ele") return ExportFormat::Triangle;
+  if (name == "fort.14" || ext == ".14" || ext == ".fort14") return ExportFormat::Adcirc;
+  if (ext == ".geojson" || ext == ".json") return ExportFormat::GeoJson;
+  if (ext == ".obj") return ExportFormat::Obj;
+  if (ext == ".ply") return ExportFormat::Ply;
+  if (ext == ".off") return ExportFormat::Off;
+  throw InputError("unknown mesh format (expected .msh, .vtu, .node, fort.14, .geojson, .obj, .ply or .off)",
+                   path.string());
+}
+
+template <int D>
+void export_mesh(const std::filesystem::path& path, const MeshView<D>& view, std::optional<ExportFormat> format) {
+  for (const auto& e : view.elements)
+    for (auto i : e)
+      if (i >= view.points.size()) throw InputError("an element refers to a point that does not exist", path.string());
+  switch (format.value_or(export_format_from_path(path))) {
+    case ExportFormat::Gmsh: return write_gmsh<D>(path, view);
+    case ExportFormat::Vtu: return write_vtu<D>(path, view);
+    case ExportFormat::Triangle: {
+      std::filesystem::path node = path;
+      return write_triangle<D>(node.replace_extension(".node"), view);
+    }
+    case ExportFormat::Adcirc:
+    case ExportFormat::GeoJson:
+      if constexpr (D == 2) {
+        if (format.value_or(export_format_from_path(path)) == ExportFormat::Adcirc) return write_adcirc(path, view);
+        return write_geojson(path, view);
+      } else {
+        throw InputError("fort.14 and GeoJSON exports are 2D only", path.string());
+      }
+    case ExportFormat::Obj:
+    case ExportFormat::Ply:
+    case ExportFormat::Off: return write_surface<D>(path, view, format.value_or(export_format_from_path(path)));
+  }
+}
+
+template class MeshSnapshot<2>;
+template class MeshSnapshot<3>;
+template void export_mesh<2>(const std::filesystem::path&, const MeshView<2>&, std::optional<ExportFormat>);
+template void export_mesh<3>(const std::filesystem::path&, const MeshView<3>&, std::optional<ExportFormat>);
+
+}  // namespace shoremesh::io

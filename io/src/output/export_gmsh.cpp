@@ -1,0 +1,136 @@
+// Gmsh MSH 4.1 (ASCII). 2D: one surface entity "water" with the triangles, one curve entity per boundary
+// loop carrying its edges, in the physical group "shore" or "island". 3D: one volume entity "domain" with
+// the tetrahedra and one surface entity "boundary" with the boundary triangles. All nodes are listed in
+// the block of the top entity; Gmsh and meshio find nodes by tag, wherever they are listed.
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "shoremesh/io/atomic_file.hpp"
+#include "shoremesh/io/export.hpp"
+#include "shoremesh/io/export_text.hpp"
+
+namespace shoremesh::io {
+
+namespace {
+
+enum : int { kLine = 1, kTriangle = 2, kTetrahedron = 4 };
+
+struct Block {
+  int dim = 0, entity = 0, physical = 0, type = 0;
+  std::vector<std::vector<std::uint32_t>> elements;  // node indices, 0-based
+};
+
+template <int D>
+std::string bounding_box(std::span<const Point<D>> points, const std::vector<std::uint32_t>& nodes) {
+  std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
+  if (!nodes.empty()) {
+    lo.fill(std::numeric_limits<double>::infinity());
+    hi.fill(-std::numeric_limits<double>::infinity());
+    for (auto n : nodes)
+      for (int i = 0; i < D; ++i) lo[i] = std::min(lo[i], points[n][i]), hi[i] = std::max(hi[i], points[n][i]);
+  }
+  std::string s;
+  for (double x : lo) append_number(s, x), s += ' ';
+  for (double x : hi) append_number(s, x), s += ' ';
+  return s;
+}
+
+}  // namespace
+
+template <int D>
+void write_gmsh(const std::filesystem::path& path, const MeshView<D>& view) {
+  // Physical tags are per dimension; names make them readable in Gmsh and meshio's cell_sets.
+  std::vector<Block> blocks;
+  std::vector<std::string> physical_names;
+  if constexpr (D == 2) {
+    const bool shore = std::any_of(view.boundary.begin(), view.boundary.end(), [](auto& l) { return l.role == RingRole::Shore; });
+    const bool island = std::any_of(view.boundary.begin(), view.boundary.end(), [](auto& l) { return l.role == RingRole::Island; });
+    if (shore) physical_names.push_back("1 1 \"shore\"");
+    if (island) physical_names.push_back("1 2 \"island\"");
+    physical_names.push_back("2 3 \"water\"");
+    int curve = 0;
+    for (const BoundaryLoop& loop : view.boundary) {
+      Block b{1, ++curve, loop.role == RingRole::Shore ? 1 : 2, kLine, {}};
+      for (std::size_t i = 0; i < loop.nodes.size(); ++i)
+        b.elements.push_back({loop.nodes[i], loop.nodes[(i + 1) % loop.nodes.size()]});
+      blocks.push_back(std::move(b));
+    }
+    Block water{2, 1, 3, kTriangle, {}};
+    for (const auto& e : view.elements) water.elements.push_back({e.begin(), e.end()});
+    blocks.push_back(std::move(water));
+  } else {
+    physical_names.push_back("2 1 \"boundary\"");
+    physical_names.push_back("3 2 \"domain\"");
+    Block boundary{2, 1, 1, kTriangle, {}};
+    for (const auto& f : boundary_faces(view.elements)) boundary.elements.push_back({f.begin(), f.end()});
+    blocks.push_back(std::move(boundary));
+    Block domain{3, 1, 2, kTetrahedron, {}};
+    for (const auto& e : view.elements) domain.elements.push_back({e.begin(), e.end()});
+    blocks.push_back(std::move(domain));
+  }
+
+  write_atomically(path, [&](std::ostream& out) {
+    std::string s;
+    s += "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n" + std::to_string(physical_names.size()) + "\n";
+    for (const auto& n : physical_names) s += n + "\n";
+    s += "$EndPhysicalNames\n$Entities\n";
+    // Entity counts: points, curves, surfaces, volumes.
+    std::array<int, 4> count{0, 0, 0, 0};
+    for (const Block& b : blocks) ++count[b.dim];
+    s += "0 " + std::to_string(count[1]) + " " + std::to_string(count[2]) + " " + std::to_string(count[3]) + "\n";
+    for (int dim = 1; dim <= 3; ++dim)
+      for (const Block& b : blocks) {
+        if (b.dim != dim) continue;
+        std::vector<std::uint32_t> nodes;
+        for (const auto& e : b.elements) nodes.insert(nodes.end(), e.begin(), e.end());
+        s += std::to_string(b.entity) + " " + bounding_box<D>(view.points, nodes) + "1 " + std::to_string(b.physical);
+        if (dim == 1) {
+          s += " 0\n";  // closed loops: no bounding points
+        } else {
+          // The bounding entities of the top entity: every entity one dimension lower.
+          std::string bounds;
+          int n = 0;
+          for (const Block& c : blocks)
+            if (c.dim == dim - 1) ++n, bounds += " " + std::to_string(c.entity);
+          s += " " + std::to_string(n) + bounds + "\n";
+        }
+      }
+    s += "$EndEntities\n$Nodes\n";
+    const std::size_t np = view.points.size();
+    s += "1 " + std::to_string(np) + " 1 " + std::to_string(np) + "\n";
+    s += std::to_string(D) + " 1 0 " + std::to_string(np) + "\n";
+    for (std::size_t i = 1; i <= np; ++i) s += std::to_string(i) + "\n";
+    for (const auto& p : view.points) {
+      for (int i = 0; i < 3; ++i) {
+        append_number(s, i < D ? p[i] : 0.0);
+        s += i < 2 ? ' ' : '\n';
+      }
+    }
+    out << s;
+    s.clear();
+    s += "$EndNodes\n$Elements\n";
+    std::size_t total = 0;
+    for (const Block& b : blocks) total += b.elements.size();
+    s += std::to_string(blocks.size()) + " " + std::to_string(total) + " 1 " + std::to_string(total) + "\n";
+    std::size_t tag = 0;
+    for (const Block& b : blocks) {
+      s += std::to_string(b.dim) + " " + std::to_string(b.entity) + " " + std::to_string(b.type) + " " +
+           std::to_string(b.elements.size()) + "\n";
+      for (const auto& e : b.elements) {
+        s += std::to_string(++tag);
+        for (auto n : e) s += " " + std::to_string(n + 1);
+        s += "\n";
+      }
+    }
+    s += "$EndElements\n";
+    out << s;
+  });
+}
+
+template void write_gmsh<2>(const std::filesystem::path&, const MeshView<2>&);
+template void write_gmsh<3>(const std::filesystem::path&, const MeshView<3>&);
+
+}  // namespace shoremesh::io

@@ -1,0 +1,44 @@
+// OBJ, PLY (ASCII) and OFF: triangle surfaces for general 3D viewers. In 2D the mesh's triangles at z = 0;
+// in 3D the boundary triangles of the tetrahedra, oriented outwards.
+#include <string>
+#include <vector>
+
+#include "shoremesh/io/atomic_file.hpp"
+#include "shoremesh/io/export.hpp"
+#include "shoremesh/io/export_text.hpp"
+
+namespace shoremesh::io {
+
+template <int D>
+void write_surface(const std::filesystem::path& path, const MeshView<D>& view, ExportFormat format) {
+  std::vector<std::array<std::uint32_t, 3>> faces;
+  if constexpr (D == 2) faces.assign(view.elements.begin(), view.elements.end());
+  else faces = boundary_faces(view.elements);
+  write_atomically(path, [&](std::ostream& out) {
+    std::string s;
+    const std::string np = std::to_string(view.points.size()), nf = std::to_string(faces.size());
+    if (format == ExportFormat::Ply)
+      s += "ply\nformat ascii 1.0\ncomment shoremesh mesh\nelement vertex " + np +
+           "\nproperty double x\nproperty double y\nproperty double z\nelement face " + nf +
+           "\nproperty list uchar int vertex_indices\nend_header\n";
+    else if (format == ExportFormat::Off)
+      s += "OFF\n" + np + " " + nf + " 0\n";
+    else
+      s += "# shoremesh mesh\n";
+    for (const auto& p : view.points) {
+      if (format == ExportFormat::Obj) s += "v ";
+      for (int i = 0; i < 3; ++i) append_number(s, i < D ? p[i] : 0.0), s += i < 2 ? ' ' : '\n';
+    }
+    for (const auto& f : faces) {
+      // OBJ counts from 1, PLY and OFF from 0 with the corner count first.
+      if (format == ExportFormat::Obj) s += "f " + std::to_string(f[0] + 1) + " " + std::to_string(f[1] + 1) + " " + std::to_string(f[2] + 1) + "\n";
+      else s += "3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + "\n";
+    }
+    out << s;
+  });
+}
+
+template void write_surface<2>(const std::filesystem::path&, const MeshView<2>&, ExportFormat);
+template void write_surface<3>(const std::filesystem::path&, const MeshView<3>&, ExportFormat);
+
+}  // namespace shoremesh::io

@@ -1,0 +1,57 @@
+// VTK XML unstructured grid (.vtu), ASCII: points in 3 components, triangles (VTK type 5) or tetrahedra
+// (type 10), a point array "input" (1 for input points, 0 for Steiner points) and per-element quality
+// ("radius_edge", "min_angle") so that ParaView can colour by them.
+#include <string>
+
+#include "shoremesh/io/atomic_file.hpp"
+#include "shoremesh/io/export.hpp"
+#include "shoremesh/io/export_text.hpp"
+#include "shoremesh/mesh_quality.hpp"
+
+namespace shoremesh::io {
+
+template <int D>
+void write_vtu(const std::filesystem::path& path, const MeshView<D>& view) {
+  write_atomically(path, [&](std::ostream& out) {
+    std::string s;
+    s += "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+         "header_type=\"UInt64\">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"" +
+         std::to_string(view.points.size()) + "\" NumberOfCells=\"" + std::to_string(view.elements.size()) + "\">\n";
+    s += "<PointData>\n<DataArray type=\"Int32\" Name=\"input\" format=\"ascii\">\n";
+    for (std::size_t i = 0; i < view.points.size(); ++i)
+      s += view.kinds.empty() || view.kinds[i] == PointKind::Input ? "1\n" : "0\n";
+    s += "</DataArray>\n</PointData>\n<CellData>\n";
+    std::string radius_edge, min_angle;
+    for (const auto& e : view.elements) {
+      ElementCorners<D> c;
+      for (int i = 0; i <= D; ++i) c[i] = view.points[e[i]];
+      const ElementShape<D> shape = element_shape<D>(c);
+      append_number(radius_edge, shape.radius_edge), radius_edge += '\n';
+      append_number(min_angle, shape.min_angle), min_angle += '\n';
+    }
+    s += "<DataArray type=\"Float64\" Name=\"radius_edge\" format=\"ascii\">\n" + radius_edge + "</DataArray>\n";
+    s += "<DataArray type=\"Float64\" Name=\"min_angle\" format=\"ascii\">\n" + min_angle + "</DataArray>\n";
+    s += "</CellData>\n<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    out << s;
+    s.clear();
+    for (const auto& p : view.points) {
+      for (int i = 0; i < 3; ++i) append_number(s, i < D ? p[i] : 0.0), s += i < 2 ? ' ' : '\n';
+    }
+    s += "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+    for (const auto& e : view.elements) {
+      for (int i = 0; i <= D; ++i) s += std::to_string(e[i]) + (i < D ? " " : "\n");
+    }
+    s += "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+    for (std::size_t i = 1; i <= view.elements.size(); ++i) s += std::to_string(i * (D + 1)) + "\n";
+    s += "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+    const std::string type = D == 2 ? "5\n" : "10\n";
+    for (std::size_t i = 0; i < view.elements.size(); ++i) s += type;
+    s += "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+    out << s;
+  });
+}
+
+template void write_vtu<2>(const std::filesystem::path&, const MeshView<2>&);
+template void write_vtu<3>(const std::filesystem::path&, const MeshView<3>&);
+
+}  // namespace shoremesh::io
