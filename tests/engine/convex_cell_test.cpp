@@ -1,0 +1,74 @@
+// The local clipped Voronoi cell is exact on degenerate inputs: a grid point's cell is its square/cube,
+// with the diagonal neighbours' bisectors passing exactly through its corners and adding nothing.
+#include <gtest/gtest.h>
+
+#include "shoremesh/engine/convex_cell.hpp"
+
+namespace shoremesh::engine {
+namespace {
+
+TEST(ConvexCell, GridPointCellIsASquare2D) {
+  RoundingGuard guard;
+  ConvexCell<2> cell;
+  const Point<2> v{0.5, 0.5};
+  cell.reset(v, {0.3, 0.3}, {0.7, 0.7});
+  VertexId id = 0;
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy)
+      if (dx || dy) cell.clip(id++, {0.5 + 0.125 * dx, 0.5 + 0.125 * dy});
+  EXPECT_EQ(cell.vertex_count(), 4u);
+  std::vector<VertexId> nb;
+  cell.bisector_neighbours(nb);
+  EXPECT_EQ(nb.size(), 4u);  // the four edge neighbours bound it; the diagonals only touch corners
+  // Corners at squared distance 2 (h/2)^2 = NN^2 / 2 exactly (dyadic coordinates): within 0.5 NN^2, the
+  // boundary case, and not within 0.49 NN^2.
+  EXPECT_TRUE(cell.within_scaled_distance(0.5, {0.625, 0.5}));
+  EXPECT_FALSE(cell.within_scaled_distance(0.49, {0.625, 0.5}));
+}
+
+TEST(ConvexCell, GridPointCellIsACube3D) {
+  RoundingGuard guard;
+  ConvexCell<3> cell;
+  const Point<3> v{0.5, 0.5, 0.5};
+  cell.reset(v, {0.3, 0.3, 0.3}, {0.7, 0.7, 0.7});
+  VertexId id = 0;
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dz = -1; dz <= 1; ++dz)
+        if (dx || dy || dz) cell.clip(id++, {0.5 + 0.125 * dx, 0.5 + 0.125 * dy, 0.5 + 0.125 * dz});
+  EXPECT_EQ(cell.vertex_count(), 8u);
+  std::vector<VertexId> nb;
+  cell.bisector_neighbours(nb);
+  EXPECT_EQ(nb.size(), 6u);
+  EXPECT_TRUE(cell.within_scaled_distance(0.75, {0.625, 0.5, 0.5}));  // corners at 3 (h/2)^2 = 0.75 NN^2
+  EXPECT_FALSE(cell.within_scaled_distance(0.74, {0.625, 0.5, 0.5}));
+}
+
+TEST(ConvexCell, RandomCellVerticesAreEquidistantFromTheirSites3D) {
+  RoundingGuard guard;
+  ConvexCell<3> cell;
+  const Point<3> v{0.5, 0.5, 0.5};
+  cell.reset(v, {0.0, 0.0, 0.0}, {1.0, 1.0, 1.0});
+  std::uint64_t x = 12345;
+  auto rnd = [&] {
+    x = x * 6364136223846793005ull + 1442695040888963407ull;
+    return double(x >> 11) * 0x1p-53;
+  };
+  std::vector<Point<3>> sites;
+  for (VertexId id = 0; id < 60; ++id) {
+    Point<3> w{0.2 + 0.6 * rnd(), 0.2 + 0.6 * rnd(), 0.2 + 0.6 * rnd()};
+    sites.push_back(w);
+    cell.clip(id, w);
+  }
+  // The farthest vertex c of the cell: no site is nearer to c than v (up to rounding of c).
+  Point<3> y = cell.farthest_vertex_offset();
+  Point<3> c{v[0] + y[0], v[1] + y[1], v[2] + y[2]};
+  auto d2 = [](const Point<3>& a, const Point<3>& b) {
+    return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
+  };
+  for (const auto& w : sites) EXPECT_GE(d2(c, w), d2(c, v) * (1 - 1e-9));
+  EXPECT_GE(cell.vertex_count(), 4u);
+}
+
+}  // namespace
+}  // namespace shoremesh::engine
