@@ -1,0 +1,49 @@
+#pragma once
+// Triangle's .node and .poly files (https://www.cs.cmu.edu/~quake/triangle.node.html, .poly.html).
+//
+//   .node:  <#vertices> <dimension = 2> <#attributes> <#boundary markers 0|1>
+//           <vertex #> <x> <y> [attributes...] [marker]           (numbered from 0 or 1, consecutively)
+//   .poly:  the .node header and vertices (or "0 2 0 0" and the vertices in the sibling .node file), then
+//           <#segments> <#markers>, <segment #> <endpoint> <endpoint> [marker], then <#holes>, <hole #> <x> <y>
+//           (regional attributes after the holes are ignored). '#' starts a comment.
+//
+// Segments become rings of the domain where they form closed cycles (every vertex of a connected group of
+// segments has exactly two segments); other segments are kept as sampled points only. Segments are sampled
+// like rings: with a spacing, points are inserted so that no piece is longer than the spacing. Errors
+// (shoremesh::InputError with file and line): bad header, dimension other than 2, wrong value count,
+// text in a number column, NaN/inf, vertex numbering that skips, a file that ends before the declared count,
+// a segment naming a missing vertex or joining a vertex to itself, duplicate vertices, fewer than three points.
+#include <array>
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "shoremesh/io/input_set.hpp"
+
+namespace shoremesh::io {
+
+struct PslgFile {
+  std::vector<Point2> points;
+  std::vector<std::size_t> point_lines;
+  std::vector<std::array<std::size_t, 2>> segments;  // 0-based indices into points
+  std::vector<std::size_t> segment_lines;
+  std::vector<Point2> holes;
+  std::vector<std::size_t> hole_lines;
+  std::string vertex_file;  // the file the vertices came from (the .poly itself or its .node)
+};
+
+PslgFile parse_node_text(std::string_view text, const std::string& name);
+// `node_text`/`node_name`: the sibling .node file, used when the .poly declares zero vertices.
+PslgFile parse_poly_text(std::string_view text, const std::string& name, std::string_view node_text = {},
+                         const std::string& node_name = {});
+PslgFile read_node_file(const std::string& path);
+PslgFile read_poly_file(const std::string& path);  // reads the sibling .node when needed
+
+struct PslgOptions {
+  double spacing = 0;  // > 0: subdivide segments so that no piece is longer (map units); 0: vertices only
+};
+
+InputSet pslg_to_input(const PslgFile& pslg, const PslgOptions& options = {});
+
+}  // namespace shoremesh::io

@@ -1,0 +1,311 @@
+#include "shoremesh/io/geojson_input.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <regex>
+#include <set>
+#include <stdexcept>
+
+#include "input_builder.hpp"
+#include "shoremesh/error.hpp"
+#include "shoremesh/io/georeference.hpp"
+#include "shoremesh/io/ring_check.hpp"
+#include "text_util.hpp"
+
+namespace shoremesh::io {
+
+namespace {
+
+using json = nlohmann::json;
+
+constexpr int kMaxDepth = 256;
+
+std::size_t line_of_offset(std::string_view text, std::size_t offset) {
+  std::size_t line = 1;
+  for (std::size_t i = 0; i < offset && i < text.size(); ++i) line += text[i] == '\n';
+  return line;
+}
+
+// Depth of [ and { nesting outside strings; refuses deep documents before the recursive parser sees them.
+void check_depth(std::string_view text, const std::string& name) {
+  int depth = 0;
+  bool in_string = false, escape = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (escape) escape = false;
+      else if (c == '\\') escape = true;
+      else if (c == '"') in_string = false;
+      continue;
+    }
+    if (c == '"') in_string = true;
+    else if (c == '[' || c == '{') {
+      if (++depth > kMaxDepth)
+        throw InputError("JSON nested deeper than " + std::to_string(kMaxDepth) + " levels", name, line_of_offset(text, i));
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
+
+struct Geometry {
+  struct Position {
+    Point2 p;
+    std::size_t element;
+    std::string path;
+  };
+  std::vector<std::vector<Position>> rings;
+  std::vector<std::vector<Position>> lines;  // LineStrings (sampled)
+  std::vector<Position> points;
+};
+
+class Reader {
+ public:
+  Reader(const std::string& name) : name_(name) {}
+
+  void object(const json& j, const std::string& path) {
+    if (!j.is_object()) fail(path, "expected a GeoJSON object");
+    const auto type = member_string(j, "type", path);
+    if (type == "FeatureCollection") {
+      const auto& features = member(j, "features", path);
+      if (!features.is_array()) fail(path + ".features", "expected an array");
+      for (std::size_t i = 0; i < features.size(); ++i) {
+        const std::string fp = path + "features[" + std::to_string(i) + "]";
+        if (!features[i].is_object() || member_string(features[i], "type", fp) != "Feature") fail(fp, "expected a Feature");
+        object(features[i], fp + ".");
+      }
+    } else if (type == "Feature") {
+      const auto& g = member(j, "geometry", path);
+      if (!g.is_null()) geometry(g, path + "geometry", 0);
+    } else {
+      geometry(j, path.empty() ? std::string("(root)") : path.substr(0, path.size() - 1), 0);
+    }
+  }
+
+  Geometry result;
+  std::size_t elements = 0;
+
+ private:
+  [[noreturn]] void fail(const std::string& path, const std::string& what) const {
+    throw InputError((path.empty() ? std::string() : path + ": ") + what, name_);
+  }
+  const json& member(const json& j, const char* key, const std::string& path) const {
+    const auto it = j.find(key);
+    if (it == j.end()) fail(path.empty() ? "(root)" : path, std::string("missing \"") + key + "\"");
+    return *it;
+  }
+  std::string member_string(const json& j, const char* key, const std::string& path) const {
+    const auto& v = member(j, key, path);
+    if (!v.is_string()) fail(path, std::string("\"") + key + "\" must be a string");
+    return v.get<std::string>();
+  }
+
+  Geometry::Position position(const json& j, const std::string& path) {
+    if (!j.is_array() || j.size() < 2 || j.size() > 3) fail(path, "a position must be an array of 2 or 3 numbers");
+    Point2 p{};
+    for (std::size_t k = 0; k < 2; ++k) {
+      if (!j[k].is_number()) fail(path + "[" + std::to_string(k) + "]", "not a number");
+      p[k] = j[k].get<double>();
+      if (!std::isfinite(p[k])) fail(path + "[" + std::to_string(k) + "]", "not a finite number");
+    }
+    if (j.size() == 3 && !j[2].is_number()) fail(path + "[2]", "elevation is not a number");
+    return {p, ++elements, path};
+  }
+
+  std::vector<Geometry::Position> positions(const json& j, const std::string& path) {
+    if (!j.is_array()) fail(path, "expected an array of positions");
+    std::vector<Geometry::Position> out;
+    for (std::size_t i = 0; i < j.size(); ++i) out.push_back(position(j[i], path + "[" + std::to_string(i) + "]"));
+    return out;
+  }
+
+  void ring(const json& j, const std::string& path) {
+    auto pts = positions(j, path);
+    if (pts.size() >= 2 && pts.front().p == pts.back().p) pts.pop_back();
+    if (pts.size() < 3) fail(path, "polygon ring has fewer than three points");
+    result.rings.push_back(std::move(pts));
+  }
+
+  void polygon(const json& j, const std::string& path) {
+    if (!j.is_array() || j.empty()) fail(path, "a Polygon needs at least one ring");
+    for (std::size_t r = 0; r < j.size(); ++r) ring(j[r], path + "[" + std::to_string(r) + "]");
+  }
+
+  void geometry(const json& g, const std::string& path, int depth) {
+    if (!g.is_object()) fail(path, "expected a geometry object");
+    const auto type = member_string(g, "type", path);
+    if (type == "GeometryCollection") {
+      const auto& gs = member(g, "geometries", path);
+      if (!gs.is_array()) fail(path + ".geometries", "expected an array");
+      for (std::size_t i = 0; i < gs.size(); ++i) geometry(gs[i], path + ".geometries[" + std::to_string(i) + "]", depth + 1);
+      return;
+    }
+    const auto& c = member(g, "coordinates", path);
+    const std::string cp = path + ".coordinates";
+    if (type == "Point") {
+      result.points.push_back(position(c, cp));
+    } else if (type == "MultiPoint") {
+      for (auto& p : positions(c, cp)) result.points.push_back(std::move(p));
+    } else if (type == "LineString") {
+      auto pts = positions(c, cp);
+      if (pts.size() < 2) fail(cp, "a LineString needs at least two positions");
+      result.lines.push_back(std::move(pts));
+    } else if (type == "MultiLineString") {
+      if (!c.is_array()) fail(cp, "expected an array of LineStrings");
+      for (std::size_t i = 0; i < c.size(); ++i) {
+        auto pts = positions(c[i], cp + "[" + std::to_string(i) + "]");
+        if (pts.size() < 2) fail(cp + "[" + std::to_string(i) + "]", "a LineString needs at least two positions");
+        result.lines.push_back(std::move(pts));
+      }
+    } else if (type == "Polygon") {
+      polygon(c, cp);
+    } else if (type == "MultiPolygon") {
+      if (!c.is_array()) fail(cp, "expected an array of Polygons");
+      for (std::size_t i = 0; i < c.size(); ++i) polygon(c[i], cp + "[" + std::to_string(i) + "]");
+    } else {
+      fail(path, "unknown geometry type " + detail::quoted(type));
+    }
+  }
+
+  const std::string& name_;
+};
+
+// A "crs" member of 2008 GeoJSON, as a coordinate system (nothing when absent or WGS84/CRS84).
+std::optional<CoordinateSystem> legacy_crs(const json& root, const std::string& name) {
+  if (!root.is_object()) return std::nullopt;
+  const auto it = root.find("crs");
+  if (it == root.end() || !it->is_object()) return std::nullopt;
+  const auto props = it->find("properties");
+  if (props == it->end() || !props->is_object()) return std::nullopt;
+  const auto n = props->find("name");
+  if (n == props->end() || !n->is_string()) return std::nullopt;
+  const std::string s = n->get<std::string>();
+  static const std::regex epsg(R"re(EPSG:+(?:[0-9.]*:)?(\d+)$)re", std::regex::icase);
+  std::smatch m;
+  if (std::regex_search(s, m, epsg)) {
+    const auto cs = parse_coordinate_system("EPSG:" + m[1].str(), name);
+    if (cs.kind == CoordinateSystem::Kind::Geographic) return std::nullopt;
+    return cs.kind == CoordinateSystem::Kind::Unknown ? CoordinateSystem{CoordinateSystem::Kind::Unknown, 0, true, s} : cs;
+  }
+  if (s.find("CRS84") != std::string::npos) return std::nullopt;
+  return CoordinateSystem{CoordinateSystem::Kind::Unknown, 0, true, s};
+}
+
+std::vector<Point2> subdivide(const std::vector<Point2>& pts, bool closed, double spacing) {
+  if (spacing <= 0) return pts;
+  std::vector<Point2> out;
+  const std::size_t n = pts.size(), edges = closed ? n : n - 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    out.push_back(pts[i]);
+    if (i >= edges) break;
+    const Point2& a = pts[i];
+    const Point2& b = pts[(i + 1) % n];
+    const auto pieces = static_cast<std::size_t>(std::ceil(std::hypot(b[0] - a[0], b[1] - a[1]) / spacing));
+    for (std::size_t k = 1; k < pieces; ++k) {
+      const double t = static_cast<double>(k) / static_cast<double>(pieces);
+      out.push_back({a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])});
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+InputSet parse_geojson_text(std::string_view text, const std::string& name, const GeoJsonOptions& options) {
+  check_depth(text, name);
+  json root;
+  try {
+    root = json::parse(text.begin(), text.end());
+  } catch (const json::parse_error& e) {
+    std::string what = e.what();
+    const auto p = what.find("] ");
+    if (p != std::string::npos) what = what.substr(p + 2);
+    throw InputError("malformed JSON: " + what, name, line_of_offset(text, e.byte > 0 ? e.byte - 1 : 0));
+  }
+  Reader reader(name);
+  reader.object(root, "");
+  Geometry& g = reader.result;
+  if (g.rings.empty() && g.lines.empty() && g.points.empty()) throw InputError("no points", name);
+
+  InputSet set;
+  const auto crs = legacy_crs(root, name);
+  std::optional<Projection> source_utm;
+  if (crs && crs->kind == CoordinateSystem::Kind::Unknown) {
+    set.units = Units::MapUnits;
+    set.notes.push_back("coordinates in " + crs->name + " read as map units");
+  } else {
+    set.units = Units::Metres;
+    if (crs) source_utm = Projection::utm_ups(crs->zone, crs->north);
+    if (options.projection && !options.projection->is_none()) {
+      set.projection = *options.projection;
+    } else if (source_utm) {
+      set.projection = *source_utm;
+    } else {
+      std::vector<LonLat> all;
+      auto add = [&](const std::vector<Geometry::Position>& v) {
+        for (const auto& p : v) all.push_back({p.p[0], p.p[1]});
+      };
+      for (const auto& r : g.rings) add(r);
+      for (const auto& l : g.lines) add(l);
+      add(g.points);
+      for (const auto& ll : all)
+        if (std::abs(ll.lon) > 180 || std::abs(ll.lat) > 90)
+          throw InputError("position " + std::to_string(ll.lon) + ", " + std::to_string(ll.lat) +
+                               " is not lon/lat in degrees (GeoJSON is WGS84 lon/lat; name a \"crs\" for projected data)",
+                           name);
+      set.projection = Projection::choose(all, options.choice, name);
+    }
+    set.notes.push_back("projected to metres with " + set.projection.describe());
+  }
+  auto convert = [&](const Geometry::Position& p) -> Point2 {
+    if (set.units == Units::MapUnits) return p.p;
+    try {
+      if (source_utm) return *source_utm == set.projection ? p.p : set.projection.forward(source_utm->reverse(p.p));
+      return set.projection.forward({p.p[0], p.p[1]});
+    } catch (const std::domain_error& e) {
+      throw InputError(p.path + ": " + e.what(), name);
+    }
+  };
+  detail::InputBuilder builder(set, name, Source::Location::Element);
+  for (const auto& r : g.rings) {
+    std::vector<Point2> pts;
+    for (const auto& p : r) pts.push_back(convert(p));
+    // Inserted points take the element of the vertex before them.
+    std::vector<Point2> sub = subdivide(pts, true, options.spacing);
+    std::vector<std::size_t> elements;
+    std::size_t k = 0;
+    for (const auto& q : sub) {
+      if (k < pts.size() && q == pts[k]) ++k;
+      elements.push_back(r[k == 0 ? 0 : k - 1].element);
+    }
+    builder.add_ring(std::move(sub), RingRole::Shore, elements);
+  }
+  assign_roles_by_nesting(set.domain);
+  check_rings(set);
+  std::set<Point2> seen(set.points.begin(), set.points.end());
+  std::size_t repeats = 0;
+  auto loose = [&](const Point2& p, std::size_t element) {
+    if (seen.insert(p).second) builder.add_point(p, element);
+    else ++repeats;
+  };
+  for (const auto& l : g.lines) {
+    std::vector<Point2> pts;
+    for (const auto& p : l) pts.push_back(convert(p));
+    const auto sub = subdivide(pts, false, options.spacing);
+    std::size_t k = 0;
+    for (const auto& q : sub) {
+      if (k < pts.size() && q == pts[k]) ++k;
+      loose(q, l[k == 0 ? 0 : k - 1].element);
+    }
+  }
+  for (const auto& p : g.points) loose(convert(p), p.element);
+  if (repeats) set.notes.push_back("dropped " + std::to_string(repeats) + " repeated position(s)");
+  return set;
+}
+
+InputSet read_geojson(const std::string& path, const GeoJsonOptions& options) {
+  return parse_geojson_text(detail::read_text_file(path), path, options);
+}
+
+}  // namespace shoremesh::io

@@ -1,0 +1,278 @@
+#include "shoremesh/io/poly_file.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <optional>
+
+#include "duplicates.hpp"
+#include "input_builder.hpp"
+#include "shoremesh/error.hpp"
+#include "shoremesh/io/ring_check.hpp"
+#include "text_util.hpp"
+
+namespace shoremesh::io {
+
+namespace {
+
+using detail::NumberStatus;
+
+// Records of a Triangle file: non-blank lines with comments removed, split on blanks.
+struct Records {
+  std::vector<std::vector<std::string_view>> fields;
+  std::vector<std::size_t> lines;
+  std::size_t next = 0;
+  std::size_t last_line = 0;  // the file's last line (for "ends early" errors)
+  std::string name;
+
+  Records(std::string_view text, std::string file) : name(std::move(file)) {
+    detail::for_each_line(text, [&](std::string_view raw, std::size_t line) {
+      last_line = line;
+      const auto body = detail::strip_comment(raw);
+      if (body.empty()) return;
+      fields.push_back(detail::split_fields(body));
+      lines.push_back(line);
+    });
+  }
+  bool done() const { return next >= fields.size(); }
+  std::size_t line() const { return next < lines.size() ? lines[next] : last_line; }
+
+  const std::vector<std::string_view>& take(const std::string& what) {
+    if (done()) throw InputError("file ends before " + what, name, last_line ? std::optional(last_line) : std::nullopt);
+    return fields[next++];
+  }
+  std::size_t taken_line() const { return lines[next - 1]; }
+
+  long long integer(std::string_view f, const std::string& what) const {
+    const auto v = detail::parse_integer(f);
+    if (!v) throw InputError(what + ": " + detail::quoted(f) + " is not an integer", name, taken_line());
+    return *v;
+  }
+  double number(std::string_view f, const std::string& what) const {
+    double v = 0;
+    const auto st = detail::parse_double(f, v);
+    if (st == NumberStatus::NotANumber) throw InputError(what + ": " + detail::quoted(f) + " is not a number", name, taken_line());
+    if (st == NumberStatus::NotFinite) throw InputError(what + ": " + detail::quoted(f) + " is not a finite number", name, taken_line());
+    return v;
+  }
+};
+
+constexpr long long kMaxCount = 100'000'000;  // refuse absurd declared counts before reserving memory
+
+// Reads "<#vertices> 2 <#attributes> <#markers>" and the vertices; returns the first vertex number (0 or 1).
+long long read_vertices(Records& r, PslgFile& out) {
+  const auto& h = r.take("the header");
+  if (h.size() < 1 || h.size() > 4) throw InputError("header: expected <#vertices> <dimension> <#attributes> <#markers>", r.name, r.taken_line());
+  const long long n = r.integer(h[0], "number of vertices");
+  const long long dim = h.size() > 1 ? r.integer(h[1], "dimension") : 2;
+  const long long attrs = h.size() > 2 ? r.integer(h[2], "number of attributes") : 0;
+  const long long markers = h.size() > 3 ? r.integer(h[3], "number of boundary markers") : 0;
+  if (n < 0 || n > kMaxCount) throw InputError("number of vertices " + std::to_string(n) + " out of range", r.name, r.taken_line());
+  if (dim != 2) throw InputError("dimension " + std::to_string(dim) + ": only 2D files are read", r.name, r.taken_line());
+  if (attrs < 0 || attrs > 1000 || markers < 0 || markers > 1)
+    throw InputError("attribute/marker counts out of range", r.name, r.taken_line());
+  const std::size_t expect = static_cast<std::size_t>(3 + attrs + markers);
+  long long first = 0;
+  for (long long i = 0; i < n; ++i) {
+    const auto& f = r.take("vertex " + std::to_string(i + 1) + " of " + std::to_string(n));
+    if (f.size() != expect)
+      throw InputError("vertex line: expected " + std::to_string(expect) + " values, found " + std::to_string(f.size()), r.name,
+                       r.taken_line());
+    const long long number = r.integer(f[0], "vertex number");
+    if (i == 0) {
+      if (number != 0 && number != 1) throw InputError("vertices must be numbered from 0 or 1", r.name, r.taken_line());
+      first = number;
+    } else if (number != first + i) {
+      throw InputError("vertex number " + std::to_string(number) + " where " + std::to_string(first + i) + " was expected",
+                       r.name, r.taken_line());
+    }
+    out.points.push_back({r.number(f[1], "x"), r.number(f[2], "y")});
+    out.point_lines.push_back(r.taken_line());
+    for (std::size_t k = 3; k < f.size(); ++k) (void)r.number(f[k], "attribute");
+  }
+  return first;
+}
+
+void check_points(const PslgFile& p, const std::string& name) {
+  if (p.points.empty()) throw InputError("no points", name);
+  if (const auto dup = detail::find_duplicate(p.points))
+    throw InputError("duplicate point: line " + std::to_string(p.point_lines[dup->first]) + " repeats line " +
+                         std::to_string(p.point_lines[dup->second]),
+                     name, p.point_lines[dup->first]);
+}
+
+}  // namespace
+
+PslgFile parse_node_text(std::string_view text, const std::string& name) {
+  Records r(text, name);
+  PslgFile out;
+  out.vertex_file = name;
+  read_vertices(r, out);
+  check_points(out, name);
+  return out;
+}
+
+PslgFile parse_poly_text(std::string_view text, const std::string& name, std::string_view node_text, const std::string& node_name) {
+  Records r(text, name);
+  PslgFile out;
+  out.vertex_file = name;
+  long long first = read_vertices(r, out);
+  if (out.points.empty()) {
+    if (node_name.empty()) throw InputError("the .poly declares no vertices and there is no .node file beside it", name, r.lines.empty() ? std::nullopt : std::optional(r.lines[0]));
+    Records node_records(node_text, node_name);
+    out = PslgFile{};
+    out.vertex_file = node_name;
+    first = read_vertices(node_records, out);
+  }
+  check_points(out, out.vertex_file);
+  const auto& sh = r.take("the segment count");
+  const long long ns = r.integer(sh[0], "number of segments");
+  const long long smark = sh.size() > 1 ? r.integer(sh[1], "number of boundary markers") : 0;
+  if (ns < 0 || ns > kMaxCount || smark < 0 || smark > 1 || sh.size() > 2)
+    throw InputError("segment header: expected <#segments> <#markers 0|1>", name, r.taken_line());
+  const long long n = static_cast<long long>(out.points.size());
+  for (long long i = 0; i < ns; ++i) {
+    const auto& f = r.take("segment " + std::to_string(i + 1) + " of " + std::to_string(ns));
+    if (f.size() != static_cast<std::size_t>(3 + smark))
+      throw InputError("segment line: expected " + std::to_string(3 + smark) + " values, found " + std::to_string(f.size()), name,
+                       r.taken_line());
+    (void)r.integer(f[0], "segment number");
+    std::array<std::size_t, 2> seg{};
+    for (int k = 0; k < 2; ++k) {
+      const long long v = r.integer(f[1 + k], "endpoint");
+      if (v < first || v >= first + n)
+        throw InputError("segment endpoint " + std::to_string(v) + " is not a vertex (vertices are " + std::to_string(first) +
+                             ".." + std::to_string(first + n - 1) + ")",
+                         name, r.taken_line());
+      seg[k] = static_cast<std::size_t>(v - first);
+    }
+    if (seg[0] == seg[1]) throw InputError("segment joins vertex " + std::string(f[1]) + " to itself", name, r.taken_line());
+    out.segments.push_back(seg);
+    out.segment_lines.push_back(r.taken_line());
+  }
+  if (!r.done()) {
+    const auto& hh = r.take("the hole count");
+    const long long nh = r.integer(hh[0], "number of holes");
+    if (nh < 0 || nh > kMaxCount || hh.size() != 1) throw InputError("hole header: expected <#holes>", name, r.taken_line());
+    for (long long i = 0; i < nh; ++i) {
+      const auto& f = r.take("hole " + std::to_string(i + 1) + " of " + std::to_string(nh));
+      if (f.size() != 3) throw InputError("hole line: expected 3 values, found " + std::to_string(f.size()), name, r.taken_line());
+      (void)r.integer(f[0], "hole number");
+      out.holes.push_back({r.number(f[1], "x"), r.number(f[2], "y")});
+      out.hole_lines.push_back(r.taken_line());
+    }
+  }
+  return out;  // optional regional attributes are ignored
+}
+
+PslgFile read_node_file(const std::string& path) { return parse_node_text(detail::read_text_file(path), path); }
+
+PslgFile read_poly_file(const std::string& path) {
+  const std::string text = detail::read_text_file(path);
+  std::filesystem::path node = path;
+  node.replace_extension(".node");
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(node, ec)) {
+    // Only needed when the .poly has no vertices of its own; read lazily by checking the header.
+    Records r(text, path);
+    if (!r.done() && !r.fields[0].empty() && detail::parse_integer(r.fields[0][0]) == 0)
+      return parse_poly_text(text, path, detail::read_text_file(node.string()), node.string());
+  }
+  return parse_poly_text(text, path);
+}
+
+InputSet pslg_to_input(const PslgFile& p, const PslgOptions& options) {
+  InputSet set;
+  set.units = Units::MapUnits;
+  if (p.points.size() < 3) throw InputError("fewer than three points", p.vertex_file);
+  // Cycles: connected groups of segments in which every vertex has exactly two segments.
+  const std::size_t n = p.points.size();
+  std::vector<std::vector<std::size_t>> adj(n);  // segment indices at each vertex
+  for (std::size_t s = 0; s < p.segments.size(); ++s)
+    for (std::size_t v : p.segments[s]) adj[v].push_back(s);
+  std::vector<bool> seg_done(p.segments.size(), false), vertex_in_ring(n, false);
+  std::vector<std::vector<std::size_t>> cycles;
+  for (std::size_t s0 = 0; s0 < p.segments.size(); ++s0) {
+    if (seg_done[s0]) continue;
+    // Collect the connected group and check degrees.
+    std::vector<std::size_t> stack{s0}, group_vertices, group_segments;
+    seg_done[s0] = true;
+    bool all_two = true;
+    while (!stack.empty()) {
+      const std::size_t s = stack.back();
+      stack.pop_back();
+      group_segments.push_back(s);
+      for (std::size_t v : p.segments[s]) {
+        if (adj[v].size() != 2) all_two = false;
+        for (std::size_t t : adj[v])
+          if (!seg_done[t]) seg_done[t] = true, stack.push_back(t);
+      }
+    }
+    if (!all_two || group_segments.size() < 3) continue;
+    // Walk the cycle.
+    std::vector<std::size_t> cycle;
+    std::size_t v = p.segments[s0][0], s = s0;
+    do {
+      cycle.push_back(v);
+      const std::size_t w = p.segments[s][0] == v ? p.segments[s][1] : p.segments[s][0];
+      s = adj[w][0] == s ? adj[w][1] : adj[w][0];
+      v = w;
+    } while (v != p.segments[s0][0] && cycle.size() <= group_segments.size());
+    if (cycle.size() == group_segments.size()) cycles.push_back(std::move(cycle));
+  }
+  // Points inserted along a segment from a to b (excluding a, including neither end).
+  auto subdivide = [&](const Point2& a, const Point2& b) {
+    std::vector<Point2> out;
+    if (options.spacing <= 0) return out;
+    const double len = std::hypot(b[0] - a[0], b[1] - a[1]);
+    const auto pieces = static_cast<std::size_t>(std::ceil(len / options.spacing));
+    for (std::size_t k = 1; k < pieces; ++k) {
+      const double t = static_cast<double>(k) / static_cast<double>(pieces);
+      out.push_back({a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])});
+    }
+    return out;
+  };
+  detail::InputBuilder vertices(set, p.vertex_file, Source::Location::Line);
+  for (const auto& cycle : cycles) {
+    std::vector<Point2> ring;
+    std::vector<std::size_t> lines;
+    for (std::size_t k = 0; k < cycle.size(); ++k) {
+      const std::size_t v = cycle[k], w = cycle[(k + 1) % cycle.size()];
+      vertex_in_ring[v] = true;
+      ring.push_back(p.points[v]);
+      lines.push_back(p.point_lines[v]);
+      for (const auto& q : subdivide(p.points[v], p.points[w])) {
+        ring.push_back(q);
+        lines.push_back(p.point_lines[v]);
+      }
+    }
+    vertices.add_ring(std::move(ring), RingRole::Shore, lines);
+  }
+  assign_roles_by_nesting(set.domain);
+  check_rings(set);
+  for (std::size_t v = 0; v < n; ++v)
+    if (!vertex_in_ring[v]) vertices.add_point(p.points[v], p.point_lines[v]);
+  std::size_t loose_segments = 0;
+  for (std::size_t s = 0; s < p.segments.size(); ++s) {
+    const auto [a, b] = p.segments[s];
+    if (vertex_in_ring[a] && vertex_in_ring[b]) continue;  // part of a cycle (a cycle's vertices are all in it)
+    ++loose_segments;
+    for (const auto& q : subdivide(p.points[a], p.points[b])) vertices.add_point(q, p.point_lines[a]);
+  }
+  if (!cycles.empty()) set.notes.push_back(std::to_string(cycles.size()) + " closed segment cycles became rings");
+  if (loose_segments)
+    set.notes.push_back(std::to_string(loose_segments) + " segments that do not form closed rings were kept as sampled points only");
+  // Holes: Triangle's hole seeds should lie on land by the even-odd rule; say so when they do not.
+  for (std::size_t h = 0; h < p.holes.size(); ++h) {
+    int depth = 0;
+    for (const auto& ring : set.domain.rings) depth += ring_contains(ring.points, p.holes[h]);
+    if (!set.domain.empty() && depth % 2 == 1)
+      set.notes.push_back("hole " + std::to_string(h + 1) + " (line " + std::to_string(p.hole_lines[h]) +
+                          ") lies inside water by the even-odd rule of the rings");
+  }
+  if (const auto dup = detail::find_duplicate(set.points))
+    throw InputError("duplicate point: " + describe_origin(set, dup->first) + " repeats " + describe_origin(set, dup->second),
+                     p.vertex_file, set.origins[dup->first].location);
+  return set;
+}
+
+}  // namespace shoremesh::io

@@ -1,0 +1,119 @@
+#include "shoremesh/io/poly_file.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "io_test_util.hpp"
+
+using namespace shoremesh;
+using namespace shoremesh::io;
+using shoremesh::io::test::expect_input_error;
+using shoremesh::io::test::shared_data;
+using ::testing::HasSubstr;
+
+TEST(PolyFile, DoubleHexRingsAndHoles) {
+  const auto p = read_poly_file(shared_data("pslg/double_hex.poly"));
+  EXPECT_EQ(p.points.size(), 96u);
+  EXPECT_EQ(p.segments.size(), 96u);
+  ASSERT_EQ(p.holes.size(), 2u);
+  EXPECT_EQ(p.holes[1], (Point2{0.6, 0.4}));
+  const auto set = pslg_to_input(p);
+  ASSERT_EQ(set.domain.rings.size(), 3u);
+  EXPECT_EQ(set.domain.rings[0].points.size(), 72u);
+  EXPECT_EQ(set.domain.rings[0].role, RingRole::Shore);
+  EXPECT_EQ(set.domain.rings[1].role, RingRole::Island);
+  EXPECT_EQ(set.domain.rings[2].role, RingRole::Island);
+  EXPECT_EQ(set.points.size(), 96u);
+  EXPECT_EQ(set.units, Units::MapUnits);
+  for (const auto& note : set.notes) EXPECT_THAT(note, ::testing::Not(HasSubstr("inside water")));
+  EXPECT_EQ(describe_origin(set, 0), shared_data("pslg/double_hex.poly") + ":28, ring 1");
+}
+
+TEST(PolyFile, FishAndRectangleSegmentsSampled) {
+  const auto p = read_poly_file(shared_data("pslg/fish-and-rectangle.poly"));
+  EXPECT_EQ(p.points.size(), 31u);
+  EXPECT_EQ(p.segments.size(), 44u);
+  EXPECT_EQ(p.holes.size(), 3u);
+  PslgOptions opt;
+  opt.spacing = 0.05;
+  const auto set = pslg_to_input(p, opt);
+  EXPECT_GT(set.points.size(), 31u * 3);
+  std::printf("fish-and-rectangle: %zu rings, %zu points at spacing 0.05\n", set.domain.rings.size(), set.points.size());
+  for (const auto& note : set.notes) std::printf("  %s\n", note.c_str());
+}
+
+TEST(PolyFile, SegmentsAreSampledAtTheSpacing) {
+  const auto p = parse_poly_text("4 2 0 0\n1 0 0\n2 10 0\n3 10 10\n4 0 10\n4 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n0\n", "sq.poly");
+  PslgOptions opt;
+  opt.spacing = 3;
+  const auto set = pslg_to_input(p, opt);
+  ASSERT_EQ(set.domain.rings.size(), 1u);
+  const auto& r = set.domain.rings[0].points;
+  ASSERT_EQ(r.size(), 16u);  // 4 pieces of 2.5 per side
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    const auto& a = r[i];
+    const auto& b = r[(i + 1) % r.size()];
+    EXPECT_NEAR(std::hypot(a[0] - b[0], a[1] - b[1]), 2.5, 1e-12);
+  }
+}
+
+TEST(NodeFile, DotsHasHundredPoints) {
+  const auto p = read_node_file(shared_data("pslg/dots.node"));
+  EXPECT_EQ(p.points.size(), 100u);
+  EXPECT_EQ(p.point_lines[0], 2u);
+  const auto set = pslg_to_input(p);
+  EXPECT_TRUE(set.domain.empty());
+  EXPECT_EQ(set.points.size(), 100u);
+}
+
+TEST(PolyFile, VerticesFromTheSiblingNodeFile) {
+  shoremesh::io::test::ScratchDir dir;
+  dir.write("lake.node", "3 2 0 0\n0 0 0\n1 4 0\n2 0 4\n");
+  const auto path = dir.write("lake.poly", "0 2 0 0\n3 0\n0 0 1\n1 1 2\n2 2 0\n0\n");
+  const auto p = read_poly_file(path);
+  EXPECT_EQ(p.points.size(), 3u);
+  EXPECT_EQ(p.vertex_file, dir.path("lake.node"));
+  EXPECT_EQ(pslg_to_input(p).domain.rings.size(), 1u);
+  const auto e = expect_input_error([] { parse_poly_text("0 2 0 0\n0 0\n", "alone.poly"); });
+  EXPECT_THAT(e.message(), HasSubstr("no .node file"));
+}
+
+TEST(PolyFile, MalformedFilesNameTheLine) {
+  struct Case {
+    std::string text, expect;
+    std::size_t line;
+  };
+  const std::vector<Case> cases{
+      {"3 2 0 0\n1 0 0\n2 1 0\n", "file ends before vertex 3 of 3", 3},
+      {"3 3 0 0\n1 0 0 0\n", "dimension 3", 1},
+      {"3 2 0 0\n1 0 0\n2 1 0\n4 0 1\n", "vertex number 4 where 3 was expected", 4},
+      {"3 2 0 0\n1 0 0\n2 1 zero\n3 0 1\n", "\"zero\" is not a number", 3},
+      {"3 2 0 0\n1 0 0\n2 1 nan\n3 0 1\n", "not a finite number", 3},
+      {"3 2 0 0\n1 0 0\n2 1 0 7\n3 0 1\n", "expected 3 values, found 4", 3},
+      {"3 2 0 0\n1 0 0\n2 1 0\n3 0 0\n", "duplicate point: line 4 repeats line 2", 4},
+      {"3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n1 0\n1 1 4\n", "endpoint 4 is not a vertex", 6},
+      {"3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n1 0\n1 2 2\n", "to itself", 6},
+      {"3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n2 0\n1 1 2\n", "file ends before segment 2 of 2", 6},
+      {"3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n0 0\n1\n", "file ends before hole 1 of 1", 6},
+      {"", "file ends before the header", 0},
+      {"x 2 0 0\n", "not an integer", 1},
+  };
+  for (const auto& c : cases) {
+    const auto e = expect_input_error([&] { parse_poly_text(c.text, "t.poly"); });
+    EXPECT_EQ(e.file(), "t.poly") << c.text;
+    EXPECT_THAT(e.message(), HasSubstr(c.expect)) << c.text;
+    if (c.line) {
+      EXPECT_EQ(e.line(), c.line) << c.text;
+    }
+  }
+}
+
+TEST(PolyFile, FewerThanThreePointsAndSelfIntersectingRing) {
+  auto e = expect_input_error([] { pslg_to_input(parse_node_text("2 2 0 0\n1 0 0\n2 1 0\n", "two.node")); });
+  EXPECT_THAT(e.message(), HasSubstr("fewer than three points"));
+  const std::string bowtie = "4 2 0 0\n1 0 0\n2 10 10\n3 10 0\n4 0 10\n4 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n";
+  e = expect_input_error([&] { pslg_to_input(parse_poly_text(bowtie, "bow.poly")); });
+  EXPECT_EQ(e.file(), "bow.poly");
+  EXPECT_EQ(e.line(), 2u);
+  EXPECT_THAT(e.message(), HasSubstr("self-intersecting rings"));
+}
