@@ -77,10 +77,17 @@ std::size_t loop_edges(const io::MeshView<2>& view, RingRole role) {
   return n;
 }
 
-TEST(MeshExport, BoundaryLoopsAreOneShoreAndOneIsland) {
+TEST(MeshExport, SnapshotKeepsUsedPointsAndOneShoreAndOneIslandLoop) {
   const Mesh2 mesh = lake_mesh();
   const MeshSnapshot<2> snap(mesh);
   const auto view = snap.view();
+  // The grid points outside the shore and on the island belong to no kept triangle and are left out.
+  EXPECT_LT(view.points.size(), mesh.points().size());
+  std::vector<bool> used(view.points.size(), false);
+  for (const auto& e : view.elements)
+    for (auto i : e) used[i] = true;
+  EXPECT_EQ(std::count(used.begin(), used.end(), false), 0);
+  EXPECT_EQ(std::count(view.kinds.begin(), view.kinds.end(), PointKind::Input), 40 + 8);
   ASSERT_EQ(view.boundary.size(), 2u);
   EXPECT_EQ(view.boundary[0].role, RingRole::Shore);
   EXPECT_EQ(view.boundary[1].role, RingRole::Island);
@@ -194,11 +201,12 @@ TEST(MeshExport, TriangleNodeEleHaveMarkersAndOneBasedElements) {
   ScratchDir dir;
   const Mesh2 mesh = lake_mesh();
   const MeshSnapshot<2> snap(mesh);
-  io::export_mesh<2>(dir.path("lake.node"), snap.view());
+  const auto view = snap.view();
+  io::export_mesh<2>(dir.path("lake.node"), view);
   std::istringstream node(slurp(dir.path("lake.node"))), ele(slurp(dir.path("lake.ele")));
   std::size_t n, dim, attributes, markers;
   node >> n >> dim >> attributes >> markers;
-  EXPECT_EQ(n, mesh.points().size());
+  EXPECT_EQ(n, view.points.size());
   EXPECT_EQ(dim, 2u);
   std::map<int, int> marker_count;
   for (std::size_t i = 0; i < n; ++i) {
@@ -207,8 +215,8 @@ TEST(MeshExport, TriangleNodeEleHaveMarkersAndOneBasedElements) {
     int m;
     node >> id >> x >> y >> m;
     ASSERT_EQ(id, i + 1);
-    ASSERT_EQ(x, mesh.points()[i][0]);
-    ASSERT_EQ(y, mesh.points()[i][1]);
+    ASSERT_EQ(x, view.points[i][0]);
+    ASSERT_EQ(y, view.points[i][1]);
     ++marker_count[m];
   }
   EXPECT_EQ(marker_count[1], 40);
@@ -217,7 +225,7 @@ TEST(MeshExport, TriangleNodeEleHaveMarkersAndOneBasedElements) {
   ele >> m >> corners >> attributes;
   EXPECT_EQ(m, mesh.element_count());
   EXPECT_EQ(corners, 3u);
-  const auto elements = mesh.elements();
+  const auto elements = view.elements;
   for (std::size_t i = 0; i < m; ++i) {
     std::size_t id, a, b, c;
     ele >> id >> a >> b >> c;
@@ -238,14 +246,14 @@ TEST(MeshExport, GeoJsonIsFeatureCollectionInLonLat) {
   const json g = json::parse(slurp(dir.path("lake.geojson")));
   EXPECT_EQ(g["type"], "FeatureCollection");
   ASSERT_EQ(g["features"].size(), mesh.element_count());
-  const auto elements = mesh.elements();
+  const auto elements = snap.view().elements;
   for (std::size_t i = 0; i < elements.size(); ++i) {
     const auto& ring = g["features"][i]["geometry"]["coordinates"][0];
     ASSERT_EQ(g["features"][i]["geometry"]["type"], "Polygon");
     ASSERT_EQ(ring.size(), 4u);
     ASSERT_EQ(ring[0], ring[3]);
     for (int k = 0; k < 3; ++k) {
-      const Point2 ll = to_lonlat(mesh.points()[elements[i][k]]);
+      const Point2 ll = to_lonlat(snap.view().points[elements[i][k]]);
       ASSERT_EQ(ring[k][0].get<double>(), ll[0]);
       ASSERT_EQ(ring[k][1].get<double>(), ll[1]);
     }
@@ -267,7 +275,7 @@ TEST(MeshExport, Fort14ListsShoreAndIslandBoundariesClosed) {
   in >> ne >> np;
   std::getline(in, line);
   EXPECT_EQ(ne, mesh.element_count());
-  EXPECT_EQ(np, mesh.points().size());
+  EXPECT_EQ(np, snap.view().points.size());
   for (std::size_t i = 0; i < np + ne; ++i) std::getline(in, line);
   auto count = [&] {
     std::size_t v;

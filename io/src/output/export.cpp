@@ -3,14 +3,48 @@
 
 #include <algorithm>
 #include <cctype>
+#include <limits>
 
 #include "shoremesh/error.hpp"
 
 namespace shoremesh::io {
 
+namespace {
+// The points no kept element uses (the box fill on land, beyond the shore) are not part of the mesh:
+// drop them and renumber, keeping the order of the rest.
 template <int D>
-MeshSnapshot<D>::MeshSnapshot(const Mesh<D>& mesh)
-    : MeshSnapshot(mesh.points(), mesh.elements(), mesh.kinds()) {}
+void drop_unused_points(std::vector<Point<D>>& points, std::vector<Element<D>>& elements, std::vector<PointKind>& kinds) {
+  if (elements.empty()) return;
+  constexpr std::uint32_t unused = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> renumber(points.size(), unused);
+  for (const auto& e : elements)
+    for (auto i : e) renumber[i] = 0;
+  std::uint32_t next = 0;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (renumber[i] != unused) {
+      renumber[i] = next;
+      points[next] = points[i];
+      if (!kinds.empty()) kinds[next] = kinds[i];
+      ++next;
+    }
+  points.resize(next);
+  if (!kinds.empty()) kinds.resize(next);
+  for (auto& e : elements)
+    for (auto& i : e) i = renumber[i];
+}
+
+template <int D>
+MeshSnapshot<D> snapshot_of(const Mesh<D>& mesh) {
+  std::vector<Point<D>> points = mesh.points();
+  std::vector<Element<D>> elements = mesh.elements();
+  std::vector<PointKind> kinds = mesh.kinds();
+  drop_unused_points<D>(points, elements, kinds);
+  return MeshSnapshot<D>(std::move(points), std::move(elements), std::move(kinds));
+}
+}  // namespace
+
+template <int D>
+MeshSnapshot<D>::MeshSnapshot(const Mesh<D>& mesh) : MeshSnapshot(snapshot_of(mesh)) {}
 
 template <int D>
 MeshSnapshot<D>::MeshSnapshot(std::vector<Point<D>> points, std::vector<Element<D>> elements,

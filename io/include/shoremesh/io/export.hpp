@@ -28,7 +28,8 @@ struct MeshView {
   std::function<double(const Point<D>&)> depth;
 };
 
-// A copy of a Mesh's points, elements, kinds and boundary, and a view of it.
+// A copy of a Mesh's points, elements, kinds and boundary, and a view of it. Points that no element uses
+// (the fill outside the water) are left out and the rest renumbered in their order.
 template <int D>
 class MeshSnapshot {
  public:

@@ -1,0 +1,117 @@
+// 2D previews (mesh, optional underlay and colouring, input and Steiner points) and the delta preview.
+#include "shoremesh/io/preview.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "shoremesh/io/preview_canvas.hpp"
+#include "shoremesh/mesh_quality.hpp"
+
+namespace shoremesh::io {
+
+namespace {
+
+using P = std::array<double, 2>;
+
+template <class Range>
+std::pair<P, P> bounds_of(const Range& points) {
+  P lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  P hi{-lo[0], -lo[1]};
+  for (const auto& p : points)
+    for (int i = 0; i < 2; ++i) lo[i] = std::min(lo[i], p[i]), hi[i] = std::max(hi[i], p[i]);
+  if (lo[0] > hi[0]) lo = {0, 0}, hi = {1, 1};  // nothing to draw
+  return {lo, hi};
+}
+
+P xy(const Point2& p) { return {p[0], p[1]}; }
+
+// Each undirected edge once, so that shared edges are not blended twice (they would look darker).
+std::set<std::pair<std::uint32_t, std::uint32_t>> unique_edges(std::span<const Element<2>> elements) {
+  std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
+  for (const auto& e : elements)
+    for (int i = 0; i < 3; ++i) edges.insert(std::minmax(e[i], e[(i + 1) % 3]));
+  return edges;
+}
+
+double longest_edge(const ElementCorners<2>& c) {
+  double l = 0;
+  for (int i = 0; i < 3; ++i) l = std::max(l, std::hypot(c[i][0] - c[(i + 1) % 3][0], c[i][1] - c[(i + 1) % 3][1]));
+  return l;
+}
+
+PreviewImage draw_2d(const MeshView<2>& view, const PreviewOptions& o) {
+  const auto [lo, hi] = bounds_of(view.points);
+  Canvas canvas(lo, hi, o.width, o.height, o.margin, o.background_colour);
+  if (o.background) canvas.underlay(read_image(*o.background), o.background_extent);
+
+  if (o.colouring != PreviewColouring::None && !view.elements.empty()) {
+    std::vector<ElementCorners<2>> corners;
+    for (const auto& e : view.elements) corners.push_back({view.points[e[0]], view.points[e[1]], view.points[e[2]]});
+    double small = std::numeric_limits<double>::infinity(), large = 0;
+    for (const auto& c : corners) small = std::min(small, longest_edge(c)), large = std::max(large, longest_edge(c));
+    const double bound = std::asin(std::min(1.0, 1 / (2 * o.rho))) * 180 / 3.141592653589793;
+    for (const auto& c : corners) {
+      const Rgb colour = o.colouring == PreviewColouring::Quality
+                             ? quality_colour(element_shape<2>(c).min_angle, bound, 60)
+                             : size_colour(large > small ? std::log(longest_edge(c) / small) / std::log(large / small) : 0.5);
+      canvas.triangle(xy(c[0]), xy(c[1]), xy(c[2]), colour, 0.75);
+    }
+  }
+  for (const auto& [a, b] : unique_edges(view.elements)) canvas.line(xy(view.points[a]), xy(view.points[b]), o.line_width, o.edge_colour);
+  if (o.point_radius > 0) {
+    // Steiner points first, input points on top: the input is what the user must find again.
+    for (const PointKind kind : {PointKind::Steiner, PointKind::Input})
+      for (std::size_t i = 0; i < view.points.size(); ++i) {
+        const PointKind k = view.kinds.empty() ? PointKind::Input : view.kinds[i];
+        if (k == kind) canvas.disc(xy(view.points[i]), o.point_radius, k == PointKind::Input ? o.input_colour : o.steiner_colour);
+      }
+  }
+  return canvas.take();
+}
+
+}  // namespace
+
+PreviewImage draw_3d(const MeshView<3>& view, const PreviewOptions& options);  // preview_3d.cpp
+
+template <int D>
+PreviewImage draw_preview(const MeshView<D>& view, const PreviewOptions& options) {
+  if constexpr (D == 2) return draw_2d(view, options);
+  else return draw_3d(view, options);
+}
+
+PreviewImage draw_delta_preview(const MeshView<2>& after, const MeshDelta<2>& delta, const PreviewOptions& o) {
+  std::vector<Point2> all(after.points.begin(), after.points.end());
+  for (const auto* list : {&delta.removed, &delta.added})
+    for (const auto& c : *list) all.insert(all.end(), c.begin(), c.end());
+  const auto [lo, hi] = bounds_of(all);
+  Canvas canvas(lo, hi, o.width, o.height, o.margin, o.background_colour);
+  if (o.background) canvas.underlay(read_image(*o.background), o.background_extent);
+  const Rgb grey{0.72f, 0.72f, 0.72f}, red{0.85f, 0.1f, 0.1f}, green{0.1f, 0.6f, 0.2f};
+  for (const auto& [a, b] : unique_edges(after.elements)) canvas.line(xy(after.points[a]), xy(after.points[b]), o.line_width, grey);
+  // Removed first, so that where new elements overlap old ones the new colour shows.
+  for (const auto& [list, colour] : {std::pair{&delta.removed, red}, std::pair{&delta.added, green}})
+    for (const auto& c : *list) {
+      canvas.triangle(xy(c[0]), xy(c[1]), xy(c[2]), colour, 0.3);
+      for (int i = 0; i < 3; ++i) canvas.line(xy(c[i]), xy(c[(i + 1) % 3]), o.line_width, colour);
+    }
+  return canvas.take();
+}
+
+template <int D>
+void render_preview(const std::filesystem::path& path, const MeshView<D>& view, const PreviewOptions& options) {
+  write_image(path, draw_preview<D>(view, options));
+}
+
+void render_delta_preview(const std::filesystem::path& path, const MeshView<2>& after, const MeshDelta<2>& delta,
+                          const PreviewOptions& options) {
+  write_image(path, draw_delta_preview(after, delta, options));
+}
+
+template PreviewImage draw_preview<2>(const MeshView<2>&, const PreviewOptions&);
+template PreviewImage draw_preview<3>(const MeshView<3>&, const PreviewOptions&);
+template void render_preview<2>(const std::filesystem::path&, const MeshView<2>&, const PreviewOptions&);
+template void render_preview<3>(const std::filesystem::path&, const MeshView<3>&, const PreviewOptions&);
+
+}  // namespace shoremesh::io
