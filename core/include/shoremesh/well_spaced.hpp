@@ -16,7 +16,29 @@ namespace shoremesh {
 template <int D>
 class WellSpacedEngine;  // core/src: quadtree, operations, clipped Voronoi cells
 
-// The live result of StableWS on points in the unit box.
+// What one dynamic update changed in the output (unit-box coordinates in WellSpacedSet, the user's in
+// DynamicWellSpaced): the mesh and export layers update only this.
+template <int D>
+struct UpdateReport {
+  std::vector<Point<D>> steiner_removed;  // Steiner points no longer in the output
+  std::vector<Point<D>> steiner_added;    // Steiner points new in the output
+  std::size_t operations_undone = 0;      // obsolete or inconsistent operations taken back
+  std::size_t operations_executed = 0;    // fresh or inconsistent operations run
+  std::size_t operations_touched() const { return operations_undone + operations_executed; }
+};
+
+// One edit of the input, for batches.
+template <int D>
+struct Edit {
+  enum class Kind { Add, Remove, Move };
+  Kind kind = Kind::Add;
+  std::size_t id = 0;   // Remove, Move
+  Point<D> point{};     // Add, Move
+};
+
+// The live result of StableWS on points in the unit box, kept up to date under input edits by
+// PropagateWS (paper, Figure 4): after every edit the output equals a from-scratch run on the new input.
+// Input ids: 0..n-1 in build order; each add takes the next unused id; ids are never reused.
 template <int D>
 class WellSpacedSet {
  public:
@@ -29,10 +51,23 @@ class WellSpacedSet {
   // naming the point's index). Replaces any previous state.
   void build(std::span<const Point<D>> unit_points);
 
+  // Dynamic updates. add refuses (InputError) a point outside [0,1]^D, non-finite, or equal to an input
+  // point; remove and move refuse an unknown id, and remove the last input point. After an error the set
+  // is unchanged and valid.
+  std::size_t add(const Point<D>& unit_point, UpdateReport<D>* report = nullptr);
+  void remove(std::size_t id, UpdateReport<D>* report = nullptr);
+  void move(std::size_t id, const Point<D>& unit_point, UpdateReport<D>* report = nullptr);  // keeps the id
+  // Several edits, one propagation: returns the ids of the added points (in order). All edits are
+  // checked before any is applied.
+  std::vector<std::size_t> apply(std::span<const Edit<D>> edits, UpdateReport<D>* report = nullptr);
+
   std::size_t input_count() const;
   std::size_t steiner_count() const;
-  // Input points in the order given, then the Steiner points in canonical order (sorted by coordinates,
-  // so the list does not depend on the order of the input).
+  bool has_input(std::size_t id) const;
+  Point<D> input_point(std::size_t id) const;  // InputError for an unknown id
+  std::vector<std::size_t> input_ids() const;  // live ids, ascending
+  // Input points by increasing id, then the Steiner points in canonical order (sorted by coordinates,
+  // so the list does not depend on the order of the input or on the edit history).
   std::vector<Point<D>> output_points() const;
   const Counters& counters() const;
   // Bytes held by the live structures (quadtree, vertices, operations, read lists), measured by capacity.
@@ -57,6 +92,36 @@ struct StableResult {
   std::size_t input_count = 0;
   Counters counters;
   std::size_t memory_bytes = 0;
+};
+
+// The dynamic set in the user's coordinates: a fixed box (given, or fitted to the first input), points
+// mapped into it, output mapped back. Input points come back exactly as the user gave them.
+template <int D>
+class DynamicWellSpaced {
+ public:
+  DynamicWellSpaced(std::span<const Point<D>> user_points, const Parameters<D>& parameters = {},
+                    std::optional<BoxTransform<D>> box = {});
+  const BoxTransform<D>& box() const { return box_; }
+  // As WellSpacedSet, in user coordinates; a point outside the box is refused (the box never grows, so
+  // that the result always equals `stable_well_spaced` on the same input and box).
+  std::size_t add(const Point<D>& p, UpdateReport<D>* report = nullptr);
+  void remove(std::size_t id, UpdateReport<D>* report = nullptr);
+  void move(std::size_t id, const Point<D>& p, UpdateReport<D>* report = nullptr);
+  std::vector<std::size_t> apply(std::span<const Edit<D>> edits, UpdateReport<D>* report = nullptr);
+  bool has_input(std::size_t id) const { return set_.has_input(id); }
+  Point<D> input_point(std::size_t id) const;
+  std::vector<std::size_t> input_ids() const { return set_.input_ids(); }
+  std::size_t input_count() const { return set_.input_count(); }
+  // Live input points by increasing id (exactly as given), then the Steiner points.
+  std::vector<Point<D>> points() const;
+  const WellSpacedSet<D>& set() const { return set_; }
+
+ private:
+  Point<D> to_unit_checked(const Point<D>& p) const;
+  void to_user(UpdateReport<D>* report) const;
+  BoxTransform<D> box_;
+  WellSpacedSet<D> set_;
+  std::vector<Point<D>> user_inputs_;  // by id; as the user gave them
 };
 
 template <int D>
