@@ -1,0 +1,72 @@
+#include "shoremesh/io/read_input.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "io_test_util.hpp"
+
+using namespace shoremesh;
+using namespace shoremesh::io;
+using shoremesh::io::test::expect_input_error;
+using shoremesh::io::test::samples;
+using ::testing::HasSubstr;
+
+TEST(ReadInput, DetectsEverySampleFormat) {
+  EXPECT_EQ(detect_input_format(samples("superior/superior_watermask_h.png")), InputFormat::Image);
+  EXPECT_EQ(detect_input_format(samples("superior/superior_watermask_h.tif")), InputFormat::Image);
+  EXPECT_EQ(detect_input_format(samples("superior/lake_superior_lonlat.csv")), InputFormat::RingFile);
+  EXPECT_EQ(detect_input_format(samples("cerknica/cerknicko-jezero.gpx")), InputFormat::Gpx);
+  EXPECT_EQ(detect_input_format(samples("pslg/double_hex.poly")), InputFormat::Poly);
+  EXPECT_EQ(detect_input_format(samples("pslg/dots.node")), InputFormat::Node);
+  shoremesh::io::test::ScratchDir dir;
+  EXPECT_EQ(detect_input_format(dir.write("t.csv", "time,lat,lon\n1,45,14\n")), InputFormat::TrackCsv);
+  EXPECT_EQ(detect_input_format(dir.write("p.txt", "1 2\n3 4\n")), InputFormat::PointFile);
+  const auto e = expect_input_error([&] { detect_input_format(dir.write("x.shp", "")); });
+  EXPECT_THAT(e.message(), HasSubstr("unknown input format"));
+}
+
+TEST(ReadInput, SuperiorSamplesImageAndPolygonShareOneProjection) {
+  InputOptions opt;
+  opt.lonlat = true;
+  opt.image.largest_water_only = true;
+  const auto image = read_input(samples("superior/superior_watermask_h.png"), opt);
+  EXPECT_EQ(image.units, Units::Metres);
+  EXPECT_EQ(image.projection.describe(), "UTM zone 16N (WGS84)");
+  const auto polygon = read_input(samples("superior/lake_superior_lonlat.csv"), opt);
+  EXPECT_EQ(polygon.domain.rings.size(), 46u);
+  EXPECT_EQ(polygon.projection, image.projection);
+  // read_inputs fixes the first projection for all files and merges.
+  opt.projection_choice = ProjectionChoice::LocalTransverseMercator;
+  const auto both = read_inputs({samples("superior/superior_watermask_h.png"), samples("superior/lake_superior_lonlat.csv")}, opt);
+  EXPECT_EQ(both.projection.kind(), Projection::Kind::LocalTransverseMercator);
+  EXPECT_EQ(both.points.size(), both.origins.size());
+  EXPECT_EQ(both.domain.rings.size(), image.domain.rings.size() + 46);
+  EXPECT_EQ(both.sources.size(), 2u);
+}
+
+TEST(ReadInput, GpxAndPointFilesInLonLat) {
+  InputOptions opt;
+  opt.track.close_tolerance = 0;
+  opt.track.spacing = 10;
+  const auto gpx = read_input(samples("cerknica/cerknicko-jezero.gpx"), opt);
+  EXPECT_EQ(gpx.projection.describe(), "UTM zone 33N (WGS84)");
+  shoremesh::io::test::ScratchDir dir;
+  const auto pts = dir.write("pts.csv", "lon,lat,depth\n14.33,45.76,-3\n14.34,45.765,-4.5\n");
+  // "lon,lat" names the columns of a GPS CSV: read as a track.
+  EXPECT_EQ(detect_input_format(pts), InputFormat::TrackCsv);
+  const auto plain = dir.write("pts.xyz", "14.33 45.76 -3\n14.34 45.765 -4.5\n");
+  opt.lonlat = true;
+  opt.projection = gpx.projection;
+  const auto p3 = read_input(plain, opt);
+  EXPECT_EQ(p3.dimension, 3);
+  ASSERT_EQ(p3.points3.size(), 2u);
+  EXPECT_EQ(p3.points3[1][2], -4.5);
+  const LonLat back = p3.projection.reverse({p3.points3[1][0], p3.points3[1][1]});
+  EXPECT_NEAR(back.lon, 14.34, 1e-9);
+  EXPECT_NEAR(back.lat, 45.765, 1e-9);
+  // Different units cannot be merged.
+  opt.lonlat = false;
+  const auto map_units = dir.write("map.txt", "0 0\n1 0\n");
+  const auto e = expect_input_error([&] { read_inputs({samples("cerknica/cerknicko-jezero.gpx"), map_units}, opt); });
+  EXPECT_THAT(e.message(), HasSubstr("cannot merge"));
+}
