@@ -112,11 +112,12 @@ void clip(std::vector<CellVertex>& cell, const ExactLine& cut, std::vector<CellV
   cell.swap(scratch);
 }
 
-// A double within a few units in the last place of x: the interval approximation when it is that tight,
-// the exact value otherwise. (CGAL::to_double on a lazy number settles for a relative 1e-5.)
+// A double within a relative 1e-12 of x: the interval approximation when it is that tight, the exact
+// value otherwise (a small cell far from the origin loses digits to cancellation). CGAL::to_double on a
+// lazy number would settle for a relative 1e-5.
 double close_double(const Epeck::FT& x) {
   const CGAL::Interval_nt<false>& a = x.approx();
-  if (a.sup() - a.inf() <= 1e-15 * std::abs(a.sup())) return 0.5 * (a.inf() + a.sup());
+  if (a.sup() - a.inf() <= 1e-12 * std::abs(a.sup())) return 0.5 * (a.inf() + a.sup());
   return CGAL::to_double(x.exact());
 }
 
@@ -134,31 +135,35 @@ void rate_cells_2d(std::span<const Point2> points, std::span<const std::uint8_t>
 
   const double x0 = box.origin[0], y0 = box.origin[1];
   const double x1 = x0 + box.side, y1 = y0 + box.side;
-  const ExactPoint corners[4] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-  std::vector<CellVertex> box_cell;
-  for (int k = 0; k < 4; ++k) box_cell.push_back({corners[k], ExactLine(corners[k], corners[(k + 1) % 4])});
   const Epeck::FT exact_rho_squared(rho_squared);
+  const ExactPoint origin(0, 0);
 
   std::vector<CellVertex> cell, scratch;
   std::vector<CGAL::Oriented_side> sides;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!rated[i] || adj.offsets[i] == adj.offsets[i + 1]) continue;
-    const ExactPoint v(points[i][0], points[i][1]);
-    cell = box_cell;
+    // The cell is built in coordinates relative to v, translated exactly (lazy differences of doubles):
+    // the same decisions, but the interval approximations stay tight for a small cell far from the
+    // origin, so the exact fallback is rarely needed.
+    const Epeck::FT vx(points[i][0]), vy(points[i][1]);
+    auto relative = [&](double x, double y) { return ExactPoint(Epeck::FT(x) - vx, Epeck::FT(y) - vy); };
+    const ExactPoint corners[4] = {relative(x0, y0), relative(x1, y0), relative(x1, y1), relative(x0, y1)};
+    cell.clear();
+    for (int k = 0; k < 4; ++k) cell.push_back({corners[k], ExactLine(corners[k], corners[(k + 1) % 4])});
     bool first = true;
     Epeck::FT nn_squared;
     for (std::uint32_t k = adj.offsets[i]; k < adj.offsets[i + 1]; ++k) {
       const Point2& q = points[adj.neighbours[k]];
-      const ExactPoint u(q[0], q[1]);
-      const Epeck::FT d = CGAL::squared_distance(v, u);
+      const ExactPoint u = relative(q[0], q[1]);
+      const Epeck::FT d = CGAL::squared_distance(origin, u);
       if (first || d < nn_squared) nn_squared = d;
       first = false;
-      clip(cell, CGAL::bisector(v, u), scratch, sides);  // v lies on the bisector's positive side
+      clip(cell, CGAL::bisector(origin, u), scratch, sides);  // v lies on the bisector's positive side
     }
     // The farthest point of a convex polygon from v is one of its vertices.
     Epeck::FT far_squared = 0;
     for (const CellVertex& c : cell) {
-      const Epeck::FT d = CGAL::squared_distance(c.point, v);
+      const Epeck::FT d = CGAL::squared_distance(c.point, origin);
       if (d > far_squared) far_squared = d;
     }
     violates[i] = far_squared > exact_rho_squared * nn_squared ? 1 : 0;

@@ -40,7 +40,8 @@ template <int D>
 std::vector<Point<D>> on_line(std::size_t n);
 
 // n points with the heavy-tailed radial density of Kuzmin's disk, surface density ∝ (1 + r^2)^(-3/2),
-// around the box centre, scaled so that radius 1000 reaches the box face (farther samples are drawn again).
+// around the box centre (in 3D the same radial law with uniform directions), scaled so that radius 1000
+// reaches the box face (farther samples are drawn again).
 template <int D>
 std::vector<Point<D>> kuzmin(std::size_t n, std::uint64_t seed);
 

@@ -19,7 +19,8 @@ struct WellSpacedReport {
   std::size_t vertex_count = 0;
   double rho = 0;                    // the bound checked
   double rho_squared = 0;            // the squared bound the 2D decision used (exact)
-  // max over output vertices v of (max distance from v to a point of Vor(v) ∩ box) / NN_M(v)
+  // max over output vertices v of (max distance from v to a point of Vor(v) ∩ box) / NN_M(v), to a
+  // relative 1e-12 in 2D (the decisions themselves are exact)
   double worst_ratio = 0;
   std::size_t worst_vertex = 0;      // index into output
   std::size_t violations = 0;        // vertices with ratio > rho (exact in 2D; 3D within a relative 1e-9)
