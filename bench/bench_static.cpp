@@ -8,7 +8,9 @@
 //           plus the points, refined by CGAL::refine_Delaunay_mesh_2 with shape bound 0.125 = sin^2(20.7°),
 //           the minimum angle a sqrt(2)-well-spaced set guarantees, and no size bound.
 // Only the algorithm is timed (std::chrono::steady_clock), not the input generation; the time printed is
-// the median over the repeats. Peak RSS is the whole process's (getrusage), input included for both.
+// the median over the repeats. The process CPU time of the same runs is printed too: on a shared machine
+// wall time grows with the load, CPU time much less. Peak RSS is the whole process's (getrusage), input
+// included for both.
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_mesh_face_base_2.h>
 #include <CGAL/Delaunay_mesh_size_criteria_2.h>
@@ -16,6 +18,7 @@
 #include <CGAL/Delaunay_mesher_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <sys/resource.h>
+#include <time.h>
 
 #include <algorithm>
 #include <charconv>
@@ -96,15 +99,28 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
+double process_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// Wall and CPU seconds of every run.
+struct Timings {
+  std::vector<double> wall, cpu;
+};
+
 template <class Run>
-std::vector<double> time_runs(int repeats, Run run) {
-  std::vector<double> seconds;
+Timings time_runs(int repeats, Run run) {
+  Timings t;
   for (int r = 0; r < repeats; ++r) {
+    const double cpu_start = process_cpu_seconds();
     const auto start = std::chrono::steady_clock::now();
     run();
-    seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    t.wall.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    t.cpu.push_back(process_cpu_seconds() - cpu_start);
   }
-  return seconds;
+  return t;
 }
 
 template <int D>
@@ -117,13 +133,13 @@ std::string verdict(const std::vector<Point<D>>& output, const std::vector<Point
 }
 
 template <int D>
-std::pair<RunResult, std::vector<double>> bench_stablews(const std::vector<Point<D>>& input, const Options& o) {
+std::pair<RunResult, Timings> bench_stablews(const std::vector<Point<D>>& input, const Options& o) {
   BoxTransform<D> box;
   box.origin.fill(0);
   box.side = 1;
   RunResult result;
   StableResult<D> last;
-  const auto seconds = time_runs(o.repeats, [&] {
+  const Timings timings = time_runs(o.repeats, [&] {
     last = StableResult<D>{};  // free the previous run's output before the next one
     last = stable_well_spaced<D>(input, {}, box);
   });
@@ -131,10 +147,10 @@ std::pair<RunResult, std::vector<double>> bench_stablews(const std::vector<Point
   result.operations = static_cast<double>(last.counters.operations());
   result.engine_memory_bytes = static_cast<double>(last.memory_bytes);
   if (o.verify) result.verdict = verdict<D>(last.points, input, box);
-  return {result, seconds};
+  return {result, timings};
 }
 
-std::pair<RunResult, std::vector<double>> bench_cgal(const std::vector<Point2>& input, const Options& o) {
+std::pair<RunResult, Timings> bench_cgal(const std::vector<Point2>& input, const Options& o) {
   using K = CGAL::Exact_predicates_inexact_constructions_kernel;
   using Tds = CGAL::Triangulation_data_structure_2<CGAL::Delaunay_mesh_vertex_base_2<K>, CGAL::Delaunay_mesh_face_base_2<K>>;
   using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds>;
@@ -145,7 +161,7 @@ std::pair<RunResult, std::vector<double>> bench_cgal(const std::vector<Point2>& 
 
   RunResult result;
   std::vector<Point2> output;
-  const auto seconds = time_runs(o.repeats, [&] {
+  const Timings timings = time_runs(o.repeats, [&] {
     Cdt cdt;
     const K::Point_2 corners[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     Cdt::Vertex_handle handles[4];
@@ -161,7 +177,7 @@ std::pair<RunResult, std::vector<double>> bench_cgal(const std::vector<Point2>& 
     }
   });
   if (o.verify) result.verdict = verdict<2>(output, input, BoxTransform<2>{{0, 0}, 1});
-  return {result, seconds};
+  return {result, timings};
 }
 
 std::size_t peak_rss_bytes() {
@@ -173,18 +189,20 @@ std::size_t peak_rss_bytes() {
 template <int D>
 int run(const Options& o) {
   const std::vector<Point<D>> input = families::generate<D>(o.family, o.n, o.seed);
-  std::pair<RunResult, std::vector<double>> measured;
+  std::pair<RunResult, Timings> measured;
   if constexpr (D == 2)
     measured = o.algo == "cgal" ? bench_cgal(input, o) : bench_stablews<2>(input, o);
   else
     measured = bench_stablews<D>(input, o);  // parse_options refuses cgal in 3D
-  const auto& [result, seconds] = measured;
+  const auto& [result, timings] = measured;
   const std::size_t rss = peak_rss_bytes();
   const double out = static_cast<double>(result.output_vertices);
   std::printf("algo=%s dim=%d family=%s n=%zu seed=%llu repeats=%d output_vertices=%zu median_seconds=%.6f "
-              "ops_per_vertex=%.4g peak_rss_bytes=%zu bytes_per_vertex=%.1f engine_memory_bytes=%.0f",
+              "median_cpu_seconds=%.6f ops_per_vertex=%.4g peak_rss_bytes=%zu bytes_per_vertex=%.1f "
+              "engine_memory_bytes=%.0f",
               o.algo.c_str(), D, std::string(families::family_name(o.family)).c_str(), input.size(),
-              static_cast<unsigned long long>(o.seed), o.repeats, result.output_vertices, median(seconds),
+              static_cast<unsigned long long>(o.seed), o.repeats, result.output_vertices, median(timings.wall),
+              median(timings.cpu),
               result.operations < 0 ? NAN : result.operations / out, rss, static_cast<double>(rss) / out,
               result.engine_memory_bytes < 0 ? NAN : result.engine_memory_bytes);
   if (o.verify) std::printf(" verify=%s", result.verdict.c_str());

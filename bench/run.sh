@@ -45,18 +45,6 @@ if [[ -n $only && -f $results ]]; then
   sed -n "/^$begin\$/,/^$end\$/p" "$results" | grep '^algo=' | grep -v "^algo=$only " >"$raw" || true
 fi
 
-for config in "${configs[@]}"; do
-  read -r algo dim n repeats <<<"$config"
-  [[ -z $only || $algo == "$only" ]] || continue
-  cmd="$bench --algo $algo --dim $dim --n $n --family $family --repeats $repeats --seed $seed"
-  echo "running: $cmd" >&2
-  if line=$($cmd); then
-    echo "$line run_at=$(date -u +%Y-%m-%dT%H:%M:%SZ) source=$source" | tee -a "$raw" >&2
-  else
-    echo "$0: failed: $cmd" >&2
-  fi
-done
-
 cpu=$(grep -m1 '^model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')
 
 # The section: machine, commands, one table of all runs, the 2D ratios, the raw lines.
@@ -67,8 +55,10 @@ section() {
   echo "Machine: $(nproc) CPUs ($cpu); written $(date -u +%Y-%m-%dT%H:%MZ). Input family \`$family\`, seed $seed,"
   echo "unit box. StableWS: \`stable_well_spaced\` with the default rho = sqrt(2). CGAL: constrained Delaunay"
   echo "triangulation of the square and the points, \`refine_Delaunay_mesh_2(cdt, Criteria(0.125, 0))\`"
-  echo "(shape bound sin^2(20.7°), no size bound). Time: median wall seconds over the repeats, algorithm only."
-  echo "Peak RSS: the whole process (getrusage), input included. Each run's date and source commit are in its raw line."
+  echo "(shape bound sin^2(20.7°), no size bound). Time: median over the repeats, algorithm only, as wall"
+  echo "seconds and as process CPU seconds (on a shared machine the wall time grows with the load; \`load\` is"
+  echo "the 1-minute load average when the run started). Peak RSS: the whole process (getrusage), input"
+  echo "included. Each run's date and source commit are in its raw line."
   echo
   echo "Command: \`bench/run.sh BUILD_DIR\` (one half: \`--algo stablews|cgal\`), which runs from BUILD_DIR/bench:"
   echo
@@ -78,26 +68,29 @@ section() {
            f["family"], f["repeats"], f["seed"] }' "$raw" | sort -k3,3 -k5,5n -k7,7n
   echo '```'
   echo
-  echo "| algo | dim | n | output vertices | median s | µs / output vertex | ops / output vertex | peak RSS MB | bytes / output vertex | engine bytes / output vertex |"
-  echo "|---|---|---|---|---|---|---|---|---|---|"
+  echo "| algo | dim | n | output vertices | median wall s | median CPU s | CPU µs / output vertex | ops / output vertex | peak RSS MB | bytes / output vertex | engine bytes / output vertex | load |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
   awk '
     { delete f; for (i = 1; i <= NF; ++i) { split($i, kv, "="); f[kv[1]] = kv[2] } }
     { out = f["output_vertices"]; engine = f["engine_memory_bytes"]
-      printf "| %s | %s | %s | %s | %.3f | %.2f | %s | %.1f | %.0f | %s |\n", f["algo"], f["dim"], f["n"], out,
-        f["median_seconds"], 1e6 * f["median_seconds"] / out, f["ops_per_vertex"] == "nan" ? "–" : f["ops_per_vertex"],
-        f["peak_rss_bytes"] / 1048576,
-        f["bytes_per_vertex"], engine == "nan" ? "–" : sprintf("%.0f", engine / out) }' "$raw" | sort -t'|' -k2,2 -k3,3n -k4,4n
+      printf "| %s | %s | %s | %s | %.3f | %.3f | %.2f | %s | %.1f | %.0f | %s | %s |\n", f["algo"], f["dim"], f["n"], out,
+        f["median_seconds"], f["median_cpu_seconds"], 1e6 * f["median_cpu_seconds"] / out,
+        f["ops_per_vertex"] == "nan" ? "–" : f["ops_per_vertex"], f["peak_rss_bytes"] / 1048576,
+        f["bytes_per_vertex"], engine == "nan" ? "–" : sprintf("%.0f", engine / out), f["load"] }' "$raw" |
+    sort -t'|' -k2,2 -k3,3n -k4,4n
   echo
   echo "Ratios StableWS / CGAL (2D, same input):"
   echo
-  echo "| n | time | output size | peak bytes per output vertex |"
-  echo "|---|---|---|---|"
+  echo "| n | CPU time | wall time | output size | peak bytes per output vertex |"
+  echo "|---|---|---|---|---|"
   awk '
     { delete f; for (i = 1; i <= NF; ++i) { split($i, kv, "="); f[kv[1]] = kv[2] } }
-    f["dim"] == 2 { key = f["n"]; t[f["algo"], key] = f["median_seconds"]; o[f["algo"], key] = f["output_vertices"]
+    f["dim"] == 2 { key = f["n"]; t[f["algo"], key] = f["median_seconds"]; c[f["algo"], key] = f["median_cpu_seconds"]
+                    o[f["algo"], key] = f["output_vertices"]
                     b[f["algo"], key] = f["bytes_per_vertex"]; ns[key] = 1 }
     END { for (k in ns) if ((("stablews", k) in t) && (("cgal", k) in t))
-            printf "| %s | %.2f | %.2f | %.2f |\n", k, t["stablews", k] / t["cgal", k], o["stablews", k] / o["cgal", k],
+            printf "| %s | %.2f | %.2f | %.2f | %.2f |\n", k, c["stablews", k] / c["cgal", k], t["stablews", k] / t["cgal", k],
+                   o["stablews", k] / o["cgal", k],
                    b["stablews", k] / b["cgal", k] }' "$raw" | sort -t'|' -k2,2n
   echo
   echo "<details><summary>Raw lines (bench_static output)</summary>"
@@ -111,14 +104,33 @@ section() {
 }
 
 # Replace the section between the markers, or append it; everything else in the file stays as it was.
-if [[ -f $results ]] && grep -q "^$begin\$" "$results"; then
-  section >"$raw.new"
-  awk -v begin="$begin" -v end="$end" -v body="$raw.new" '
-    $0 == begin { while ((getline line < body) > 0) print line; skip = 1; next }
-    $0 == end { skip = 0; next }
-    !skip { print }' "$results" >"$results.tmp" && mv "$results.tmp" "$results"
-else
-  { [[ -f $results ]] && { cat "$results"; echo; } || echo "# Benchmark results"; echo; section; } >"$results.tmp"
-  mv "$results.tmp" "$results"
-fi
+write_results() {
+  if [[ -f $results ]] && grep -q "^$begin\$" "$results"; then
+    section >"$raw.new"
+    awk -v begin="$begin" -v end="$end" -v body="$raw.new" '
+      $0 == begin { while ((getline line < body) > 0) print line; skip = 1; next }
+      $0 == end { skip = 0; next }
+      !skip { print }' "$results" >"$results.tmp" && mv "$results.tmp" "$results"
+  else
+    { [[ -f $results ]] && { cat "$results"; echo; } || echo "# Benchmark results"; echo; section; } >"$results.tmp"
+    mv "$results.tmp" "$results"
+  fi
+}
+
+# Run the configurations; the section is rewritten after each one, so an interrupted run keeps what it got.
+for config in "${configs[@]}"; do
+  read -r algo dim n repeats <<<"$config"
+  [[ -z $only || $algo == "$only" ]] || continue
+  cmd="$bench --algo $algo --dim $dim --n $n --family $family --repeats $repeats --seed $seed"
+  echo "running: $cmd" >&2
+  load=$(cut -d' ' -f1 /proc/loadavg)  # the machine may be shared: say how busy it was
+  if line=$($cmd); then
+    echo "$line run_at=$(date -u +%Y-%m-%dT%H:%M:%SZ) load=$load source=$source" | tee -a "$raw" >&2
+  else
+    echo "$0: failed: $cmd" >&2
+  fi
+  write_results
+done
+write_results
 echo "wrote $results" >&2
+
