@@ -82,6 +82,48 @@ TEST(MeshIncremental, RemovalChangesOnlyTheStar) {
   for (const auto& e : d.removed) EXPECT_NE(std::find(e.begin(), e.end(), Point2{0.5, 0.5}), e.end());
 }
 
+// With a domain, updates keep classifying the new triangles: after random changes of the Steiner points
+// the kept triangles are those of a mesh of the new points built from scratch with the same rings.
+TEST(MeshIncremental, RandomChangesWithDomainEqualFromScratch) {
+  const Domain2 domain = mesh_test::subdivide({{Ring{{{0.1, 0.1}, {0.9, 0.1}, {0.9, 0.9}, {0.1, 0.9}}, RingRole::Shore},
+                                                Ring{{{0.4, 0.4}, {0.6, 0.45}, {0.5, 0.6}}, RingRole::Island}}},
+                                               0.05);
+  std::size_t input_count = 0;
+  std::vector<Point2> points = mesh_test::sample_domain(domain, 0.05, 0.02, 31, input_count);
+  Mesh2 mesh(points, input_count, domain);
+  std::mt19937 rng(32);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int step = 0; step < 30; ++step) {
+    PointChange<2> change;
+    // Remove a few Steiner points (never the ring vertices, which come first) and add a few.
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t i = input_count + rng() % (points.size() - input_count);
+      change.removed.push_back(points[i]);
+      points.erase(points.begin() + static_cast<std::ptrdiff_t>(i));
+    }
+    for (int k = 0; k < 3; ++k) change.added.push_back({u(rng), u(rng)});
+    points.insert(points.end(), change.added.begin(), change.added.end());
+    const auto before = corner_list(mesh);
+    const MeshDelta<2> delta = mesh.apply(change);
+    ASSERT_EQ(corner_list(mesh), corner_list(Mesh2(points, input_count, domain))) << "step " << step;
+    std::set<ElementCorners<2>> expected(before.begin(), before.end());
+    for (const auto& e : delta.removed) ASSERT_EQ(expected.erase(e), 1u);
+    for (const auto& e : delta.added) ASSERT_TRUE(expected.insert(e).second);
+    ASSERT_EQ(std::vector<ElementCorners<2>>(expected.begin(), expected.end()), corner_list(mesh));
+  }
+  mesh.check_valid();
+}
+
+// Inserting one point changes only the triangles whose circumcircle contained it: all new triangles
+// have it as a corner.
+TEST(MeshIncremental, InsertionChangesOnlyTheCavity) {
+  Mesh2 mesh(random_points<2>(500, 4), 500);
+  const MeshDelta<2> d = mesh.apply({{}, {{0.5, 0.5}}});
+  EXPECT_EQ(d.added.size(), d.removed.size() + 2);
+  for (const auto& e : d.added) EXPECT_NE(std::find(e.begin(), e.end(), Point2{0.5, 0.5}), e.end());
+  EXPECT_LT(d.removed.size(), 20u);
+}
+
 TEST(MeshIncremental, KeepsInputAndSteinerKinds) {
   Mesh2 mesh(random_points<2>(50, 5), 10);
   PointChange<2> change;

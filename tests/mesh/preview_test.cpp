@@ -115,6 +115,11 @@ TEST(Preview, QualityColouringFillsTrianglesAndBackgroundShowsUnderneath) {
   EXPECT_FALSE(white(inside));
   EXPECT_GT(inside.g, inside.b);  // the ramp runs red - yellow - green, never blue
 
+  // Size colouring: the ramp runs blue (smallest triangle) to orange (largest); the quad's two triangles differ.
+  o.colouring = io::PreviewColouring::Size;
+  const PreviewImage sized = io::draw_preview<2>(snap.view(), o);
+  EXPECT_NE(pixel_at(sized, 0.25, 0.2), pixel_at(sized, 0.8, 0.75));
+
   // A solid magenta picture under the mesh: empty pixels inside its extent take its colour.
   PreviewImage magenta{4, 4, std::vector<float>(48, 0.0f)};
   for (std::size_t i = 0; i < 48; i += 3) magenta.rgb[i] = magenta.rgb[i + 2] = 1.0f;

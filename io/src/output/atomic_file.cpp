@@ -23,8 +23,12 @@ AtomicFile::AtomicFile(fs::path target, bool open_stream) : target_(std::move(ta
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) throw InputError("the folder does not exist", target_.string());
   if (fs::is_directory(target_, ec)) throw InputError("is a folder, not a file", target_.string());
-  temporary_ = folder / ("." + target_.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                         std::to_string(counter++) + target_.extension().string());
+  std::string name = ".";
+  name += target_.filename().string();
+  name += ".tmp-" + std::to_string(::getpid());
+  name += "-" + std::to_string(counter++);
+  name += target_.extension().string();
+  temporary_ = folder / name;
   if (open_stream) {
     out_.open(temporary_, std::ios::binary | std::ios::trunc);
     if (!out_) throw std::runtime_error("cannot write " + target_.string() + ": " + std::strerror(errno));

@@ -14,27 +14,26 @@ namespace shoremesh::io {
 void write_adcirc(const std::filesystem::path& path, const MeshView<2>& view) {
   write_atomically(path, [&](std::ostream& out) {
     std::string s = std::string("shoremesh mesh (") + (view.to_lonlat ? "lon/lat degrees" : "metric") + ")\n";
-    s += std::to_string(view.elements.size()) + " " + std::to_string(view.points.size()) + " ! NE NP\n";
+    append(s, view.elements.size(), ' ', view.points.size(), " ! NE NP\n");
     for (std::size_t i = 0; i < view.points.size(); ++i) {
       const Point2 p = view.to_lonlat ? view.to_lonlat(view.points[i]) : view.points[i];
-      s += std::to_string(i + 1) + " ";
+      append(s, i + 1, ' ');
       append_number(s, p[0]), s += ' ', append_number(s, p[1]), s += ' ';
       append_number(s, view.depth ? view.depth(view.points[i]) : 0.0);
       s += "\n";
     }
     for (std::size_t i = 0; i < view.elements.size(); ++i) {
       const auto& e = view.elements[i];
-      s += std::to_string(i + 1) + " 3 " + std::to_string(e[0] + 1) + " " + std::to_string(e[1] + 1) + " " +
-           std::to_string(e[2] + 1) + "\n";
+      append(s, i + 1, " 3 ", e[0] + 1, ' ', e[1] + 1, ' ', e[2] + 1, '\n');
     }
     s += "0 ! NOPE\n0 ! NETA\n";
     std::size_t total = 0;
     for (const BoundaryLoop& loop : view.boundary) total += loop.nodes.size() + 1;
-    s += std::to_string(view.boundary.size()) + " ! NBOU\n" + std::to_string(total) + " ! NVEL\n";
+    append(s, view.boundary.size(), " ! NBOU\n", total, " ! NVEL\n");
     for (const BoundaryLoop& loop : view.boundary) {
-      s += std::to_string(loop.nodes.size() + 1) + (loop.role == RingRole::Shore ? " 0" : " 1") + " ! NVELL IBTYPE\n";
-      for (auto n : loop.nodes) s += std::to_string(n + 1) + "\n";
-      s += std::to_string(loop.nodes.front() + 1) + "\n";
+      append(s, loop.nodes.size() + 1, loop.role == RingRole::Shore ? " 0" : " 1", " ! NVELL IBTYPE\n");
+      for (auto n : loop.nodes) append(s, n + 1, '\n');
+      append(s, loop.nodes.front() + 1, '\n');
     }
     out << s;
   });

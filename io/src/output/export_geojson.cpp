@@ -24,11 +24,11 @@ void write_geojson(const std::filesystem::path& path, const MeshView<2>& view) {
       const auto& e = view.elements[i];
       const ElementShape<2> shape = element_shape<2>({view.points[e[0]], view.points[e[1]], view.points[e[2]]});
       s += i ? ",\n" : "";
-      s += "{\"type\":\"Feature\",\"properties\":{\"element\":" + std::to_string(i) + ",\"min_angle\":";
+      append(s, "{\"type\":\"Feature\",\"properties\":{\"element\":", i, ",\"min_angle\":");
       append_number(s, shape.min_angle);
       std::size_t steiner = 0;
       for (auto n : e) steiner += !view.kinds.empty() && view.kinds[n] == PointKind::Steiner;
-      s += ",\"steiner_corners\":" + std::to_string(steiner) + "},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[[";
+      append(s, ",\"steiner_corners\":", steiner, "},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[[");
       for (int k = 0; k <= 3; ++k) {
         const Point2& p = lonlat[e[k % 3]];
         s += k ? ",[" : "[";

@@ -74,19 +74,19 @@ void write_gmsh(const std::filesystem::path& path, const MeshView<D>& view) {
 
   write_atomically(path, [&](std::ostream& out) {
     std::string s;
-    s += "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n" + std::to_string(physical_names.size()) + "\n";
-    for (const auto& n : physical_names) s += n + "\n";
+    append(s, "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n", physical_names.size(), '\n');
+    for (const auto& n : physical_names) append(s, n, '\n');
     s += "$EndPhysicalNames\n$Entities\n";
     // Entity counts: points, curves, surfaces, volumes.
     std::array<int, 4> count{0, 0, 0, 0};
     for (const Block& b : blocks) ++count[b.dim];
-    s += "0 " + std::to_string(count[1]) + " " + std::to_string(count[2]) + " " + std::to_string(count[3]) + "\n";
+    append(s, "0 ", count[1], ' ', count[2], ' ', count[3], '\n');
     for (int dim = 1; dim <= 3; ++dim)
       for (const Block& b : blocks) {
         if (b.dim != dim) continue;
         std::vector<std::uint32_t> nodes;
         for (const auto& e : b.elements) nodes.insert(nodes.end(), e.begin(), e.end());
-        s += std::to_string(b.entity) + " " + bounding_box<D>(view.points, nodes) + "1 " + std::to_string(b.physical);
+        append(s, b.entity, ' ', bounding_box<D>(view.points, nodes), "1 ", b.physical);
         if (dim == 1) {
           s += " 0\n";  // closed loops: no bounding points
         } else {
@@ -94,15 +94,15 @@ void write_gmsh(const std::filesystem::path& path, const MeshView<D>& view) {
           std::string bounds;
           int n = 0;
           for (const Block& c : blocks)
-            if (c.dim == dim - 1) ++n, bounds += " " + std::to_string(c.entity);
-          s += " " + std::to_string(n) + bounds + "\n";
+            if (c.dim == dim - 1) ++n, append(bounds, ' ', c.entity);
+          append(s, ' ', n, bounds, '\n');
         }
       }
     s += "$EndEntities\n$Nodes\n";
     const std::size_t np = view.points.size();
-    s += "1 " + std::to_string(np) + " 1 " + std::to_string(np) + "\n";
-    s += std::to_string(D) + " 1 0 " + std::to_string(np) + "\n";
-    for (std::size_t i = 1; i <= np; ++i) s += std::to_string(i) + "\n";
+    append(s, "1 ", np, " 1 ", np, '\n');
+    append(s, D, " 1 0 ", np, '\n');
+    for (std::size_t i = 1; i <= np; ++i) append(s, i, '\n');
     for (const auto& p : view.points) {
       for (int i = 0; i < 3; ++i) {
         append_number(s, i < D ? p[i] : 0.0);
@@ -114,15 +114,14 @@ void write_gmsh(const std::filesystem::path& path, const MeshView<D>& view) {
     s += "$EndNodes\n$Elements\n";
     std::size_t total = 0;
     for (const Block& b : blocks) total += b.elements.size();
-    s += std::to_string(blocks.size()) + " " + std::to_string(total) + " 1 " + std::to_string(total) + "\n";
+    append(s, blocks.size(), ' ', total, " 1 ", total, '\n');
     std::size_t tag = 0;
     for (const Block& b : blocks) {
-      s += std::to_string(b.dim) + " " + std::to_string(b.entity) + " " + std::to_string(b.type) + " " +
-           std::to_string(b.elements.size()) + "\n";
+      append(s, b.dim, ' ', b.entity, ' ', b.type, ' ', b.elements.size(), '\n');
       for (const auto& e : b.elements) {
-        s += std::to_string(++tag);
-        for (auto n : e) s += " " + std::to_string(n + 1);
-        s += "\n";
+        append(s, ++tag);
+        for (auto n : e) append(s, ' ', n + 1);
+        s += '\n';
       }
     }
     s += "$EndElements\n";

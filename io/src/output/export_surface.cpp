@@ -16,13 +16,13 @@ void write_surface(const std::filesystem::path& path, const MeshView<D>& view, E
   else faces = boundary_faces(view.elements);
   write_atomically(path, [&](std::ostream& out) {
     std::string s;
-    const std::string np = std::to_string(view.points.size()), nf = std::to_string(faces.size());
+    const std::size_t np = view.points.size(), nf = faces.size();
     if (format == ExportFormat::Ply)
-      s += "ply\nformat ascii 1.0\ncomment shoremesh mesh\nelement vertex " + np +
-           "\nproperty double x\nproperty double y\nproperty double z\nelement face " + nf +
-           "\nproperty list uchar int vertex_indices\nend_header\n";
+      append(s, "ply\nformat ascii 1.0\ncomment shoremesh mesh\nelement vertex ", np,
+             "\nproperty double x\nproperty double y\nproperty double z\nelement face ", nf,
+             "\nproperty list uchar int vertex_indices\nend_header\n");
     else if (format == ExportFormat::Off)
-      s += "OFF\n" + np + " " + nf + " 0\n";
+      append(s, "OFF\n", np, ' ', nf, " 0\n");
     else
       s += "# shoremesh mesh\n";
     for (const auto& p : view.points) {
@@ -31,8 +31,8 @@ void write_surface(const std::filesystem::path& path, const MeshView<D>& view, E
     }
     for (const auto& f : faces) {
       // OBJ counts from 1, PLY and OFF from 0 with the corner count first.
-      if (format == ExportFormat::Obj) s += "f " + std::to_string(f[0] + 1) + " " + std::to_string(f[1] + 1) + " " + std::to_string(f[2] + 1) + "\n";
-      else s += "3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + "\n";
+      if (format == ExportFormat::Obj) append(s, "f ", f[0] + 1, ' ', f[1] + 1, ' ', f[2] + 1, '\n');
+      else append(s, "3 ", f[0], ' ', f[1], ' ', f[2], '\n');
     }
     out << s;
   });

@@ -19,18 +19,20 @@ void write_triangle(const std::filesystem::path& node_path, const MeshView<D>& v
     for (auto n : loop.nodes) marker[n] = loop.role == RingRole::Shore ? 1 : 2;
 
   AtomicFile node(node_path), ele(ele_path);
-  std::string s = std::to_string(view.points.size()) + " " + std::to_string(D) + " 0 1\n";
+  std::string s;
+  append(s, view.points.size(), ' ', D, " 0 1\n");
   for (std::size_t i = 0; i < view.points.size(); ++i) {
-    s += std::to_string(i + 1);
-    for (int k = 0; k < D; ++k) s += ' ', append_number(s, view.points[i][k]);
-    s += " " + std::to_string(marker[i]) + "\n";
+    append(s, i + 1);
+    for (int k = 0; k < D; ++k) append(s, ' ', view.points[i][k]);
+    append(s, ' ', marker[i], '\n');
   }
   node.stream() << s;
-  s = std::to_string(view.elements.size()) + " " + std::to_string(D + 1) + " 0\n";
+  s.clear();
+  append(s, view.elements.size(), ' ', D + 1, " 0\n");
   for (std::size_t i = 0; i < view.elements.size(); ++i) {
-    s += std::to_string(i + 1);
-    for (auto n : view.elements[i]) s += " " + std::to_string(n + 1);
-    s += "\n";
+    append(s, i + 1);
+    for (auto n : view.elements[i]) append(s, ' ', n + 1);
+    s += '\n';
   }
   ele.stream() << s;
   node.commit();

@@ -14,9 +14,10 @@ template <int D>
 void write_vtu(const std::filesystem::path& path, const MeshView<D>& view) {
   write_atomically(path, [&](std::ostream& out) {
     std::string s;
-    s += "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-         "header_type=\"UInt64\">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"" +
-         std::to_string(view.points.size()) + "\" NumberOfCells=\"" + std::to_string(view.elements.size()) + "\">\n";
+    append(s,
+           "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+           "header_type=\"UInt64\">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\"",
+           view.points.size(), "\" NumberOfCells=\"", view.elements.size(), "\">\n");
     s += "<PointData>\n<DataArray type=\"Int32\" Name=\"input\" format=\"ascii\">\n";
     for (std::size_t i = 0; i < view.points.size(); ++i)
       s += view.kinds.empty() || view.kinds[i] == PointKind::Input ? "1\n" : "0\n";
@@ -29,8 +30,8 @@ void write_vtu(const std::filesystem::path& path, const MeshView<D>& view) {
       append_number(radius_edge, shape.radius_edge), radius_edge += '\n';
       append_number(min_angle, shape.min_angle), min_angle += '\n';
     }
-    s += "<DataArray type=\"Float64\" Name=\"radius_edge\" format=\"ascii\">\n" + radius_edge + "</DataArray>\n";
-    s += "<DataArray type=\"Float64\" Name=\"min_angle\" format=\"ascii\">\n" + min_angle + "</DataArray>\n";
+    append(s, "<DataArray type=\"Float64\" Name=\"radius_edge\" format=\"ascii\">\n", radius_edge, "</DataArray>\n");
+    append(s, "<DataArray type=\"Float64\" Name=\"min_angle\" format=\"ascii\">\n", min_angle, "</DataArray>\n");
     s += "</CellData>\n<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
     out << s;
     s.clear();
@@ -39,10 +40,10 @@ void write_vtu(const std::filesystem::path& path, const MeshView<D>& view) {
     }
     s += "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
     for (const auto& e : view.elements) {
-      for (int i = 0; i <= D; ++i) s += std::to_string(e[i]) + (i < D ? " " : "\n");
+      for (int i = 0; i <= D; ++i) append(s, e[i], i < D ? ' ' : '\n');
     }
     s += "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
-    for (std::size_t i = 1; i <= view.elements.size(); ++i) s += std::to_string(i * (D + 1)) + "\n";
+    for (std::size_t i = 1; i <= view.elements.size(); ++i) append(s, i * (D + 1), '\n');
     s += "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
     const std::string type = D == 2 ? "5\n" : "10\n";
     for (std::size_t i = 0; i < view.elements.size(); ++i) s += type;

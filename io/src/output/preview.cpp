@@ -35,10 +35,9 @@ std::set<std::pair<std::uint32_t, std::uint32_t>> unique_edges(std::span<const E
   return edges;
 }
 
-double longest_edge(const ElementCorners<2>& c) {
-  double l = 0;
-  for (int i = 0; i < 3; ++i) l = std::max(l, std::hypot(c[i][0] - c[(i + 1) % 3][0], c[i][1] - c[(i + 1) % 3][1]));
-  return l;
+// An element's size: the side of the square of the same area.
+double element_size(const ElementCorners<2>& c) {
+  return std::sqrt(std::abs((c[1][0] - c[0][0]) * (c[2][1] - c[0][1]) - (c[1][1] - c[0][1]) * (c[2][0] - c[0][0])) / 2);
 }
 
 PreviewImage draw_2d(const MeshView<2>& view, const PreviewOptions& o) {
@@ -50,12 +49,12 @@ PreviewImage draw_2d(const MeshView<2>& view, const PreviewOptions& o) {
     std::vector<ElementCorners<2>> corners;
     for (const auto& e : view.elements) corners.push_back({view.points[e[0]], view.points[e[1]], view.points[e[2]]});
     double small = std::numeric_limits<double>::infinity(), large = 0;
-    for (const auto& c : corners) small = std::min(small, longest_edge(c)), large = std::max(large, longest_edge(c));
+    for (const auto& c : corners) small = std::min(small, element_size(c)), large = std::max(large, element_size(c));
     const double bound = std::asin(std::min(1.0, 1 / (2 * o.rho))) * 180 / 3.141592653589793;
     for (const auto& c : corners) {
       const Rgb colour = o.colouring == PreviewColouring::Quality
                              ? quality_colour(element_shape<2>(c).min_angle, bound, 60)
-                             : size_colour(large > small ? std::log(longest_edge(c) / small) / std::log(large / small) : 0.5);
+                             : size_colour(large > small ? std::log(element_size(c) / small) / std::log(large / small) : 0.5);
       canvas.triangle(xy(c[0]), xy(c[1]), xy(c[2]), colour, 0.75);
     }
   }
@@ -72,8 +71,6 @@ PreviewImage draw_2d(const MeshView<2>& view, const PreviewOptions& o) {
 }
 
 }  // namespace
-
-PreviewImage draw_3d(const MeshView<3>& view, const PreviewOptions& options);  // preview_3d.cpp
 
 template <int D>
 PreviewImage draw_preview(const MeshView<D>& view, const PreviewOptions& options) {

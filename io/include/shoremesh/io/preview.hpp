@@ -28,7 +28,7 @@ struct PreviewOptions {
   double line_width = 1.0;    // pixels
   double point_radius = 1.6;  // pixels; 0 hides the points
   // Quality: the minimum angle (dihedral in 3D) from red (0) through yellow (the rho bound, 20.7 degrees
-  // for rho = sqrt 2) to green (60). Size: the longest edge, blue (smallest) to orange (largest), log scale.
+  // for rho = sqrt 2) to green (60). Size: the square root of the area, blue (smallest) to orange (largest), log scale.
   PreviewColouring colouring = PreviewColouring::None;
   double rho = 1.4142135623730951;
   // An image drawn underneath, covering the mesh-coordinate rectangle background_extent

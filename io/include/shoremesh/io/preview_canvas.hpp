@@ -31,6 +31,9 @@ class Canvas {
   PreviewImage image_;
 };
 
+// The 3D drawing (preview_3d.cpp), which draw_preview<3> calls.
+PreviewImage draw_3d(const MeshView<3>& view, const PreviewOptions& options);
+
 // Colour ramps for the colouring modes: t in [0, 1].
 Rgb quality_colour(double min_angle, double bound_angle, double best_angle);
 Rgb size_colour(double t);
