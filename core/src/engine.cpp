@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -11,6 +12,10 @@
 namespace shoremesh {
 
 using namespace engine;
+
+namespace {
+constexpr int kBeforeEverything = std::numeric_limits<int>::min();
+}
 
 template <int D>
 WellSpacedEngine<D>::WellSpacedEngine(const Parameters<D>& parameters)
@@ -24,11 +29,16 @@ void WellSpacedEngine<D>::reset() {
   children_.clear();
   reads_.clear();
   readers_.clear();
-  pending_dispatch_.assign(std::size_t(ranks_.max_rank() - ranks_.min_rank() + 1), {});
-  pending_fill_.assign(pending_dispatch_.size(), {});
+  agenda_.clear();
+  free_ops_.clear();
+  dead_ops_.clear();
+  free_vertices_.clear();
+  dead_vertices_.clear();
   counters_ = Counters{};
   cell_.counters() = PredicateCounters{};
   input_count_ = 0;
+  dynamic_ = false;
+  garbage_ = 0;
 }
 
 template <int D>
@@ -67,6 +77,7 @@ void WellSpacedEngine<D>::build(std::span<const Point<D>> unit_points) {
   for (VertexId v = 0; v < input_count_; ++v) {
     vertices_[v].position = positions_[v];
     vertices_[v].is_input = true;
+    vertices_[v].alive = true;
     ids[v] = v;
   }
   tree_.build(positions_, ids);
@@ -81,9 +92,11 @@ void WellSpacedEngine<D>::build(std::span<const Point<D>> unit_points) {
     const int rank = ranks_.rank_of_length(tree_.approximate_nn(vertices_[v].leaf));
     const OpId o = new_op(OpKind::Dispatch, v, rank, 0, kNoOp);
     vertices_[v].dispatch = o;
-    schedule(o);
+    mark_fresh(o);
   }
-  run();
+  // StableWS is a propagation in which every operation is fresh.
+  propagate(nullptr);
+  dynamic_ = true;
 }
 
 template <int D>
@@ -95,44 +108,218 @@ typename WellSpacedEngine<D>::OpId WellSpacedEngine<D>::new_op(OpKind kind, Vert
   op.rank = rank;
   op.color = color;
   op.parent = parent;
+  if (!free_ops_.empty()) {
+    const OpId o = free_ops_.back();
+    free_ops_.pop_back();
+    ops_[o] = op;
+    return o;
+  }
   ops_.push_back(op);
   return OpId(ops_.size() - 1);
 }
 
 template <int D>
-void WellSpacedEngine<D>::schedule(OpId o) {
-  const std::size_t slot = std::size_t(ops_[o].rank - ranks_.min_rank());
-  (ops_[o].kind == OpKind::Dispatch ? pending_dispatch_ : pending_fill_)[slot].push_back(o);
+void WellSpacedEngine<D>::enqueue(OpId o) {
+  Op& op = ops_[o];
+  if (op.flags & kQueued) return;
+  op.flags |= kQueued;
+  agenda_.push_back({op.rank, op.color, o});
+  std::push_heap(agenda_.begin(), agenda_.end(), std::greater<>());
 }
 
 template <int D>
-void WellSpacedEngine<D>::run() {
-  for (int rank = ranks_.min_rank(); rank <= ranks_.max_rank(); ++rank) {
-    current_rank_ = rank;
-    const std::size_t slot = std::size_t(rank - ranks_.min_rank());
-    // Dispatches only create fills, so this list does not grow while it runs.
-    std::vector<OpId> batch = std::move(pending_dispatch_[slot]);
-    pending_dispatch_[slot] = {};
-    for (OpId o : batch) dispatch(o);
-    // Fills of one rank and colour are independent (Lemma 6.1); sorting by colour, then position,
-    // makes even their order canonical. Fills only create dispatches of higher ranks.
-    batch = std::move(pending_fill_[slot]);
-    pending_fill_[slot] = {};
-    std::sort(batch.begin(), batch.end(), [&](OpId a, OpId b) {
-      if (ops_[a].color != ops_[b].color) return ops_[a].color < ops_[b].color;
-      return positions_[ops_[a].vertex] < positions_[ops_[b].vertex];
-    });
-    for (OpId o : batch) fill(o);
+void WellSpacedEngine<D>::mark_fresh(OpId o) {
+  ops_[o].flags |= kFresh;
+  enqueue(o);
+}
+
+template <int D>
+void WellSpacedEngine<D>::mark_obsolete(OpId o) {
+  if (ops_[o].flags & kDead) return;
+  ops_[o].flags |= kObsolete;
+  enqueue(o);
+}
+
+template <int D>
+void WellSpacedEngine<D>::mark_redo(OpId o) {
+  Op& op = ops_[o];
+  if ((op.flags & (kDead | kObsolete)) || !(op.flags & kExecuted)) return;
+  op.flags |= kRedo;
+  enqueue(o);
+}
+
+template <int D>
+void WellSpacedEngine<D>::mark_readers_at(const Point<D>& p, NodeId leaf, int rank, std::uint32_t color) {
+  for (NodeId n = leaf; n != kNoNode; n = tree_.node(n).parent)
+    for (OpId o : readers_[n]) {
+      const Op& op = ops_[o];
+      if (op.rank < rank || (op.rank == rank && op.color <= color)) continue;
+      const Point<D>& c = positions_[op.vertex];
+      bool inside = true;
+      for (int i = 0; i < D && inside; ++i) inside = std::abs(p[i] - c[i]) <= op.read_half;
+      if (inside) mark_redo(o);
+    }
+}
+
+template <int D>
+void WellSpacedEngine<D>::mark_all_readers(NodeId n) {
+  for (OpId o : readers_[n]) mark_redo(o);
+}
+
+// Processes the agenda in time order. At each time: fills nobody asks for any more become obsolete;
+// obsolete and inconsistent operations are undone; then fresh and inconsistent ones run. Everything an
+// operation at time t creates, undoes or marks lies strictly later, so each time is complete when its
+// turn comes (Lemma 6.1 makes the operations of one time independent, in any order).
+template <int D>
+void WellSpacedEngine<D>::propagate(PropagationStats* stats) {
+  stats_ = stats;
+  while (!agenda_.empty()) {
+    const AgendaEntry now = agenda_.front();
+    batch_.clear();
+    while (!agenda_.empty() && agenda_.front().rank == now.rank && agenda_.front().color == now.color) {
+      std::pop_heap(agenda_.begin(), agenda_.end(), std::greater<>());
+      const OpId o = agenda_.back().op;
+      agenda_.pop_back();
+      ops_[o].flags &= std::uint8_t(~kQueued);
+      batch_.push_back(o);
+    }
+    for (OpId o : batch_) {
+      Op& op = ops_[o];
+      if (op.kind == OpKind::Fill && op.requesters == 0) op.flags |= kObsolete;
+      if ((op.flags & (kObsolete | kRedo)) && (op.flags & kExecuted)) undo(o);
+    }
+    for (OpId o : batch_) {
+      const std::uint8_t f = ops_[o].flags;
+      if (f & kDead) continue;
+      if (f & kObsolete) kill(o);
+      else if (f & (kRedo | kFresh)) execute(o);
+    }
   }
   counters_.predicate_calls += cell_.counters().calls;
   counters_.exact_fallbacks += cell_.counters().exact;
   cell_.counters() = PredicateCounters{};
+  // Slots of deleted operations and vertices are reused from now on.
+  for (OpId o : dead_ops_) {
+    ops_[o] = Op{};
+    ops_[o].flags = kDead;
+    free_ops_.push_back(o);
+  }
+  dead_ops_.clear();
+  for (VertexId v : dead_vertices_) free_vertices_.push_back(v);
+  dead_vertices_.clear();
+  if (garbage_ > 1024 && garbage_ > children_.size() + reads_.size() - garbage_) compact_pools();
+  stats_ = nullptr;
+}
+
+// Takes back what operation o did: the fills a dispatch asked for lose a requester; the Steiner vertices
+// a fill inserted leave the output (their operations become obsolete, their readers inconsistent); its
+// read registrations go.
+template <int D>
+void WellSpacedEngine<D>::undo(OpId o) {
+  Op& op = ops_[o];
+  const int rank = op.rank;
+  const std::uint32_t color = op.color;
+  const std::uint32_t cb = op.children_begin, ce = op.children_end;
+  if (op.kind == OpKind::Dispatch) {
+    for (std::uint32_t k = cb; k < ce; ++k) {
+      Op& child = ops_[children_[k]];
+      if (child.flags & kDead) continue;
+      if (child.requesters > 0 && --child.requesters == 0) mark_obsolete(children_[k]);
+    }
+  } else {
+    for (std::uint32_t k = cb; k < ce; ++k) {
+      const OpId d = children_[k];
+      const VertexId w = ops_[d].vertex;
+      mark_obsolete(d);
+      if (!vertices_[w].alive) continue;
+      tree_.erase_vertex(w, vertices_[w].leaf);
+      mark_readers_at(positions_[w], vertices_[w].leaf, rank, color);
+      kill_vertex(w);
+      if (stats_) stats_->steiner_removed.push_back(positions_[w]);
+    }
+  }
+  for (std::uint32_t k = ops_[o].reads_begin; k < ops_[o].reads_end; ++k) {
+    auto& rs = readers_[reads_[k]];
+    auto it = std::find(rs.begin(), rs.end(), o);
+    if (it != rs.end()) {
+      *it = rs.back();
+      rs.pop_back();
+    }
+  }
+  Op& again = ops_[o];
+  garbage_ += (again.children_end - again.children_begin) + (again.reads_end - again.reads_begin);
+  again.children_begin = again.children_end = again.reads_begin = again.reads_end = 0;
+  again.flags &= std::uint8_t(~kExecuted);
+  ++counters_.operations_undone;
+  if (stats_) ++stats_->undone;
+}
+
+// A vertex leaves the output: every operation acting on it becomes obsolete.
+template <int D>
+void WellSpacedEngine<D>::kill_vertex(VertexId v) {
+  Vertex& vx = vertices_[v];
+  vx.alive = false;
+  if (vx.dispatch != kNoOp) mark_obsolete(vx.dispatch);
+  for (OpId f = vx.first_fill; f != kNoOp; f = ops_[f].next_fill) mark_obsolete(f);
+  dead_vertices_.push_back(v);
+}
+
+template <int D>
+void WellSpacedEngine<D>::kill(OpId o) {
+  Op& op = ops_[o];
+  Vertex& vx = vertices_[op.vertex];
+  if (op.kind == OpKind::Fill) {
+    // Unlink from the vertex's fill list.
+    for (OpId* link = &vx.first_fill; *link != kNoOp; link = &ops_[*link].next_fill)
+      if (*link == o) {
+        *link = op.next_fill;
+        break;
+      }
+  } else if (vx.dispatch == o) {
+    vx.dispatch = kNoOp;
+  }
+  op.flags = kDead;
+  dead_ops_.push_back(o);
+}
+
+template <int D>
+void WellSpacedEngine<D>::execute(OpId o) {
+  ops_[o].flags &= std::uint8_t(~(kFresh | kRedo));
+  if (ops_[o].kind == OpKind::Dispatch) dispatch(o);
+  else fill(o);
+  ops_[o].flags |= kExecuted;
+  if (stats_) ++stats_->executed;
+}
+
+// Rebuilds the children and reads pools without the entries of undone operations.
+template <int D>
+void WellSpacedEngine<D>::compact_pools() {
+  std::vector<OpId> children;
+  std::vector<NodeId> reads;
+  children.reserve(children_.size() - std::min(garbage_, children_.size()));
+  reads.reserve(reads_.size());
+  for (Op& op : ops_) {
+    if (op.flags & kDead) continue;
+    const std::uint32_t cb = std::uint32_t(children.size());
+    children.insert(children.end(), children_.begin() + op.children_begin, children_.begin() + op.children_end);
+    op.children_begin = cb;
+    op.children_end = std::uint32_t(children.size());
+    const std::uint32_t rb = std::uint32_t(reads.size());
+    reads.insert(reads.end(), reads_.begin() + op.reads_begin, reads_.begin() + op.reads_end);
+    op.reads_begin = rb;
+    op.reads_end = std::uint32_t(reads.size());
+  }
+  children_ = std::move(children);
+  reads_ = std::move(reads);
+  garbage_ = 0;
 }
 
 template <int D>
 void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   ++counters_.clipped_voronoi_calls;
   const Point<D> p = positions_[v];
+  const int rank = ops_[o].rank;
+  const std::uint32_t color = ops_[o].color;
   PredicateCounters& pc = cell_.counters();
   auto& pool = hood_.candidates;
   hood_.nearest = kNoVertex;
@@ -149,7 +336,12 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
     counters_.leaves_visited += tree_.for_each_leaf_in_box(lo, hi, [&](NodeId n) {
       for (VertexId u : tree_.node(n).vertices) {
         if (u == v) continue;
+        const Vertex& ux = vertices_[u];
+        if (ux.born_rank > rank || (ux.born_rank == rank && ux.born_color >= color)) continue;  // not yet
         const double d2 = squared_distance(v, u);
+        // A vertex exactly at v's place can only be a Steiner point about to be removed by the
+        // propagation (an input was just added there): it is not a neighbour.
+        if (d2 == 0 && positions_[u] == p) continue;
         pool.push_back({d2, u});
         if (hood_.nearest != kNoVertex && d2 > best_d2 * (1 + 1e-12)) continue;
         if (hood_.nearest != kNoVertex && d2 >= best_d2 * (1 - 1e-12)) {
@@ -177,6 +369,7 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
       hi[i] = p[i] + h;
     }
     tree_.covering_nodes(lo, hi, covering_);
+    ops_[o].read_half = h;
     ops_[o].reads_begin = std::uint32_t(reads_.size());
     for (NodeId n : covering_) {
       reads_.push_back(n);
@@ -230,8 +423,9 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
 template <int D>
 void WellSpacedEngine<D>::request_fill(OpId parent, VertexId w, int rank) {
   for (OpId f = vertices_[w].first_fill; f != kNoOp; f = ops_[f].next_fill)
-    if (ops_[f].rank == rank) {
+    if (ops_[f].rank == rank && !(ops_[f].flags & kDead)) {
       ++ops_[f].requesters;
+      ops_[f].flags &= std::uint8_t(~kObsolete);  // asked for again before its time: it lives on
       children_.push_back(f);
       return;
     }
@@ -240,7 +434,7 @@ void WellSpacedEngine<D>::request_fill(OpId parent, VertexId w, int rank) {
   ops_[f].next_fill = vertices_[w].first_fill;
   vertices_[w].first_fill = f;
   children_.push_back(f);
-  schedule(f);
+  mark_fresh(f);
 }
 
 template <int D>
@@ -275,6 +469,7 @@ void WellSpacedEngine<D>::fill(OpId o) {
   ++counters_.fills;
   const VertexId v = ops_[o].vertex;
   const int op_rank = ops_[o].rank;
+  const std::uint32_t op_color = ops_[o].color;
   compute_cell(o, v);
   ops_[o].children_begin = ops_[o].children_end = std::uint32_t(children_.size());
   if (hood_.nearest == kNoVertex) return;
@@ -283,14 +478,21 @@ void WellSpacedEngine<D>::fill(OpId o) {
   for (int inserted = 0; !cell_.within_scaled_distance(params_.rho_squared, u); ++inserted) {
     if (inserted > 1000) throw std::logic_error("fill inserted over 1000 Steiner points around one vertex");
     const Point<D> w = pick_steiner(v);
-    const VertexId id = insert_steiner(w, o, vertices_[v].leaf);
+    const VertexId id = new_vertex(w);
+    vertices_[id].creator = o;
+    vertices_[id].born_rank = op_rank;
+    vertices_[id].born_color = op_color;
+    vertices_[id].leaf = tree_.insert_vertex(id, w, vertices_[v].leaf);
+    ++counters_.steiner_points;
+    if (dynamic_) mark_readers_at(w, vertices_[id].leaf, op_rank, op_color);
+    if (stats_) stats_->steiner_added.push_back(w);
     // Fact 1 puts w's rank above op's; the max only guards the table's rounding for a rho other than
     // sqrt(2) (for sqrt(2) the table is exact and it never applies).
     const int rank = std::max(ranks_.rank_of(w, positions_[v], pc), op_rank + 1);
     const OpId d = new_op(OpKind::Dispatch, id, rank, 0, o);
     vertices_[id].dispatch = d;
     children_.push_back(d);
-    schedule(d);
+    mark_fresh(d);
     cell_.clip(id, w);
     hood_.candidates.push_back({squared_distance(v, id), id});
   }
@@ -333,16 +535,110 @@ Point<D> WellSpacedEngine<D>::pick_steiner(VertexId v) {
 }
 
 template <int D>
-typename WellSpacedEngine<D>::VertexId WellSpacedEngine<D>::insert_steiner(const Point<D>& p, OpId creator, NodeId near) {
-  const VertexId id = VertexId(vertices_.size());
+typename WellSpacedEngine<D>::VertexId WellSpacedEngine<D>::new_vertex(const Point<D>& p) {
   Vertex vx;
   vx.position = p;
-  vx.creator = creator;
-  positions_.push_back(p);
-  vx.leaf = tree_.insert_vertex(id, p, near);
+  vx.alive = true;
+  if (!free_vertices_.empty()) {
+    const VertexId id = free_vertices_.back();
+    free_vertices_.pop_back();
+    vertices_[id] = vx;
+    positions_[id] = p;
+    return id;
+  }
   vertices_.push_back(vx);
-  ++counters_.steiner_points;
-  return id;
+  positions_.push_back(p);
+  return VertexId(vertices_.size() - 1);
+}
+
+// After the quadtree changed: vertices in new leaves learn their leaf; readers of squares that were
+// split or deleted are inconsistent (their registrations go with the squares); input vertices in new
+// leaves have a new QTApxNN, so their dispatches are replaced.
+template <int D>
+void WellSpacedEngine<D>::apply_tree_change(const typename engine::Quadtree<D>::Change& change) {
+  if (readers_.size() < tree_.node_capacity()) readers_.resize(tree_.node_capacity());
+  for (NodeId n : change.removed_leaves) {
+    mark_all_readers(n);
+    readers_[n].clear();
+  }
+  for (NodeId n : change.new_leaves) {
+    for (VertexId v : tree_.node(n).vertices) vertices_[v].leaf = n;
+    const VertexId input = tree_.node(n).input_vertex;
+    if (input != kNoVertex) redispatch_input(input);
+  }
+}
+
+template <int D>
+void WellSpacedEngine<D>::redispatch_input(VertexId v) {
+  if (vertices_[v].dispatch != kNoOp) mark_obsolete(vertices_[v].dispatch);
+  const int rank = ranks_.rank_of_length(tree_.approximate_nn(vertices_[v].leaf));
+  const OpId o = new_op(OpKind::Dispatch, v, rank, 0, kNoOp);
+  vertices_[v].dispatch = o;
+  mark_fresh(o);
+}
+
+template <int D>
+std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::apply(std::span<const InputEdit> edits,
+                                                                              PropagationStats* stats) {
+  std::vector<VertexId> added;
+  for (const InputEdit& e : edits) {
+    if (e.add) {
+      const VertexId v = new_vertex(e.point);
+      vertices_[v].is_input = true;
+      ++input_count_;
+      const auto change = tree_.add_input(v, positions_);
+      vertices_[v].leaf = tree_.locate(e.point);
+      apply_tree_change(change);
+      // The new vertex changes what every reader of its square saw.
+      mark_readers_at(e.point, vertices_[v].leaf, kBeforeEverything, 0);
+      if (vertices_[v].dispatch == kNoOp || ops_[vertices_[v].dispatch].vertex != v) redispatch_input(v);
+      added.push_back(v);
+    } else {
+      const VertexId v = e.vertex;
+      const Point<D> p = positions_[v];
+      const auto change = tree_.remove_input(v, positions_);
+      --input_count_;
+      apply_tree_change(change);
+      const NodeId leaf = tree_.locate(p);
+      mark_readers_at(p, leaf, kBeforeEverything, 0);
+      // The input vertex of the leaf that now holds p has a new neighbourhood too.
+      if (tree_.node(leaf).input_vertex != kNoVertex) redispatch_input(tree_.node(leaf).input_vertex);
+      kill_vertex(v);
+      if (stats) {
+        // An input removal is not a Steiner change; nothing to report for v itself.
+      }
+    }
+  }
+  propagate(stats);
+  if (stats) {
+    // Net change: a Steiner point taken back and inserted again at the same place is no change.
+    auto& r = stats->steiner_removed;
+    auto& a = stats->steiner_added;
+    std::sort(r.begin(), r.end());
+    std::sort(a.begin(), a.end());
+    std::vector<Point<D>> removed, inserted;
+    std::set_difference(r.begin(), r.end(), a.begin(), a.end(), std::back_inserter(removed));
+    std::set_difference(a.begin(), a.end(), r.begin(), r.end(), std::back_inserter(inserted));
+    r = std::move(removed);
+    a = std::move(inserted);
+  }
+  return added;
+}
+
+template <int D>
+typename WellSpacedEngine<D>::VertexId WellSpacedEngine<D>::input_at(const Point<D>& p) const {
+  const NodeId leaf = tree_.locate(p);
+  const VertexId v = tree_.node(leaf).input_vertex;
+  return (v != kNoVertex && positions_[v] == p) ? v : kNoVertex;
+}
+
+template <int D>
+std::vector<std::tuple<Point<D>, int, std::uint32_t>> WellSpacedEngine<D>::operation_signature() const {
+  std::vector<std::tuple<Point<D>, int, std::uint32_t>> sig;
+  for (const Op& op : ops_)
+    if (!(op.flags & kDead)) sig.emplace_back(positions_[op.vertex], op.rank, op.color);
+  std::sort(sig.begin(), sig.end());
+  return sig;
 }
 
 template <int D>
@@ -350,6 +646,7 @@ std::size_t WellSpacedEngine<D>::memory_bytes() const {
   std::size_t bytes = vertices_.capacity() * sizeof(Vertex) + positions_.capacity() * sizeof(Point<D>) +
                       ops_.capacity() * sizeof(Op) + children_.capacity() * sizeof(OpId) +
                       reads_.capacity() * sizeof(NodeId) + readers_.capacity() * sizeof(std::vector<OpId>) +
+                      (free_ops_.capacity() + free_vertices_.capacity()) * sizeof(std::uint32_t) +
                       tree_.memory_bytes();
   for (const auto& r : readers_) bytes += r.capacity() * sizeof(OpId);
   return bytes;
@@ -359,23 +656,33 @@ template <int D>
 void WellSpacedEngine<D>::check_valid() const {
   auto fail = [](const std::string& what) { throw std::logic_error("engine invalid: " + what); };
   tree_.check_valid(positions_);
+  std::size_t inputs = 0;
   for (VertexId v = 0; v < vertices_.size(); ++v) {
     const Vertex& vx = vertices_[v];
+    if (!vx.alive) continue;
+    if (vx.is_input) ++inputs;
     if (vx.position != positions_[v]) fail("vertex position copy");
     const auto& list = tree_.node(vx.leaf).vertices;
     if (!tree_.node(vx.leaf).is_leaf() || std::find(list.begin(), list.end(), v) == list.end())
       fail("vertex " + std::to_string(v) + " not in its leaf");
     if (vx.dispatch == kNoOp || ops_[vx.dispatch].vertex != v || ops_[vx.dispatch].kind != OpKind::Dispatch)
       fail("vertex " + std::to_string(v) + " without its dispatch");
-    if (vx.is_input != (v < input_count_)) fail("input flag");
     if (!vx.is_input && (vx.creator == kNoOp || ops_[vx.creator].kind != OpKind::Fill)) fail("Steiner vertex creator");
   }
+  if (inputs != input_count_) fail("input count");
+  if (!agenda_.empty()) fail("agenda not empty after propagation");
   for (OpId o = 0; o < ops_.size(); ++o) {
     const Op& op = ops_[o];
-    if (op.vertex >= vertices_.size()) fail("operation vertex");
+    if (op.flags & kDead) continue;
+    if (op.flags != kExecuted) fail("operation " + std::to_string(o) + " left in state " + std::to_string(op.flags));
+    if (op.vertex >= vertices_.size() || !vertices_[op.vertex].alive) fail("operation on a dead vertex");
     if ((op.kind == OpKind::Dispatch) != (op.color == 0)) fail("colour 0 is for dispatches only");
+    if (op.kind == OpKind::Fill && op.requesters == 0) fail("a fill nobody asks for");
     for (OpId c : children(o)) {
-      if (c >= ops_.size()) fail("child id");
+      if (c >= ops_.size() || (ops_[c].flags & kDead))
+        fail("operation " + std::to_string(o) + " (" + (op.kind == OpKind::Fill ? "fill" : "dispatch") + " rank " +
+             std::to_string(op.rank) + " colour " + std::to_string(op.color) + ", vertex " + std::to_string(op.vertex) +
+             (vertices_[op.vertex].is_input ? " input" : " Steiner") + ") has deleted child " + std::to_string(c));
       if (ops_[c].rank < op.rank) fail("a child runs before its parent");
     }
     for (NodeId n : reads(o)) {
@@ -383,6 +690,10 @@ void WellSpacedEngine<D>::check_valid() const {
       if (std::find(rs.begin(), rs.end(), o) == rs.end()) fail("read edge without reader entry");
     }
   }
+  // Memory is reclaimed: no reader entry of a deleted operation survives.
+  for (const auto& rs : readers_)
+    for (OpId o : rs)
+      if (ops_[o].flags & kDead) fail("reader entry of a deleted operation");
 }
 
 template class WellSpacedEngine<2>;

@@ -22,6 +22,143 @@ WellSpacedSet<D>& WellSpacedSet<D>::operator=(WellSpacedSet&&) noexcept = defaul
 template <int D>
 void WellSpacedSet<D>::build(std::span<const Point<D>> unit_points) {
   engine_->build(unit_points);
+  input_vertex_.resize(unit_points.size());
+  for (std::size_t i = 0; i < unit_points.size(); ++i) input_vertex_[i] = std::uint32_t(i);
+}
+
+template <int D>
+std::uint32_t WellSpacedSet<D>::vertex_of(std::size_t id) const {
+  if (id >= input_vertex_.size() || input_vertex_[id] == engine::kNoVertex)
+    throw InputError("no input point has id " + std::to_string(id));
+  return input_vertex_[id];
+}
+
+template <int D>
+bool WellSpacedSet<D>::has_input(std::size_t id) const {
+  return id < input_vertex_.size() && input_vertex_[id] != engine::kNoVertex;
+}
+
+template <int D>
+Point<D> WellSpacedSet<D>::input_point(std::size_t id) const {
+  return engine_->positions()[vertex_of(id)];
+}
+
+template <int D>
+std::vector<std::size_t> WellSpacedSet<D>::input_ids() const {
+  std::vector<std::size_t> ids;
+  for (std::size_t id = 0; id < input_vertex_.size(); ++id)
+    if (input_vertex_[id] != engine::kNoVertex) ids.push_back(id);
+  return ids;
+}
+
+// A point may join the input if it is finite, in the box, not an input point already (unless that one
+// is being removed in the same batch) and not closer to one than the quadtree's resolution allows.
+template <int D>
+void WellSpacedSet<D>::check_new_point(const Point<D>& p, std::span<const std::size_t> removed_ids,
+                                       std::span<const Point<D>> added) const {
+  for (int i = 0; i < D; ++i) {
+    if (!std::isfinite(p[i])) throw InputError("the point has a coordinate that is not a finite number");
+    if (p[i] < 0 || p[i] > 1) throw InputError("the point lies outside the box");
+  }
+  for (const auto& q : added)
+    if (q == p) throw InputError("the same point is added twice");
+  const double resolution = 0x1p-36;  // inputs closer than this would need quadtree levels beyond 40
+  const auto& tree = engine_->quadtree();
+  Point<D> lo, hi;
+  for (int i = 0; i < D; ++i) {
+    lo[i] = p[i] - resolution;
+    hi[i] = p[i] + resolution;
+  }
+  tree.begin_session();
+  tree.for_each_leaf_in_box(lo, hi, [&](engine::NodeId n) {
+    const auto v = tree.node(n).input_vertex;
+    if (v == engine::kNoVertex) return;
+    std::size_t id = 0;
+    while (id < input_vertex_.size() && input_vertex_[id] != v) ++id;
+    if (std::find(removed_ids.begin(), removed_ids.end(), id) != removed_ids.end()) return;
+    const auto& q = engine_->positions()[v];
+    double d = 0;
+    for (int i = 0; i < D; ++i) d = std::max(d, std::abs(q[i] - p[i]));
+    if (d == 0) throw InputError("the point equals input point " + std::to_string(id));
+    if (d < resolution)
+      throw InputError("the point is closer to input point " + std::to_string(id) +
+                       " than the engine's resolution (2^-36 of the box side)");
+  });
+}
+
+template <int D>
+std::vector<std::size_t> WellSpacedSet<D>::apply(std::span<const Edit<D>> edits, UpdateReport<D>* report) {
+  // Check everything first, in order, as if applied one by one: an error leaves the set untouched.
+  std::vector<std::size_t> removed;
+  std::vector<Point<D>> added;
+  std::size_t live = input_count();
+  std::size_t next_id = input_vertex_.size();
+  auto alive = [&](std::size_t id) {
+    return (has_input(id) && std::find(removed.begin(), removed.end(), id) == removed.end()) ||
+           (id >= input_vertex_.size() && id < next_id);
+  };
+  for (std::size_t k = 0; k < edits.size(); ++k) {
+    const Edit<D>& e = edits[k];
+    try {
+      if (e.kind != Edit<D>::Kind::Add) {
+        if (!alive(e.id)) throw InputError("no input point has id " + std::to_string(e.id));
+        if (e.id >= input_vertex_.size())
+          throw InputError("point " + std::to_string(e.id) + " was added in the same batch: edit it in the next one");
+      }
+      if (e.kind == Edit<D>::Kind::Remove && live == 1) throw InputError("the last input point cannot be removed");
+      if (e.kind != Edit<D>::Kind::Add) removed.push_back(e.id);
+      if (e.kind != Edit<D>::Kind::Remove) check_new_point(e.point, removed, added);
+      if (e.kind != Edit<D>::Kind::Remove) added.push_back(e.point);
+      if (e.kind == Edit<D>::Kind::Add) ++live, ++next_id;
+      if (e.kind == Edit<D>::Kind::Remove) --live;
+    } catch (const InputError& err) {
+      throw InputError("edit " + std::to_string(k + 1) + ": " + err.message());
+    }
+  }
+  // Removals first (a move is a removal and an addition), then the additions in order.
+  using InputEdit = typename WellSpacedEngine<D>::InputEdit;
+  std::vector<InputEdit> engine_edits;
+  for (const Edit<D>& e : edits)
+    if (e.kind != Edit<D>::Kind::Add) engine_edits.push_back(InputEdit{false, {}, input_vertex_[e.id]});
+  for (const Edit<D>& e : edits)
+    if (e.kind != Edit<D>::Kind::Remove) engine_edits.push_back(InputEdit{true, e.point, engine::kNoVertex});
+  typename WellSpacedEngine<D>::PropagationStats stats;
+  const auto vertices = engine_->apply(engine_edits, &stats);
+  std::vector<std::size_t> new_ids;
+  std::size_t k = 0;
+  for (const Edit<D>& e : edits) {
+    if (e.kind == Edit<D>::Kind::Remove) input_vertex_[e.id] = engine::kNoVertex;
+    else if (e.kind == Edit<D>::Kind::Move) input_vertex_[e.id] = vertices[k++];
+    else {
+      new_ids.push_back(input_vertex_.size());
+      input_vertex_.push_back(vertices[k++]);
+    }
+  }
+  if (report) {
+    report->steiner_removed = std::move(stats.steiner_removed);
+    report->steiner_added = std::move(stats.steiner_added);
+    report->operations_undone = stats.undone;
+    report->operations_executed = stats.executed;
+  }
+  return new_ids;
+}
+
+template <int D>
+std::size_t WellSpacedSet<D>::add(const Point<D>& unit_point, UpdateReport<D>* report) {
+  const Edit<D> e{Edit<D>::Kind::Add, 0, unit_point};
+  return apply(std::span<const Edit<D>>(&e, 1), report).front();
+}
+
+template <int D>
+void WellSpacedSet<D>::remove(std::size_t id, UpdateReport<D>* report) {
+  const Edit<D> e{Edit<D>::Kind::Remove, id, {}};
+  apply(std::span<const Edit<D>>(&e, 1), report);
+}
+
+template <int D>
+void WellSpacedSet<D>::move(std::size_t id, const Point<D>& unit_point, UpdateReport<D>* report) {
+  const Edit<D> e{Edit<D>::Kind::Move, id, unit_point};
+  apply(std::span<const Edit<D>>(&e, 1), report);
 }
 template <int D>
 std::size_t WellSpacedSet<D>::input_count() const {
@@ -29,14 +166,18 @@ std::size_t WellSpacedSet<D>::input_count() const {
 }
 template <int D>
 std::size_t WellSpacedSet<D>::steiner_count() const {
-  return engine_->vertex_count() - engine_->input_count();
+  return engine_->live_vertex_count() - engine_->input_count();
 }
 template <int D>
 std::vector<Point<D>> WellSpacedSet<D>::output_points() const {
   const auto all = engine_->positions();
-  const std::size_t n = engine_->input_count();
-  std::vector<Point<D>> out(all.begin(), all.end());
-  std::sort(out.begin() + long(n), out.end());
+  std::vector<Point<D>> out;
+  for (std::uint32_t v : input_vertex_)
+    if (v != engine::kNoVertex) out.push_back(all[v]);
+  const std::size_t inputs = out.size();
+  for (engine::VertexId v = 0; v < all.size(); ++v)
+    if (engine_->vertex(v).alive && !engine_->vertex(v).is_input) out.push_back(all[v]);
+  std::sort(out.begin() + long(inputs), out.end());
   return out;
 }
 template <int D>
@@ -93,6 +234,116 @@ StableResult<D> stable_well_spaced(std::span<const Point<D>> user_points, const 
   return result;
 }
 
+template <int D>
+DynamicWellSpaced<D>::DynamicWellSpaced(std::span<const Point<D>> user_points, const Parameters<D>& parameters,
+                                        std::optional<BoxTransform<D>> box)
+    : set_(parameters) {
+  // The same checks and box as the static entry point, so the two agree exactly.
+  const StableResult<D> probe_box_only = [&] {
+    StableResult<D> r;
+    if (user_points.empty()) throw InputError("no input points");
+    for (std::size_t i = 0; i < user_points.size(); ++i)
+      for (int k = 0; k < D; ++k)
+        if (!std::isfinite(user_points[i][k]))
+          throw PointInputError("point " + std::to_string(i) + " has a coordinate that is not a finite number", {i});
+    r.box = box ? *box : BoxTransform<D>::fit(user_points);
+    return r;
+  }();
+  box_ = probe_box_only.box;
+  if (!(box_.side > 0) || !std::isfinite(box_.side)) throw InputError("the box side must be a positive number");
+  std::vector<Point<D>> unit(user_points.size());
+  for (std::size_t i = 0; i < unit.size(); ++i) {
+    if (!box_.contains(user_points[i]))
+      throw PointInputError("point " + std::to_string(i) + " lies outside the given box", {i});
+    unit[i] = box_.to_unit(user_points[i]);
+  }
+  set_.build(unit);
+  user_inputs_.assign(user_points.begin(), user_points.end());
+}
+
+template <int D>
+Point<D> DynamicWellSpaced<D>::to_unit_checked(const Point<D>& p) const {
+  for (int i = 0; i < D; ++i)
+    if (!std::isfinite(p[i])) throw InputError("the point has a coordinate that is not a finite number");
+  if (!box_.contains(p)) {
+    std::string where;
+    for (int i = 0; i < D; ++i) where += (i ? ", " : "") + std::to_string(p[i]);
+    std::string lo, hi;
+    for (int i = 0; i < D; ++i) {
+      lo += (i ? ", " : "") + std::to_string(box_.origin[i]);
+      hi += (i ? ", " : "") + std::to_string(box_.origin[i] + box_.side);
+    }
+    throw InputError("the point (" + where + ") lies outside the box (" + lo + ") .. (" + hi + ")");
+  }
+  return box_.to_unit(p);
+}
+
+template <int D>
+void DynamicWellSpaced<D>::to_user(UpdateReport<D>* report) const {
+  if (!report) return;
+  for (auto& p : report->steiner_removed) p = box_.to_user(p);
+  for (auto& p : report->steiner_added) p = box_.to_user(p);
+}
+
+template <int D>
+std::vector<std::size_t> DynamicWellSpaced<D>::apply(std::span<const Edit<D>> edits, UpdateReport<D>* report) {
+  std::vector<Edit<D>> unit(edits.begin(), edits.end());
+  for (std::size_t k = 0; k < unit.size(); ++k)
+    if (unit[k].kind != Edit<D>::Kind::Remove) {
+      try {
+        unit[k].point = to_unit_checked(edits[k].point);
+      } catch (const InputError& e) {
+        throw InputError("edit " + std::to_string(k + 1) + ": " + e.message());
+      }
+    }
+  const std::vector<std::size_t> ids = set_.apply(unit, report);
+  std::size_t next = 0;
+  for (const Edit<D>& e : edits) {
+    if (e.kind == Edit<D>::Kind::Move) user_inputs_[e.id] = e.point;
+    if (e.kind == Edit<D>::Kind::Add) {
+      user_inputs_.resize(ids[next] + 1);
+      user_inputs_[ids[next++]] = e.point;
+    }
+  }
+  to_user(report);
+  return ids;
+}
+
+template <int D>
+std::size_t DynamicWellSpaced<D>::add(const Point<D>& p, UpdateReport<D>* report) {
+  const Edit<D> e{Edit<D>::Kind::Add, 0, p};
+  return apply(std::span<const Edit<D>>(&e, 1), report).front();
+}
+
+template <int D>
+void DynamicWellSpaced<D>::remove(std::size_t id, UpdateReport<D>* report) {
+  const Edit<D> e{Edit<D>::Kind::Remove, id, {}};
+  apply(std::span<const Edit<D>>(&e, 1), report);
+}
+
+template <int D>
+void DynamicWellSpaced<D>::move(std::size_t id, const Point<D>& p, UpdateReport<D>* report) {
+  const Edit<D> e{Edit<D>::Kind::Move, id, p};
+  apply(std::span<const Edit<D>>(&e, 1), report);
+}
+
+template <int D>
+Point<D> DynamicWellSpaced<D>::input_point(std::size_t id) const {
+  set_.input_point(id);  // throws for an unknown id
+  return user_inputs_[id];
+}
+
+template <int D>
+std::vector<Point<D>> DynamicWellSpaced<D>::points() const {
+  std::vector<Point<D>> out;
+  for (std::size_t id : set_.input_ids()) out.push_back(user_inputs_[id]);
+  const std::vector<Point<D>> unit = set_.output_points();
+  for (std::size_t k = out.size(); k < unit.size(); ++k) out.push_back(box_.to_user(unit[k]));
+  return out;
+}
+
+template class DynamicWellSpaced<2>;
+template class DynamicWellSpaced<3>;
 template class WellSpacedSet<2>;
 template class WellSpacedSet<3>;
 template StableResult<2> stable_well_spaced<2>(std::span<const Point<2>>, const Parameters<2>&,

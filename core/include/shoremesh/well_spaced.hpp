@@ -80,7 +80,12 @@ class WellSpacedSet {
   const WellSpacedEngine<D>& engine() const;
 
  private:
+  void check_new_point(const Point<D>& p, std::span<const std::size_t> removed_ids,
+                       std::span<const Point<D>> added) const;
+  std::uint32_t vertex_of(std::size_t id) const;  // InputError for an unknown id
+
   std::unique_ptr<WellSpacedEngine<D>> engine_;
+  std::vector<std::uint32_t> input_vertex_;  // by id: the engine's vertex, or none once removed
 };
 
 // StableWS on points in the user's coordinates: maps them into the unit box (the given box, or

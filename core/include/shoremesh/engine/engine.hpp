@@ -5,7 +5,9 @@
 // records for every operation its children (the fills a dispatch asked for, the dispatches of the Steiner
 // vertices a fill inserted) and for every leaf the operations that read it: what PropagateWS replays.
 #include <cstdint>
+#include <limits>
 #include <span>
+#include <tuple>
 #include <vector>
 
 #include "shoremesh/engine/convex_cell.hpp"
@@ -33,6 +35,22 @@ class WellSpacedEngine {
     OpId dispatch = engine::kNoOp;     // the one dispatch acting on it
     OpId first_fill = engine::kNoOp;   // its fills, linked by Op::next_fill (one per rank)
     bool is_input = false;
+    bool alive = false;
+    // Its creator's time (inputs exist from the start). An operation at time t sees only the vertices
+    // created before t, the output M_t of the paper: during a propagation the tree still holds vertices
+    // of later operations from the previous run, which a from-scratch run would not have yet.
+    std::int32_t born_rank = std::numeric_limits<std::int32_t>::min();
+    std::uint32_t born_color = 0;
+  };
+
+  // Operation states during change propagation (paper, Figure 4).
+  enum OpFlag : std::uint8_t {
+    kExecuted = 1,    // has run: its children, reads and Steiner vertices are recorded
+    kQueued = 2,      // on the agenda at its time
+    kFresh = 4,       // to execute (new)
+    kRedo = 8,        // inconsistent: read a square that changed, to undo and execute again
+    kObsolete = 16,   // to undo and delete
+    kDead = 32,       // deleted; the slot is freed when the propagation ends
   };
 
   struct Op {
@@ -40,17 +58,43 @@ class WellSpacedEngine {
     std::int32_t rank = 0;
     std::uint32_t color = 0;           // 0 for dispatches
     OpKind kind = OpKind::Dispatch;
+    std::uint8_t flags = 0;
     OpId parent = engine::kNoOp;       // the operation that created it (none for input dispatches)
     OpId next_fill = engine::kNoOp;    // next fill acting on the same vertex
-    std::uint32_t requesters = 0;      // fills: how many dispatches asked for it
+    std::uint32_t requesters = 0;      // fills: how many dispatches currently ask for it
     std::uint32_t children_begin = 0, children_end = 0;  // into children_
     std::uint32_t reads_begin = 0, reads_end = 0;        // into reads_
+    double read_half = 0;              // it read every vertex in the box of this half-side around its vertex
+  };
+
+  // One edit for apply(): add a point (id returned) or remove an input vertex.
+  struct InputEdit {
+    bool add = true;
+    Point<D> point{};
+    VertexId vertex = engine::kNoVertex;
+  };
+
+  struct PropagationStats {
+    std::size_t undone = 0, executed = 0;
+    std::vector<Point<D>> steiner_removed, steiner_added;  // net: a point removed and re-inserted cancels
   };
 
   explicit WellSpacedEngine(const Parameters<D>& parameters);
 
   // StableWS on points of the unit box. Throws PointInputError (non-finite, outside, duplicate).
   void build(std::span<const Point<D>> unit_points);
+
+  // PropagateWS: input edits applied to the live computation, which then equals build() on the new
+  // input. The caller checks the edits first (inside the box, no duplicate input, live ids).
+  // Returns the vertex ids of added points, in order.
+  std::vector<VertexId> apply(std::span<const InputEdit> edits, PropagationStats* stats = nullptr);
+
+  // The live operations as (vertex position, rank, colour), sorted: equal for a dynamic and a fresh run.
+  std::vector<std::tuple<Point<D>, int, std::uint32_t>> operation_signature() const;
+  std::size_t live_op_count() const { return ops_.size() - free_ops_.size(); }
+  std::size_t live_vertex_count() const { return vertices_.size() - free_vertices_.size(); }
+  // Whether some live input vertex sits exactly at p.
+  VertexId input_at(const Point<D>& p) const;
 
   std::size_t input_count() const { return input_count_; }
   std::size_t vertex_count() const { return vertices_.size(); }
@@ -83,16 +127,31 @@ class WellSpacedEngine {
 
   void reset();
   OpId new_op(OpKind kind, VertexId v, int rank, std::uint32_t color, OpId parent);
-  void schedule(OpId o);
-  void run();
+  // The agenda: operations keyed by time (rank, colour), executed in time order.
+  void enqueue(OpId o);
+  void mark_fresh(OpId o);
+  void mark_obsolete(OpId o);
+  void mark_redo(OpId o);
+  // Marks inconsistent every operation later than (rank, color) whose read box contains p (all of them
+  // when rank is the minimum int): the readers registered on p's leaf and its ancestors.
+  void mark_readers_at(const Point<D>& p, NodeId leaf, int rank, std::uint32_t color);
+  void mark_all_readers(NodeId n);
+  void propagate(PropagationStats* stats);
+  void undo(OpId o);
+  void execute(OpId o);
+  void kill(OpId o);
   void dispatch(OpId o);
   void fill(OpId o);
   void request_fill(OpId parent, VertexId w, int rank);
-  // Finds v's nearest neighbour and the vertices within 2 beta NN(v), records the leaves read by op o,
-  // and computes v's cell clipped to the box and to the cube of half-side beta NN(v).
+  void redispatch_input(VertexId v);
+  void apply_tree_change(const typename engine::Quadtree<D>::Change& change);
+  // Finds v's nearest neighbour and the vertices that can cut its cell, registers op o's reads, and
+  // computes v's cell clipped to the box and to the cube of half-side beta NN(v).
   void compute_cell(OpId o, VertexId v);
   Point<D> pick_steiner(VertexId v);
-  VertexId insert_steiner(const Point<D>& p, OpId creator, NodeId near);
+  VertexId new_vertex(const Point<D>& p);
+  void kill_vertex(VertexId v);
+  void compact_pools();
   double squared_distance(VertexId a, VertexId b) const;
 
   DerivedParameters<D> params_;
@@ -105,9 +164,19 @@ class WellSpacedEngine {
   std::vector<OpId> children_;
   std::vector<NodeId> reads_;
   std::vector<std::vector<OpId>> readers_;  // per quadtree node: operations that read it
-  // Operations waiting, by rank: dispatches, then fills (sorted by colour when their rank comes).
-  std::vector<std::vector<OpId>> pending_dispatch_, pending_fill_;
-  int current_rank_ = 0;
+  struct AgendaEntry {
+    std::int32_t rank;
+    std::uint32_t color;
+    OpId op;
+    bool operator>(const AgendaEntry& o) const { return rank != o.rank ? rank > o.rank : color > o.color; }
+  };
+  std::vector<AgendaEntry> agenda_;       // a min-heap by time
+  std::vector<OpId> batch_;               // the operations of the time being processed
+  std::vector<OpId> free_ops_, dead_ops_;
+  std::vector<VertexId> free_vertices_, dead_vertices_;
+  bool dynamic_ = false;                  // marking readers is needed only once a computation exists
+  PropagationStats* stats_ = nullptr;
+  std::size_t garbage_ = 0;               // children_/reads_ entries of undone operations
   // Scratch of the operation being executed (reused: no allocation per operation).
   engine::ConvexCell<D> cell_;
   Neighbourhood hood_;
