@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <random>
@@ -162,6 +164,18 @@ TEST(Verifier, CubicGridIsWellSpacedWithRatioHalfSqrt3) {
   EXPECT_EQ(verify_well_spaced(grid, grid, kUnitCube, std::sqrt(3.0) / 2 * (1 - 1e-6)).violations, 512u);
 }
 
+TEST(Verifier, CubicGridWithPointsOnTheBoxFaces) {
+  // Points i/8, i = 0..8: a cell on a face starts flat against the wall (the box clipped at the point).
+  std::vector<Point3> grid;
+  for (int k = 0; k <= 8; ++k)
+    for (int j = 0; j <= 8; ++j)
+      for (int i = 0; i <= 8; ++i) grid.push_back({i / 8.0, j / 8.0, k / 8.0});
+  const auto report = verify_well_spaced(grid, grid, kUnitCube, std::sqrt(2.0));
+  EXPECT_TRUE(report.ok());
+  EXPECT_NEAR(report.worst_ratio, std::sqrt(3.0) / 2, 1e-9);
+  EXPECT_EQ(verify_well_spaced(grid, grid, kUnitCube, std::sqrt(3.0) / 2 * (1 - 1e-6)).violations, grid.size());
+}
+
 TEST(Verifier, CubicGridInADoubleSizedBoxFailsAtTheCornerPoint) {
   // As in 2D: the grid fills [0,1]^3 of the box [0,2]^3; the corner point (15/16)^3 owns the octant up
   // to (2,2,2): ratio sqrt(3) (17/16) / (1/8) = 8.5 sqrt(3). Points on the three far faces fail: 8^3 - 7^3.
@@ -188,6 +202,98 @@ void expect_close_pair_fails_at_the_pair() {
 
 TEST(Verifier, ClosePairFailsAtThePair2D) { expect_close_pair_fails_at_the_pair<2>(); }
 TEST(Verifier, ClosePairFailsAtThePair3D) { expect_close_pair_fails_at_the_pair<3>(); }
+
+// The cell of v by brute force: every D-tuple of the half-spaces (bisectors with all other points, box
+// faces) meets in a candidate vertex; the feasible ones span Vor(v) ∩ box. Returns the worst ratio.
+template <int D>
+double brute_force_worst_ratio(const std::vector<Point<D>>& points, std::size_t* worst_vertex) {
+  struct HalfSpace {
+    std::array<double, D> a;
+    double b;  // a . x <= b
+  };
+  double worst = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto& v = points[i];
+    std::vector<HalfSpace> h;
+    double nn = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < points.size(); ++j) {
+      if (j == i) continue;
+      HalfSpace s{};
+      double dist = 0;
+      for (int k = 0; k < D; ++k) {
+        s.a[k] = 2 * (points[j][k] - v[k]);
+        s.b += points[j][k] * points[j][k] - v[k] * v[k];
+        dist += (points[j][k] - v[k]) * (points[j][k] - v[k]);
+      }
+      nn = std::min(nn, std::sqrt(dist));
+      h.push_back(s);
+    }
+    for (int k = 0; k < D; ++k) {
+      HalfSpace up{}, down{};
+      up.a[k] = 1, up.b = 1, down.a[k] = -1, down.b = 0;
+      h.push_back(up);
+      h.push_back(down);
+    }
+    auto det2 = [](double a, double b, double c, double d) { return a * d - b * c; };
+    auto consider = [&](const std::array<double, D>& x) {
+      for (const auto& s : h) {
+        double lhs = 0;
+        for (int k = 0; k < D; ++k) lhs += s.a[k] * x[k];
+        if (lhs > s.b + 1e-12) return;
+      }
+      double d = 0;
+      for (int k = 0; k < D; ++k) d += (x[k] - v[k]) * (x[k] - v[k]);
+      if (std::sqrt(d) / nn > worst) {
+        worst = std::sqrt(d) / nn;
+        *worst_vertex = i;
+      }
+    };
+    for (std::size_t p = 0; p < h.size(); ++p)
+      for (std::size_t q = p + 1; q < h.size(); ++q) {
+        if constexpr (D == 2) {
+          const double det = det2(h[p].a[0], h[p].a[1], h[q].a[0], h[q].a[1]);
+          if (std::abs(det) < 1e-14) continue;
+          consider({det2(h[p].b, h[p].a[1], h[q].b, h[q].a[1]) / det, det2(h[p].a[0], h[p].b, h[q].a[0], h[q].b) / det});
+        } else {
+          for (std::size_t r = q + 1; r < h.size(); ++r) {
+            const auto &A = h[p].a, &B = h[q].a, &C = h[r].a;
+            auto det3 = [&](const std::array<double, 3>& c0, const std::array<double, 3>& c1, const std::array<double, 3>& c2) {
+              return c0[0] * (c1[1] * c2[2] - c1[2] * c2[1]) - c1[0] * (c0[1] * c2[2] - c0[2] * c2[1]) +
+                     c2[0] * (c0[1] * c1[2] - c0[2] * c1[1]);
+            };
+            // Columns of the matrix with rows A, B, C; Cramer's rule.
+            const std::array<double, 3> col0{A[0], B[0], C[0]}, col1{A[1], B[1], C[1]}, col2{A[2], B[2], C[2]},
+                rhs{h[p].b, h[q].b, h[r].b};
+            const double det = det3(col0, col1, col2);
+            if (std::abs(det) < 1e-14) continue;
+            consider({det3(rhs, col1, col2) / det, det3(col0, rhs, col2) / det, det3(col0, col1, rhs) / det});
+          }
+        }
+      }
+  }
+  return worst;
+}
+
+template <int D>
+void expect_matches_brute_force(std::size_t n, std::uint64_t seed) {
+  const auto points = families::uniform<D>(n, seed);
+  BoxTransform<D> unit;
+  unit.origin.fill(0);
+  unit.side = 1;
+  std::size_t expected_vertex = 0;
+  const double expected = brute_force_worst_ratio<D>(points, &expected_vertex);
+  const auto report = verify_well_spaced(points, points, unit, std::sqrt(2.0));
+  EXPECT_NEAR(report.worst_ratio, expected, 1e-9 * expected);
+  EXPECT_EQ(report.worst_vertex, expected_vertex);
+}
+
+TEST(Verifier, MatchesBruteForceCellsOnRandomPoints2D) {
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) expect_matches_brute_force<2>(60, seed);
+}
+
+TEST(Verifier, MatchesBruteForceCellsOnRandomPoints3D) {
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) expect_matches_brute_force<3>(30, seed);
+}
 
 // Random points on a 2^-20 lattice, so that scaling by 2^±30 and shifting stay exact in doubles.
 template <int D>
