@@ -22,13 +22,13 @@ struct WellSpacedReport {
   // max over output vertices v of (max distance from v to a point of Vor(v) ∩ box) / NN_M(v), to a
   // relative 1e-12 in 2D (the decisions themselves are exact)
   double worst_ratio = 0;
-  std::size_t worst_vertex = 0;      // index into output
+  std::size_t worst_vertex = 0;      // index into output (the lowest one on ties)
   std::size_t violations = 0;        // vertices with ratio > rho (exact in 2D; 3D within a relative 1e-9)
   bool input_contained = false;      // every input point is in the output (bitwise equal coordinates)
   std::size_t missing_input = 0;
   // max over v of lfs(v) / NN_M(v); 0 when the input has fewer than two distinct points (lfs = infinity).
   double worst_size_conformity = 0;
-  std::size_t worst_size_vertex = 0; // index into output
+  std::size_t worst_size_vertex = 0; // index into output (the lowest one on ties)
   // Output points equal to an earlier output point. The cells are checked on the distinct points only
   // (a repeated point has NN = 0, which would make every ratio of its cell meaningless).
   std::size_t duplicate_points = 0;
