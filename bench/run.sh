@@ -3,21 +3,33 @@
 # memory is per algorithm), written to bench/RESULTS.md between the static:begin/end markers. Other
 # sections of RESULTS.md are left alone.
 #
-#   bench/run.sh BUILD_DIR [--algo stablews|cgal|none]
+#   bench/run.sh BUILD_DIR [--algo stablews|cgal|none] [--dim 2|3] [--n N] [--max-repeats K]
 #
-# --algo runs one algorithm only and keeps the other's previous lines from RESULTS.md (the raw lines are
-# stored in the section itself), so the two halves can be measured at different times; --algo none
-# only rewrites the section from the stored lines.
+# --algo, --dim and --n select some of the configurations below; the others keep their previous lines from
+# RESULTS.md (the raw lines are stored in the section itself), so parts can be measured at different
+# times (--algo none only rewrites the section). --max-repeats caps the repeats, for a machine too busy
+# to run the large configurations five times; the repeats used are in the section's command list.
 set -euo pipefail
 
-usage() { echo "usage: $0 BUILD_DIR [--algo stablews|cgal|none]" >&2; exit 2; }
+usage() { echo "usage: $0 BUILD_DIR [--algo stablews|cgal|none] [--dim 2|3] [--n N] [--max-repeats K]" >&2; exit 2; }
 [[ $# -ge 1 ]] || usage
 build_dir=$1
-only=""
-if [[ $# -ge 2 ]]; then
-  [[ $2 == --algo && $# -eq 3 ]] || usage
-  only=$3
-fi
+shift
+only_algo="" only_dim="" only_n="" max_repeats=""
+while [[ $# -gt 0 ]]; do
+  [[ $# -ge 2 ]] || usage
+  case $1 in
+    --algo) only_algo=$2 ;;
+    --dim) only_dim=$2 ;;
+    --n) only_n=$2 ;;
+    --max-repeats) max_repeats=$2 ;;
+    *) usage ;;
+  esac
+  shift 2
+done
+selected() {  # algo dim n
+  [[ (-z $only_algo || $1 == "$only_algo") && (-z $only_dim || $2 == "$only_dim") && (-z $only_n || $3 == "$only_n") ]]
+}
 bench=$build_dir/bench/bench_static
 [[ -x $bench ]] || { echo "$0: $bench not built (cmake --build $build_dir --target bench_static)" >&2; exit 1; }
 here=$(cd "$(dirname "$0")" && pwd)
@@ -40,9 +52,14 @@ end='<!-- static:end -->'
 raw=$(mktemp)
 trap 'rm -f "$raw" "$raw.new"' EXIT
 
-# Keep the previous raw lines of the algorithm not being rerun.
-if [[ -n $only && -f $results ]]; then
-  sed -n "/^$begin\$/,/^$end\$/p" "$results" | grep '^algo=' | grep -v "^algo=$only " >"$raw" || true
+# Keep the previous raw lines of the configurations not being rerun.
+if [[ -f $results ]]; then
+  sed -n "/^$begin\$/,/^$end\$/p" "$results" | grep '^algo=' | while read -r line; do
+    algo=$(grep -o 'algo=[^ ]*' <<<"$line" | cut -d= -f2)
+    dim=$(grep -o 'dim=[^ ]*' <<<"$line" | cut -d= -f2)
+    n=$(grep -o ' n=[^ ]*' <<<"$line" | cut -d= -f2)
+    selected "$algo" "$dim" "$n" || echo "$line"
+  done >"$raw"
 fi
 
 cpu=$(grep -m1 '^model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')
@@ -60,7 +77,8 @@ section() {
   echo "the 1-minute load average when the run started). Peak RSS: the whole process (getrusage), input"
   echo "included. Each run's date and source commit are in its raw line."
   echo
-  echo "Command: \`bench/run.sh BUILD_DIR\` (one half: \`--algo stablews|cgal\`), which runs from BUILD_DIR/bench:"
+  echo "Command: \`bench/run.sh BUILD_DIR\` (or a part of it: \`--algo\`, \`--dim\`, \`--n\`, \`--max-repeats\`), which runs"
+  echo "from BUILD_DIR/bench:"
   echo
   echo '```sh'
   awk '{ delete f; for (i = 1; i <= NF; ++i) { split($i, kv, "="); f[kv[1]] = kv[2] }
@@ -120,7 +138,8 @@ write_results() {
 # Run the configurations; the section is rewritten after each one, so an interrupted run keeps what it got.
 for config in "${configs[@]}"; do
   read -r algo dim n repeats <<<"$config"
-  [[ -z $only || $algo == "$only" ]] || continue
+  selected "$algo" "$dim" "$n" || continue
+  [[ -z $max_repeats || $repeats -le $max_repeats ]] || repeats=$max_repeats
   cmd="$bench --algo $algo --dim $dim --n $n --family $family --repeats $repeats --seed $seed"
   echo "running: $cmd" >&2
   load=$(cut -d' ' -f1 /proc/loadavg)  # the machine may be shared: say how busy it was
