@@ -71,15 +71,21 @@ void expect_same_mesh(const json& read, const io::MeshView<D>& view, const std::
     for (int k = 0; k <= D; ++k) ASSERT_EQ(cells[i][k].get<std::uint32_t>(), view.elements[i][k]) << "element " << i;
 }
 
+// The 2D exports all start from the lake mesh, its snapshot and a scratch folder.
+class MeshExport : public ::testing::Test {
+ protected:
+  ScratchDir dir;
+  const Mesh2 mesh = lake_mesh();
+  const MeshSnapshot<2> snap{mesh};
+};
+
 std::size_t loop_edges(const io::MeshView<2>& view, RingRole role) {
   std::size_t n = 0;
   for (const auto& loop : view.boundary) n += loop.role == role ? loop.nodes.size() : 0;
   return n;
 }
 
-TEST(MeshExport, SnapshotKeepsUsedPointsAndOneShoreAndOneIslandLoop) {
-  const Mesh2 mesh = lake_mesh();
-  const MeshSnapshot<2> snap(mesh);
+TEST_F(MeshExport, SnapshotKeepsUsedPointsAndOneShoreAndOneIslandLoop) {
   const auto view = snap.view();
   // The grid points outside the shore and on the island belong to no kept triangle and are left out.
   EXPECT_LT(view.points.size(), mesh.points().size());
@@ -95,10 +101,7 @@ TEST(MeshExport, SnapshotKeepsUsedPointsAndOneShoreAndOneIslandLoop) {
   EXPECT_EQ(loop_edges(view, RingRole::Island), 8u);
 }
 
-TEST(MeshExport, VtuReadsBackSameCountsAndCoordinates) {
-  ScratchDir dir;
-  const Mesh2 mesh = lake_mesh();
-  const MeshSnapshot<2> snap(mesh);
+TEST_F(MeshExport, VtuReadsBackSameCountsAndCoordinates) {
   io::export_mesh<2>(dir.path("lake.vtu"), snap.view());
   const json read = meshio_read(dir.path("lake.vtu"));
   expect_same_mesh<2>(read, snap.view(), "triangle", mesh.element_count());
@@ -112,10 +115,7 @@ TEST(MeshExport, VtuReadsBackSameCountsAndCoordinates) {
   expect_same_mesh<3>(meshio_read(dir.path("cube.vtu")), snap3.view(), "tetra", mesh3.element_count());
 }
 
-TEST(MeshExport, GmshMsh41ReadsBackWithPhysicalGroups) {
-  ScratchDir dir;
-  const Mesh2 mesh = lake_mesh();
-  const MeshSnapshot<2> snap(mesh);
+TEST_F(MeshExport, GmshMsh41ReadsBackWithPhysicalGroups) {
   const auto view = snap.view();
   io::export_mesh<2>(dir.path("lake.msh"), view);
   ASSERT_EQ(slurp(dir.path("lake.msh")).substr(0, 23), "$MeshFormat\n4.1 0 8\n$En");
@@ -129,12 +129,9 @@ TEST(MeshExport, GmshMsh41ReadsBackWithPhysicalGroups) {
 
 // Debian's gmsh reads our MSH 4.1 and writes it again as MSH 2.2; meshio reads that copy. Counts and
 // coordinates that survive the round trip through Gmsh's own reader show it understood the file.
-TEST(MeshExport, GmshReadsBackSameCounts) {
-  ScratchDir dir;
-  const Mesh2 mesh = lake_mesh();
-  const MeshSnapshot<2> snap(mesh);
+TEST_F(MeshExport, GmshReadsBackSameCounts) {
   io::export_mesh<2>(dir.path("lake.msh"), snap.view());
-  run("gmsh -v 0 '" + dir.path("lake.msh").string() + "' -save -format msh22 -o '" + dir.path("copy.msh").string() + "'");
+  run("gmsh -v 0 '" + dir.path("lake.msh") + "' -save -format msh22 -o '" + dir.path("copy.msh") + "'");
   const json read = meshio_read(dir.path("copy.msh"));
   ASSERT_EQ(read["cells"]["triangle"].size(), mesh.element_count());
   EXPECT_EQ(read["groups"]["water"], mesh.element_count());
@@ -159,17 +156,14 @@ TEST(MeshExport, GmshReadsBackSameCounts) {
   const Mesh3 mesh3(points3, 60);
   const MeshSnapshot<3> snap3(mesh3);
   io::export_mesh<3>(dir.path("cube.msh"), snap3.view());
-  run("gmsh -v 0 '" + dir.path("cube.msh").string() + "' -save -format msh22 -o '" + dir.path("copy3.msh").string() + "'");
+  run("gmsh -v 0 '" + dir.path("cube.msh") + "' -save -format msh22 -o '" + dir.path("copy3.msh") + "'");
   const json read3 = meshio_read(dir.path("copy3.msh"));
   EXPECT_EQ(read3["cells"]["tetra"].size(), mesh3.element_count());
   EXPECT_EQ(read3["groups"]["domain"], mesh3.element_count());
   EXPECT_EQ(read3["groups"]["boundary"], boundary_faces(mesh3.elements()).size());
 }
 
-TEST(MeshExport, ObjPlyOffReadBackSameTriangles) {
-  ScratchDir dir;
-  const Mesh2 mesh = lake_mesh();
-  const MeshSnapshot<2> snap(mesh);
+TEST_F(MeshExport, ObjPlyOffReadBackSameTriangles) {
   for (const std::string name : {"lake.obj", "lake.ply", "lake.off"}) {
     io::export_mesh<2>(dir.path(name), snap.view());
     expect_same_mesh<2>(meshio_read(dir.path(name)), snap.view(), "triangle", mesh.element_count());
@@ -187,8 +181,7 @@ TEST(MeshExport, ObjPlyOffReadBackSameTriangles) {
   for (const auto& [e, n] : edges) EXPECT_EQ(n, 2);
 }
 
-TEST(MeshExport, TetgenNodeEleReadsBack3D) {
-  ScratchDir dir;
+TEST_F(MeshExport, TetgenNodeEleReadsBack3D) {
   const Mesh3 mesh3(mesh_test::random_points<3>(90, 7), 45);
   const MeshSnapshot<3> snap3(mesh3);
   io::export_mesh<3>(dir.path("cube.node"), snap3.view());
@@ -197,10 +190,7 @@ TEST(MeshExport, TetgenNodeEleReadsBack3D) {
 }
 
 // 2D Triangle files have no reader in Debian's Python; the layout is checked line by line here.
-TEST(MeshExport, TriangleNodeEleHaveMarkersAndOneBasedElements) {
-  ScratchDir dir;
-  const Mesh2 mesh = lake_mesh();
-  const MeshSnapshot<2> snap(mesh);
+TEST_F(MeshExport, TriangleNodeEleHaveMarkersAndOneBasedElements) {
   const auto view = snap.view();
   io::export_mesh<2>(dir.path("lake.node"), view);
   std::istringstream node(slurp(dir.path("lake.node"))), ele(slurp(dir.path("lake.ele")));
@@ -237,10 +227,7 @@ TEST(MeshExport, TriangleNodeEleHaveMarkersAndOneBasedElements) {
 
 // GeoJSON through a projection callback: parsed with nlohmann::json, one closed Polygon per triangle,
 // coordinates equal to the callback's longitude/latitude.
-TEST(MeshExport, GeoJsonIsFeatureCollectionInLonLat) {
-  ScratchDir dir;
-  const Mesh2 mesh = lake_mesh();
-  const MeshSnapshot<2> snap(mesh);
+TEST_F(MeshExport, GeoJsonIsFeatureCollectionInLonLat) {
   const auto to_lonlat = [](const Point2& p) { return Point2{14.3 + p[0] * 1e-3, 45.7 + p[1] * 1e-3}; };
   io::export_mesh<2>(dir.path("lake.geojson"), snap.view(to_lonlat));
   const json g = json::parse(slurp(dir.path("lake.geojson")));
@@ -263,10 +250,7 @@ TEST(MeshExport, GeoJsonIsFeatureCollectionInLonLat) {
   EXPECT_FALSE(std::filesystem::exists(dir.path("plain.geojson")));
 }
 
-TEST(MeshExport, Fort14ListsShoreAndIslandBoundariesClosed) {
-  ScratchDir dir;
-  const Mesh2 mesh = lake_mesh();
-  const MeshSnapshot<2> snap(mesh);
+TEST_F(MeshExport, Fort14ListsShoreAndIslandBoundariesClosed) {
   io::export_mesh<2>(dir.path("fort.14"), snap.view());
   std::istringstream in(slurp(dir.path("fort.14")));
   std::string line;
@@ -300,10 +284,7 @@ TEST(MeshExport, Fort14ListsShoreAndIslandBoundariesClosed) {
   }
 }
 
-TEST(MeshExport, FailedWriteLeavesExistingFileUntouched) {
-  ScratchDir dir;
-  const Mesh2 mesh = lake_mesh();
-  const MeshSnapshot<2> snap(mesh);
+TEST_F(MeshExport, FailedWriteLeavesExistingFileUntouched) {
   std::ofstream(dir.path("fort.14")) << "old contents";
   auto view = snap.view();
   view.depth = [](const Point2& p) -> double {
@@ -314,7 +295,7 @@ TEST(MeshExport, FailedWriteLeavesExistingFileUntouched) {
     io::export_mesh<2>(dir.path("fort.14"), view);
     FAIL() << "expected an error";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find(dir.path("fort.14").string()), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(dir.path("fort.14")), std::string::npos) << e.what();
   }
   EXPECT_EQ(slurp(dir.path("fort.14")), "old contents");
   std::size_t files = 0;
@@ -324,7 +305,7 @@ TEST(MeshExport, FailedWriteLeavesExistingFileUntouched) {
   EXPECT_THROW(io::export_mesh<2>(dir.path("lake.xyz"), snap.view()), InputError);
 }
 
-TEST(MeshExport, FormatFromPath) {
+TEST_F(MeshExport, FormatFromPath) {
   EXPECT_EQ(io::export_format_from_path("a/b.MSH"), ExportFormat::Gmsh);
   EXPECT_EQ(io::export_format_from_path("fort.14"), ExportFormat::Adcirc);
   EXPECT_EQ(io::export_format_from_path("lake.fort14"), ExportFormat::Adcirc);

@@ -1,6 +1,6 @@
 #pragma once
-// Inputs for the mesh tests: random and lattice point sets, rings from the shared fish-and-rectangle PSLG
-// sampled along their segments, a scratch directory, and sorted element lists named by coordinates.
+// Inputs for the mesh tests: random and lattice point sets, rings from a shared Triangle .poly PSLG
+// sampled along their segments, and sorted element lists named by coordinates.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,6 +16,7 @@
 
 #include "shoremesh/domain.hpp"
 #include "shoremesh/mesh.hpp"
+#include "../io/io_test_util.hpp"
 
 namespace shoremesh::mesh_test {
 
@@ -160,26 +161,8 @@ inline std::vector<Point2> sample_domain(const Domain2& domain, double h, double
   return pts;
 }
 
-inline std::string shared_data(const std::string& rel) { return std::string(SHOREMESH_SHARED_DATA_DIR) + "/" + rel; }
-
-// A fresh directory under the system temporary directory, removed at the end of the test.
-class ScratchDir {
- public:
-  ScratchDir() {
-    std::random_device rd;
-    path_ = std::filesystem::temp_directory_path() / ("shoremesh-mesh-" + std::to_string(rd()) + std::to_string(rd()));
-    std::filesystem::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  std::filesystem::path path(const std::string& name) const { return path_ / name; }
-
- private:
-  std::filesystem::path path_;
-};
+// The io tests' scratch directory and data paths serve here too.
+using io::test::ScratchDir;
+using io::test::shared_data;
 
 }  // namespace shoremesh::mesh_test

@@ -49,6 +49,14 @@ float darkest_near(const PreviewImage& image, double x, double y) {
 }
 bool white(Rgb c) { return c.r > 0.99f && c.g > 0.99f && c.b > 0.99f; }
 
+PreviewOptions small(int width, int margin, double point_radius) {
+  PreviewOptions o;
+  o.width = width;
+  o.margin = margin;
+  o.point_radius = point_radius;
+  return o;
+}
+
 PreviewImage through_png(const ScratchDir& dir, const PreviewImage& image) {
   io::write_image(dir.path("preview.png"), image);
   PreviewImage read = io::read_image(dir.path("preview.png"));
@@ -59,10 +67,7 @@ PreviewImage through_png(const ScratchDir& dir, const PreviewImage& image) {
 TEST(Preview, EdgePixelIsDarkEmptyPixelIsBackground) {
   ScratchDir dir;
   const auto snap = quad();
-  PreviewOptions o;
-  o.width = 220;
-  o.margin = 10;
-  o.point_radius = 0;
+  PreviewOptions o = small(220, 10, 0);
   const PreviewImage image = through_png(dir, io::draw_preview<2>(snap.view(), o));
   EXPECT_EQ(image.width, 220);
   EXPECT_GT(image.height, 150);
@@ -72,11 +77,7 @@ TEST(Preview, EdgePixelIsDarkEmptyPixelIsBackground) {
   o.line_width = 2;
   const PreviewImage thick = through_png(dir, io::draw_preview<2>(snap.view(), o));
   for (const auto& [x, y] : sides) EXPECT_TRUE(dark(pixel_at(thick, x, y))) << x << ", " << y;
-  const auto elements = snap.view().elements;
-  std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
-  for (const auto& e : elements)
-    for (int i = 0; i < 3; ++i) edges.insert(std::minmax(e[i], e[(i + 1) % 3]));
-  ASSERT_EQ(edges.size(), 5u);
+  ASSERT_EQ(snap.view().elements.size(), 2u);
   // Inside the triangles, away from the edges, and in the margin: white.
   EXPECT_TRUE(white(pixel_at(image, 0.25, 0.2)));
   EXPECT_TRUE(white(pixel_at(image, 0.8, 0.75)));
@@ -91,10 +92,7 @@ TEST(Preview, EdgePixelIsDarkEmptyPixelIsBackground) {
 TEST(Preview, InputAndSteinerPointsHaveTheirColours) {
   ScratchDir dir;
   const auto snap = quad();
-  PreviewOptions o;
-  o.width = 220;
-  o.margin = 12;
-  o.point_radius = 5;
+  const PreviewOptions o = small(220, 12, 5);
   const PreviewImage image = through_png(dir, io::draw_preview<2>(snap.view(), o));
   const Rgb input = pixel_at(image, 0, 0), steiner = pixel_at(image, 1.1, 1);
   EXPECT_GT(input.r, 0.7f);
@@ -106,9 +104,7 @@ TEST(Preview, InputAndSteinerPointsHaveTheirColours) {
 TEST(Preview, QualityColouringFillsTrianglesAndBackgroundShowsUnderneath) {
   ScratchDir dir;
   const auto snap = quad();
-  PreviewOptions o;
-  o.width = 200;
-  o.point_radius = 0;
+  PreviewOptions o = small(200, 16, 0);
   o.colouring = io::PreviewColouring::Quality;
   const PreviewImage coloured = io::draw_preview<2>(snap.view(), o);
   const Rgb inside = pixel_at(coloured, 0.25, 0.2);
@@ -124,9 +120,7 @@ TEST(Preview, QualityColouringFillsTrianglesAndBackgroundShowsUnderneath) {
   PreviewImage magenta{4, 4, std::vector<float>(48, 0.0f)};
   for (std::size_t i = 0; i < 48; i += 3) magenta.rgb[i] = magenta.rgb[i + 2] = 1.0f;
   io::write_image(dir.path("under.png"), magenta);
-  PreviewOptions u;
-  u.width = 200;
-  u.point_radius = 0;
+  PreviewOptions u = small(200, 16, 0);
   u.background = dir.path("under.png");
   u.background_extent = {-0.5, -0.5, 2, 2};
   const PreviewImage under = io::draw_preview<2>(snap.view(), u);
