@@ -64,9 +64,12 @@ struct Cgal<2> {
     } while (++c != done);
     return out;
   }
-  static std::vector<Face> conflicts(const Triangulation& t, const Kernel::Point_2& p) {
+  static Face locate(const Triangulation& t, const Kernel::Point_2& p, Vertex hint) {
+    return hint == Vertex() ? t.locate(p) : t.locate(p, hint->face());
+  }
+  static std::vector<Face> conflicts(const Triangulation& t, const Kernel::Point_2& p, Face start) {
     std::vector<Face> out;
-    t.get_conflicts(p, std::back_inserter(out), t.locate(p));
+    t.get_conflicts(p, std::back_inserter(out), start);
     return out;
   }
 };
@@ -97,9 +100,12 @@ struct Cgal<3> {
     t.finite_adjacent_vertices(v, std::back_inserter(out));
     return out;
   }
-  static std::vector<Face> conflicts(const Triangulation& t, const Kernel::Point_3& p) {
+  static Face locate(const Triangulation& t, const Kernel::Point_3& p, Vertex hint) {
+    return hint == Vertex() ? t.locate(p) : t.locate(p, hint->cell());
+  }
+  static std::vector<Face> conflicts(const Triangulation& t, const Kernel::Point_3& p, Face start) {
     std::vector<Face> out;
-    t.find_conflicts(p, t.locate(p), CGAL::Emptyset_iterator(), std::back_inserter(out));
+    t.find_conflicts(p, start, CGAL::Emptyset_iterator(), std::back_inserter(out));
     return out;
   }
 };
@@ -223,12 +229,14 @@ class MeshTriangulation {
       const std::set<Key> before = all_keys();
       triangulation.remove(v);
       acc.record(before, all_keys());
+      hint_ = Vertex();
     } else {
       // The faces destroyed are those around v; the faces created fill its star and have only link
       // vertices as corners. Comparing the faces around the link before and after catches both.
       const std::vector<Vertex> link = C::adjacent_finite_vertices(triangulation, v);
       const std::set<Key> before = incident_keys(link);
       triangulation.remove(v);
+      if (!link.empty()) hint_ = link.front();
       std::set<Key> after;
       if (triangulation.dimension() == D) {
         for (Vertex u : link)
@@ -240,6 +248,7 @@ class MeshTriangulation {
       acc.record(before, after);
     }
     vertex_of.erase(p);
+    if (hint_ == v) hint_ = Vertex();
     // Keep the point array compact: the last point moves into the freed slot.
     const std::size_t last = points.size() - 1;
     if (slot != last) {
@@ -256,14 +265,18 @@ class MeshTriangulation {
     const auto cp = C::to_cgal(p);
     const bool full = triangulation.dimension() == D;
     std::set<Key> before;
+    Face start;
     if (full) {
-      // The faces whose circumsphere contains p are exactly the ones the insertion destroys.
-      for (Face f : C::conflicts(triangulation, cp))
+      // Updates are local: start the walk at the last point touched. The faces whose circumcircle
+      // (circumsphere) contains p are exactly the ones the insertion destroys.
+      start = C::locate(triangulation, cp, hint_);
+      for (Face f : C::conflicts(triangulation, cp, start))
         if (!triangulation.is_infinite(f) && in_water(f)) acc.remove(key(f));
     } else {
       before = all_keys();
     }
-    const Vertex v = triangulation.insert(cp);
+    const Vertex v = full ? triangulation.insert(cp, start) : triangulation.insert(cp);
+    hint_ = v;
     v->info() = static_cast<std::uint32_t>(points.size());
     points.push_back(p);
     kinds.push_back(kind);
@@ -281,6 +294,7 @@ class MeshTriangulation {
 
  private:
   WaterTest water_;
+  Vertex hint_;  // a live vertex near the last change, where the next point location starts
 };
 
 template <int D>
