@@ -180,7 +180,7 @@ std::optional<CoordinateSystem> legacy_crs(const json& root, const std::string& 
   if (props == it->end() || !props->is_object()) return std::nullopt;
   const auto n = props->find("name");
   if (n == props->end() || !n->is_string()) return std::nullopt;
-  const std::string s = n->get<std::string>();
+  const std::string s = n->get<std::string>().substr(0, 256);  // bounded: std::regex recurses per character
   static const std::regex epsg(R"re(EPSG:+(?:[0-9.]*:)?(\d+)$)re", std::regex::icase);
   std::smatch m;
   if (std::regex_search(s, m, epsg)) {

@@ -25,6 +25,12 @@ std::string upper(std::string_view s) {
   return out;
 }
 
+// Digits of a regex match as an int; -1 when out of range (std::stoi would throw on "EPSG:99999999999").
+int small_int(const std::string& digits) {
+  const auto v = detail::parse_integer(digits);
+  return v && *v >= 0 && *v <= 1000000 ? static_cast<int>(*v) : -1;
+}
+
 CoordinateSystem from_epsg(int code, const std::string& name) {
   CoordinateSystem cs;
   cs.name = name;
@@ -42,8 +48,10 @@ CoordinateSystem from_epsg(int code, const std::string& name) {
 // that closes a nested element is the outermost's); simplified: the last occurrence in the text.
 std::optional<int> wkt_epsg(const std::string& wkt) {
   static const std::regex re(R"re((?:AUTHORITY|ID)\[\s*"EPSG"\s*,\s*"?(\d+)"?\s*\]\s*\]\s*$)re", std::regex::icase);
+  // libstdc++'s regex recurses per character: search only the tail, where the outermost authority is.
+  const std::string tail = wkt.size() > 200 ? wkt.substr(wkt.size() - 200) : wkt;
   std::smatch m;
-  if (std::regex_search(wkt, m, re)) return std::stoi(m[1]);
+  if (std::regex_search(tail, m, re)) return small_int(m[1].str());
   return std::nullopt;
 }
 
@@ -60,16 +68,17 @@ CoordinateSystem parse_coordinate_system(std::string_view text_in, const std::st
   const std::string text(detail::trim(detail::strip_bom(text_in)));
   const std::string up = upper(text);
   std::smatch m;
+  const bool short_form = text.size() <= 64;  // regexes below recurse per character: only on short text
   static const std::regex epsg_re(R"(^EPSG:\s*(\d+)$)", std::regex::icase);
-  if (std::regex_match(text, m, epsg_re)) {
-    auto cs = from_epsg(std::stoi(m[1]), text);
+  if (short_form && std::regex_match(text, m, epsg_re)) {
+    auto cs = from_epsg(small_int(m[1].str()), text);
     return cs;
   }
   if (up == "WGS84" || up == "WGS 84" || up == "LONLAT" || up == "LON/LAT" || up == "CRS84" || up == "OGC:CRS84")
     return {CoordinateSystem::Kind::Geographic, 0, true, text};
   static const std::regex utm_short(R"(^UTM\s*(?:ZONE\s*)?(\d{1,2})\s*([NS])$)", std::regex::icase);
-  if (std::regex_match(text, m, utm_short)) {
-    const int zone = std::stoi(m[1]);
+  if (short_form && std::regex_match(text, m, utm_short)) {
+    const int zone = small_int(m[1].str());
     if (zone < 1 || zone > 60) throw InputError("UTM zone " + std::to_string(zone) + " is not 1..60", file);
     return {CoordinateSystem::Kind::Utm, zone, upper(m[2].str()) == "N", text};
   }
@@ -93,8 +102,8 @@ CoordinateSystem parse_coordinate_system(std::string_view text_in, const std::st
     return {CoordinateSystem::Kind::Unknown, 0, true, name};
   }
   static const std::regex utm_name(R"(UTM[ _]ZONE[ _](\d{1,2})\s*([NS]))", std::regex::icase);
-  if (std::regex_search(name, m, utm_name) && upper(text).find("WGS") != std::string::npos) {
-    const int zone = std::stoi(m[1]);
+  if (name.size() <= 256 && std::regex_search(name, m, utm_name) && upper(text).find("WGS") != std::string::npos) {
+    const int zone = small_int(m[1].str());
     if (zone >= 1 && zone <= 60) return {CoordinateSystem::Kind::Utm, zone, upper(m[2].str()) == "N", name};
   }
   return {CoordinateSystem::Kind::Unknown, 0, true, name};

@@ -209,7 +209,9 @@ bool csv_header_has_lat_lon(std::string_view text) {
 }
 
 GpsData parse_track_csv_text(std::string_view text, const std::string& name) {
-  const auto [header, header_line] = first_record(text);
+  const auto first = first_record(text);  // not a structured binding: lambdas below capture it (clang 14)
+  const std::string_view header = first.first;
+  const std::size_t header_line = first.second;
   if (!header_line) throw InputError("no points: empty file", name);
   const auto cols = find_columns(detail::split_fields(header));
   if (cols.lat < 0 || cols.lon < 0)

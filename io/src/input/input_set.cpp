@@ -22,11 +22,21 @@ std::string describe_origin(const InputSet& set, std::size_t i) {
   const Source& s = set.sources.at(o.source);
   std::string out = s.file;
   switch (s.location) {
-    case Source::Location::Line: out += ":" + std::to_string(o.location); break;
-    case Source::Location::Element: out += ", element " + std::to_string(o.location); break;
+    // Appended piecewise: GCC 12 warns falsely (-Wrestrict) about `out += literal + std::to_string(...)`.
+    case Source::Location::Line:
+      out += ':';
+      out += std::to_string(o.location);
+      break;
+    case Source::Location::Element:
+      out += ", element ";
+      out += std::to_string(o.location);
+      break;
     case Source::Location::None: break;
   }
-  if (o.ring != PointOrigin::kNoRing) out += ", ring " + std::to_string(o.ring + 1);
+  if (o.ring != PointOrigin::kNoRing) {
+    out += ", ring ";
+    out += std::to_string(o.ring + 1);
+  }
   return out;
 }
 
