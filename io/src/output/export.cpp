@@ -94,7 +94,8 @@ void export_mesh(const std::filesystem::path& path, const MeshView<D>& view, std
   for (const auto& e : view.elements)
     for (auto i : e)
       if (i >= view.points.size()) throw InputError("an element refers to a point that does not exist", path.string());
-  switch (format.value_or(export_format_from_path(path))) {
+  const ExportFormat chosen = format ? *format : export_format_from_path(path);  // the path only when not given
+  switch (chosen) {
     case ExportFormat::Gmsh: return write_gmsh<D>(path, view);
     case ExportFormat::Vtu: return write_vtu<D>(path, view);
     case ExportFormat::Triangle: {
@@ -104,14 +105,14 @@ void export_mesh(const std::filesystem::path& path, const MeshView<D>& view, std
     case ExportFormat::Adcirc:
     case ExportFormat::GeoJson:
       if constexpr (D == 2) {
-        if (format.value_or(export_format_from_path(path)) == ExportFormat::Adcirc) return write_adcirc(path, view);
+        if (chosen == ExportFormat::Adcirc) return write_adcirc(path, view);
         return write_geojson(path, view);
       } else {
         throw InputError("fort.14 and GeoJSON exports are 2D only", path.string());
       }
     case ExportFormat::Obj:
     case ExportFormat::Ply:
-    case ExportFormat::Off: return write_surface<D>(path, view, format.value_or(export_format_from_path(path)));
+    case ExportFormat::Off: return write_surface<D>(path, view, chosen);
   }
 }
 
