@@ -15,6 +15,9 @@ inline constexpr int kExitInternal = 3;
 
 using Command = std::function<int()>;
 
-Command add_mesh_command(CLI::App& app);
+Command add_mesh_command(CLI::App& app);   // mesh_command.cpp
+Command add_edit_command(CLI::App& app);   // edit_command.cpp
+Command add_info_command(CLI::App& app);   // info_command.cpp
+Command add_bench_command(CLI::App& app);  // bench_command.cpp
 
 }  // namespace shoremesh::tool

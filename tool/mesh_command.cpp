@@ -1,4 +1,5 @@
-// shoremesh mesh INPUT -o OUTPUT.csv: the well-spaced superset of a point file.
+// shoremesh mesh INPUT... -o OUT: inputs to the well-spaced point set, its mesh, a preview and a quality
+// summary. `-o OUT.csv` writes the point set itself ('# box' line, input points, Steiner points).
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -7,8 +8,10 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "input_args.hpp"
+#include "pipeline.hpp"
+#include "progress.hpp"
 #include "shoremesh/error.hpp"
-#include "shoremesh/io/point_file.hpp"
 #include "shoremesh/io/point_set_csv.hpp"
 #include "shoremesh/well_spaced.hpp"
 
@@ -17,39 +20,60 @@ namespace shoremesh::tool {
 namespace {
 
 struct MeshOptions {
-  std::string input;
+  InputArgs in;
   std::string output;
+  std::string preview;
+  PreviewArgs preview_args;
   double rho = std::sqrt(2.0);
   std::vector<double> box;
+  int dim = 0;
+  std::string format;
 };
 
 template <int D>
-int run_mesh(const MeshOptions& opt, const std::vector<Point<D>>& points, const std::vector<std::size_t>& lines) {
-  Parameters<D> parameters;
-  parameters.rho = opt.rho;
-  if (parameters.beta <= opt.rho) parameters.beta = 1.5 * opt.rho;  // keep the picking region non-empty
-  std::optional<BoxTransform<D>> box;
-  if (!opt.box.empty()) {
-    if (opt.box.size() != D + 1)
-      throw InputError("--box takes " + std::to_string(D + 1) + " numbers for " + std::to_string(D) + "D input (X0 Y0" +
-                       (D == 3 ? " Z0" : "") + " SIDE)");
-    BoxTransform<D> b;
-    for (int i = 0; i < D; ++i) b.origin[i] = opt.box[std::size_t(i)];
-    b.side = opt.box[D];
-    box = b;
-  }
+int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress) {
+  const std::vector<Point<D>> points = input_points<D>(set);
+  const UserFrame frame = UserFrame::of(set);
+  const std::filesystem::path output = opt.output;
+  const bool point_set = opt.format.empty() && is_point_set_path(output);
+  const std::optional<io::ExportFormat> format =
+      opt.format.empty() ? std::nullopt : std::optional(parse_export_format(opt.format));
+  if (!point_set && !format) io::export_format_from_path(output);  // refuse an unknown extension before the work
+
+  progress.stage("StableWS on " + std::to_string(points.size()) + " points");
   StableResult<D> result;
   try {
-    result = stable_well_spaced<D>(points, parameters, box);
+    result = stable_well_spaced<D>(points, engine_parameters<D>(opt.rho), parse_box<D>(opt.box));
   } catch (const PointInputError& e) {
-    // Say where the offending point is in the user's file.
-    if (!e.points().empty() && e.points().front() < lines.size())
-      throw InputError(e.message(), opt.input, lines[e.points().front()]);
-    throw;
+    rethrow_with_origin(e, set);
   }
-  io::write_point_set_csv<D>(opt.output, result.box, result.points);
+  progress.stage("meshing " + std::to_string(result.points.size()) + " points");
+  const Mesh<D> mesh = make_mesh<D>(result.points, result.input_count, set.domain);
+
+  progress.stage("writing " + output.filename().string());
+  if (point_set) {
+    io::write_point_set_csv<D>(output, result.box, result.points);
+  } else {
+    export_mesh_file<D>(mesh, output, format, frame);
+  }
+  if (!opt.preview.empty()) {
+    progress.stage("drawing " + std::filesystem::path(opt.preview).filename().string());
+    PreviewArgs args = opt.preview_args;
+    args.rho = opt.rho;
+    write_preview<D>(mesh, opt.preview, args);
+  }
+  progress.stage("measuring quality");
+  const QualityNumbers quality = quality_numbers<D>(mesh, opt.rho, result.box, frame);
+  progress.finish();
+
   std::cerr << "shoremesh: " << result.input_count << " input points, " << result.points.size() - result.input_count
             << " Steiner points -> " << opt.output << '\n';
+  std::cout << describe_input(set);
+  std::cout << "box: origin " << frame.point(result.box.origin) << ", side " << frame.length(result.box.side) << '\n';
+  std::cout << quality_text(quality, D);
+  std::cout << "wrote " << opt.output;
+  if (!opt.preview.empty()) std::cout << " and " << opt.preview;
+  std::cout << '\n';
   return kExitOk;
 }
 
@@ -57,20 +81,34 @@ int run_mesh(const MeshOptions& opt, const std::vector<Point<D>>& points, const 
 
 Command add_mesh_command(CLI::App& app) {
   auto opt = std::make_shared<MeshOptions>();
-  CLI::App* cmd = app.add_subcommand("mesh", "Build the rho-well-spaced superset of the input points");
-  cmd->add_option("input", opt->input, "Point file: CSV or whitespace separated, 2 or 3 numbers a line, # comments")
-      ->required()
-      ->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", opt->output, "Output .csv: '# box X0 Y0 [Z0] SIDE', input points, Steiner points")
+  CLI::App* cmd = app.add_subcommand("mesh", "Inputs to a well-spaced point set, its quality mesh, a preview and a summary");
+  add_input_options(cmd, opt->in);
+  cmd->add_option("-o,--output", opt->output,
+                  "Output: a mesh (.msh .vtu .node fort.14 .geojson .obj .ply .off) or the point set (.csv: "
+                  "'# box X0 Y0 [Z0] SIDE', input points, Steiner points)")
       ->required();
+  cmd->add_option("--preview", opt->preview, "Also draw the mesh to this PNG");
+  cmd->add_option("--preview-colour", opt->preview_args.colouring, "Preview triangles coloured by none, quality or size")
+      ->check(CLI::IsMember({"none", "quality", "size"}));
+  cmd->add_option("--preview-width", opt->preview_args.width, "Preview width in pixels (default 1024)")
+      ->check(CLI::Range(16, 16384));
   cmd->add_option("--rho", opt->rho, "Quality bound rho > 1 (default sqrt 2: angles >= 20.7 degrees in 2D)");
   cmd->add_option("--box", opt->box, "Fix the box: X0 Y0 [Z0] SIDE (default: the input's bounding box + 5%)")
       ->expected(3, 4);
-  cmd->footer("Example:\n  shoremesh mesh samples/points/lake_shore.csv -o lake_ws.csv");
+  cmd->add_option("--dim", opt->dim, "Dimension: 2 or 3 (default: the input's; 2 drops z)")->check(CLI::IsMember({2, 3}));
+  cmd->add_option("--format", opt->format, "Output format (default: from the output's extension)")
+      ->check(CLI::IsMember({"msh", "vtu", "node", "fort14", "geojson", "obj", "ply", "off"}));
+  cmd->footer(
+      "Examples:\n"
+      "  shoremesh mesh samples/superior/superior_watermask_h.png --largest-water --spacing 5000 \\\n"
+      "      -o superior.msh --preview superior.png\n"
+      "  shoremesh mesh points.csv -o points_ws.csv          # the well-spaced point set itself\n"
+      "  shoremesh mesh lake.png track.gpx -o lake.geojson   # an image plus a survey track");
   return [opt]() {
-    const io::PointFile file = io::read_point_file(opt->input);
-    if (file.dimension == 3) return run_mesh<3>(*opt, file.points3, file.lines);
-    return run_mesh<2>(*opt, file.points2, file.lines);
+    Progress progress(!opt->in.quiet && Progress::stderr_is_terminal(), opt->in.files.size() + 4);
+    const io::InputSet set = read_user_inputs(opt->in, progress);
+    const int dim = opt->dim != 0 ? opt->dim : set.dimension;
+    return dim == 3 ? run_mesh<3>(*opt, set, progress) : run_mesh<2>(*opt, set, progress);
   };
 }
 

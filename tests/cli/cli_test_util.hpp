@@ -1,0 +1,102 @@
+#pragma once
+// Running the built shoremesh binary from tests: a temporary folder per test, the command's exit code,
+// stdout and stderr, and the bundled data.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace shoremesh::cli_test {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int code = -1;
+  std::string out, err;
+};
+
+inline std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+inline void write_file(const fs::path& p, const std::string& text) {
+  std::ofstream out(p, std::ios::binary);
+  out << text;
+}
+
+inline std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+// A fresh folder under the system's temporary directory, removed at the end of the test.
+class TempDir {
+ public:
+  TempDir() {
+    std::random_device rd;
+    path_ = fs::temp_directory_path() / ("shoremesh_cli_" + std::to_string(rd()) + std::to_string(rd()));
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    if (!::testing::Test::HasFailure()) fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+  fs::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  fs::path path_;
+};
+
+// Runs `shoremesh ARGS` (ARGS is shell text) in `dir`, with `stdin_text` on standard input.
+inline RunResult shoremesh(const TempDir& dir, const std::string& args, const std::string& stdin_text = {}) {
+  const fs::path in = dir / ".stdin", out = dir / ".stdout", err = dir / ".stderr";
+  write_file(in, stdin_text);
+  const std::string cmd = "cd " + quote(dir.path().string()) + " && " + quote(SHOREMESH_BINARY) + " " + args + " <" +
+                          quote(in.string()) + " >" + quote(out.string()) + " 2>" + quote(err.string());
+  const int status = std::system(cmd.c_str());
+  RunResult r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = read_file(out);
+  r.err = read_file(err);
+  return r;
+}
+
+// The bundled data: samples/ when it has the file, otherwise the shared data it was copied from.
+inline std::string data_file(const std::string& samples_rel, const std::string& shared_rel) {
+  const fs::path s = fs::path(SHOREMESH_SAMPLES_DIR) / samples_rel;
+  if (fs::exists(s)) return s.string();
+  return (fs::path(SHOREMESH_SHARED_DATA_DIR) / shared_rel).string();
+}
+inline std::string superior_mask() {
+  return data_file("superior/superior_watermask_h.png", "raster/superior_watermask_h.png");
+}
+
+// A reproducible 2D point file ("x,y" header, 4 decimals) of n points in [0, w] x [0, h].
+inline std::string random_points(std::size_t n, double w, double h, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> x(0, static_cast<int>(w * 1e4)), y(0, static_cast<int>(h * 1e4));
+  std::ostringstream s;
+  s << "x,y\n";
+  for (std::size_t i = 0; i < n; ++i) s << x(rng) / 1e4 << ',' << y(rng) / 1e4 << '\n';
+  return s.str();
+}
+
+inline std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  return lines;
+}
+
+}  // namespace shoremesh::cli_test

@@ -1,0 +1,89 @@
+// The command line itself: --version, --help with an example on every command, exit codes for bad command
+// lines (2) and bad inputs (1), and messages that say what is wrong and where.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "cli_test_util.hpp"
+
+namespace shoremesh::cli_test {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(CommandLine, VersionAndHelpOnEveryCommand) {
+  TempDir dir;
+  const RunResult v = shoremesh(dir, "--version");
+  EXPECT_EQ(v.code, 0);
+  EXPECT_THAT(v.out, HasSubstr("shoremesh 0."));
+  const RunResult h = shoremesh(dir, "--help");
+  EXPECT_EQ(h.code, 0);
+  EXPECT_THAT(h.out, HasSubstr("Exit codes: 0 ok, 1 bad input"));
+  for (const char* command : {"mesh", "edit", "info", "bench"}) {
+    const RunResult c = shoremesh(dir, std::string(command) + " --help");
+    EXPECT_EQ(c.code, 0) << command;
+    EXPECT_THAT(c.out, HasSubstr("Example")) << command;
+    EXPECT_THAT(c.out, HasSubstr(std::string("shoremesh ") + command)) << command;
+  }
+}
+
+TEST(CommandLine, UsageErrorsExitWithTwo) {
+  TempDir dir;
+  write_file(dir / "p.csv", random_points(20, 10, 10, 1));
+  const struct {
+    const char* args;
+    const char* says;
+  } cases[] = {
+      {"", "A subcommand is required"},
+      {"frobnicate", "unknown command 'frobnicate'"},
+      {"mesh p.csv -o out.csv --box 0 0", "--box"},
+      {"mesh p.csv", "--output is required"},
+      {"mesh p.csv -o out.csv --dim 4", "--dim"},
+      {"mesh p.csv -o out.msh --format stl", "--format"},
+      {"mesh p.csv -o out.csv --bogus", "--bogus"},
+      {"mesh missing.csv -o out.csv", "missing.csv"},
+      {"mesh p.csv -o out.csv --rho 1", "rho"},
+      {"edit p.csv", "--edits is required"},
+      {"info", "input is required"},
+      {"info p.csv p.csv", "input"},
+  };
+  for (const auto& c : cases) {
+    const RunResult r = shoremesh(dir, c.args);
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.err;
+    EXPECT_THAT(r.err, HasSubstr(c.says)) << c.args;
+    EXPECT_THAT(r.err, ::testing::StartsWith("shoremesh: ")) << c.args;
+  }
+  EXPECT_FALSE(fs::exists(dir / "out.csv"));
+}
+
+TEST(CommandLine, BadInputsExitWithOneAndNameTheLine) {
+  TempDir dir;
+  write_file(dir / "text.csv", "x,y\n1,2\n3,oops\n");
+  write_file(dir / "dup.csv", "1,2\n3,4\n1,2\n");
+  write_file(dir / "p.csv", random_points(20, 10, 10, 2));
+  write_file(dir / "notes.xyz.bak", "1 2\n");
+  const struct {
+    const char* args;
+    const char* says;
+  } cases[] = {
+      {"mesh text.csv -o out.csv", "text.csv:3"},
+      {"mesh dup.csv -o out.csv", "dup.csv:3"},
+      {"mesh p.csv -o out.stl", "out.stl"},
+      {"mesh p.csv -o out.csv --box 0 0 0 1", "--box takes 3 numbers"},
+      {"mesh p.csv -o out.csv --box 5 5 1", "p.csv:2: point 0 lies outside the given box"},
+      {"mesh p.csv -o out.geojson", "GeoJSON"},
+      {"mesh notes.xyz.bak -o out.csv", "unknown input format"},
+      {"mesh p.csv -o out.csv --dim 3", "--dim 3 needs 3D input"},
+      {"edit p.csv --edits missing.txt", "missing.txt"},
+  };
+  for (const auto& c : cases) {
+    const RunResult r = shoremesh(dir, c.args);
+    EXPECT_EQ(r.code, 1) << c.args << "\n" << r.err;
+    EXPECT_THAT(r.err, HasSubstr(c.says)) << c.args;
+    EXPECT_THAT(r.err, ::testing::StartsWith("shoremesh: ")) << c.args;
+  }
+  EXPECT_FALSE(fs::exists(dir / "out.csv"));
+  EXPECT_FALSE(fs::exists(dir / "out.geojson"));
+}
+
+}  // namespace
+}  // namespace shoremesh::cli_test

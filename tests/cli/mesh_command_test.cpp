@@ -1,0 +1,144 @@
+// `shoremesh mesh` end to end: the point-set CSV contract (equal to the library's StableWS), every mesh
+// format, the bundled Lake Superior image to a mesh and preview with a quality summary within the bound.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <regex>
+
+#include "cli_test_util.hpp"
+#include "shoremesh/io/point_file.hpp"
+#include "shoremesh/io/point_set_csv.hpp"
+#include "shoremesh/well_spaced.hpp"
+
+namespace shoremesh::cli_test {
+namespace {
+
+using ::testing::HasSubstr;
+
+// The numbers of the summary's first line: "quality: E triangles, P points (...); bound met by M of C covered".
+struct Summary {
+  std::size_t elements = 0, met = 0, covered = 0;
+  double min_angle = 0, bound = 0;
+};
+
+Summary parse_summary(const std::string& out) {
+  Summary s;
+  std::smatch m;
+  const std::regex first(R"(quality: (\d+) \w+, .*bound met by (\d+) of (\d+) covered)");
+  EXPECT_TRUE(std::regex_search(out, m, first)) << out;
+  if (m.empty()) return s;
+  s.elements = std::stoul(m[1]);
+  s.met = std::stoul(m[2]);
+  s.covered = std::stoul(m[3]);
+  const std::regex angles(R"(angles ([0-9.e+-]+)\.\.[0-9.e+-]+ deg \(guaranteed >= ([0-9.]+) deg)");
+  if (std::regex_search(out, m, angles)) {
+    s.min_angle = std::stod(m[1]);
+    s.bound = std::stod(m[2]);
+  }
+  return s;
+}
+
+TEST(MeshCommand, PointFileToCsvEqualsTheLibrary) {
+  TempDir dir;
+  write_file(dir / "p.csv", random_points(400, 100, 60, 7));
+  const RunResult r = shoremesh(dir, "mesh p.csv -o out.csv");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("shoremesh: 400 input points, "));
+  const auto file = io::read_point_set_csv<2>(dir / "out.csv");
+  const auto input = io::read_point_file((dir / "p.csv").string());
+  const auto expected = stable_well_spaced<2>(input.points2);
+  EXPECT_EQ(file.box.origin, expected.box.origin);
+  EXPECT_EQ(file.box.side, expected.box.side);
+  EXPECT_EQ(file.points, expected.points);  // input points first, in file order, then the Steiner points
+
+  // --box and --rho are honoured the same way.
+  const RunResult b = shoremesh(dir, "mesh p.csv -o box.csv --box -10 -10 130 --rho 1.6");
+  ASSERT_EQ(b.code, 0) << b.err;
+  Parameters<2> p;
+  p.rho = 1.6;
+  const auto boxed = stable_well_spaced<2>(input.points2, p, BoxTransform<2>{{-10, -10}, 130});
+  EXPECT_EQ(io::read_point_set_csv<2>(dir / "box.csv").points, boxed.points);
+  EXPECT_EQ(read_file(dir / "box.csv").rfind("# box -10 -10 130\n", 0), 0u);
+}
+
+TEST(MeshCommand, ThreeColumnPointFileIn3DAnd2D) {
+  TempDir dir;
+  std::string text;
+  for (int i = 0; i < 60; ++i)
+    text += std::to_string((i * 37) % 61) + " " + std::to_string((i * 17) % 53) + " " + std::to_string((i * 29) % 47) + "\n";
+  write_file(dir / "p3.xyz", text);
+  const RunResult r = shoremesh(dir, "mesh p3.xyz -o p3.vtu");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("tetrahedra"));
+  EXPECT_GT(fs::file_size(dir / "p3.vtu"), 1000u);
+  const RunResult c = shoremesh(dir, "mesh p3.xyz -o p3.csv");
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_EQ(io::read_point_set_csv<3>(dir / "p3.csv").points.size() >= 60, true);
+  const RunResult flat = shoremesh(dir, "mesh p3.xyz --dim 2 -o flat.msh");
+  EXPECT_EQ(flat.code, 0) << flat.err;
+  EXPECT_THAT(flat.out, HasSubstr("triangles"));
+}
+
+TEST(MeshCommand, EveryMeshFormatByExtensionOrFormat) {
+  TempDir dir;
+  write_file(dir / "p.csv", random_points(150, 50, 30, 3));
+  for (const char* out : {"m.msh", "m.vtu", "m.node", "fort.14", "m.obj", "m.ply", "m.off"}) {
+    const RunResult r = shoremesh(dir, std::string("mesh -q p.csv -o ") + out);
+    EXPECT_EQ(r.code, 0) << out << r.err;
+    EXPECT_TRUE(fs::exists(dir / out)) << out;
+    EXPECT_THAT(r.out, HasSubstr(std::string("wrote ") + out));
+  }
+  EXPECT_TRUE(fs::exists(dir / "m.ele"));
+  EXPECT_EQ(read_file(dir / "m.msh").rfind("$MeshFormat\n4.1", 0), 0u);
+  const RunResult f = shoremesh(dir, "mesh p.csv -o mesh.txt --format vtu");
+  EXPECT_EQ(f.code, 0) << f.err;
+  EXPECT_THAT(read_file(dir / "mesh.txt"), HasSubstr("<VTKFile"));
+  const Summary s = parse_summary(f.out);
+  EXPECT_GT(s.covered, 0u);
+  EXPECT_EQ(s.met, s.covered);
+}
+
+TEST(MeshCommand, SuperiorImageToMeshPreviewAndGeoJson) {
+  TempDir dir;
+  const std::string image = quote(superior_mask());
+  const RunResult r =
+      shoremesh(dir, "mesh " + image + " --largest-water --spacing 8000 -o superior.msh --preview superior.png");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_GT(fs::file_size(dir / "superior.msh"), 10000u);
+  EXPECT_EQ(read_file(dir / "superior.png").substr(1, 3), "PNG");
+  EXPECT_THAT(r.out, HasSubstr("UTM zone 16N"));
+  EXPECT_THAT(r.out, HasSubstr("shoreline: "));
+  // The summary: every covered triangle meets the radius-edge bound, so its angles are >= 20.7 degrees.
+  const Summary s = parse_summary(r.out);
+  EXPECT_GT(s.elements, 1000u);
+  EXPECT_GT(s.covered, s.elements * 9 / 10);
+  EXPECT_EQ(s.met, s.covered);
+  EXPECT_NEAR(s.bound, 20.7, 0.01);
+  EXPECT_GE(s.min_angle, s.bound);
+  // Messages give lon/lat beside metres, never the unit box.
+  EXPECT_THAT(r.out, ::testing::ContainsRegex(R"(= 4[6-9]\.[0-9]+N 8[4-9]\.[0-9]+W)"));
+
+  const RunResult g = shoremesh(dir, "mesh -q " + image + " --largest-water --spacing 8000 -o superior.geojson");
+  ASSERT_EQ(g.code, 0) << g.err;
+  const auto geo = nlohmann::json::parse(read_file(dir / "superior.geojson"));
+  double lon_min = 1e9, lon_max = -1e9;
+  std::function<void(const nlohmann::json&)> walk = [&](const nlohmann::json& j) {
+    if (j.is_array() && j.size() >= 2 && j[0].is_number() && j[1].is_number()) {
+      lon_min = std::min(lon_min, j[0].get<double>());
+      lon_max = std::max(lon_max, j[0].get<double>());
+      EXPECT_GT(j[1].get<double>(), 46.0);
+      EXPECT_LT(j[1].get<double>(), 49.3);
+      return;
+    }
+    if (j.is_structured())
+      for (const auto& c : j) walk(c);
+  };
+  walk(geo);
+  EXPECT_GT(lon_min, -92.6);
+  EXPECT_LT(lon_max, -83.9);
+}
+
+}  // namespace
+}  // namespace shoremesh::cli_test

@@ -1,0 +1,96 @@
+// shoremesh edit INPUT... --edits FILE|-: build once, then apply a stream of edits dynamically.
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "edit_session.hpp"
+#include "input_args.hpp"
+#include "progress.hpp"
+#include "shoremesh/error.hpp"
+
+namespace shoremesh::tool {
+
+namespace {
+
+struct EditOptions {
+  InputArgs in;
+  std::string edits;
+  bool json = false;
+  double rho = std::sqrt(2.0);
+  std::vector<double> box;
+  int dim = 0;
+  PreviewArgs preview;
+};
+
+void print(const nlohmann::json& reply, bool as_json) {
+  std::cout << (as_json ? reply.dump() : reply_text(reply)) << std::endl;  // flushed: a program may be waiting
+}
+
+template <int D>
+int run_edit(const EditOptions& opt, const io::InputSet& set, Progress& progress, std::istream& edits) {
+  progress.stage("StableWS and mesh of " + std::to_string(set.size()) + " points");
+  const auto start = std::chrono::steady_clock::now();
+  EditSession<D> session(set, opt.rho, parse_box<D>(opt.box), opt.preview);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  progress.finish();
+  if (!opt.json) std::cout << describe_input(set);
+  print(session.build_reply(ms), opt.json);
+
+  std::size_t failed = 0, line_no = 0;
+  for (std::string line; std::getline(edits, line);) {
+    ++line_no;
+    const auto reply = session.run(line_no, line);
+    if (!reply) continue;
+    failed += !reply->value("ok", false);
+    print(*reply, opt.json);
+  }
+  if (failed && !opt.json) std::cerr << "shoremesh: " << failed << " edit line(s) failed (exit code 1)\n";
+  return failed ? kExitBadInput : kExitOk;
+}
+
+}  // namespace
+
+Command add_edit_command(CLI::App& app) {
+  auto opt = std::make_shared<EditOptions>();
+  CLI::App* cmd = app.add_subcommand("edit", "Build once, then apply a stream of edits dynamically, reporting each change");
+  add_input_options(cmd, opt->in);
+  cmd->add_option("--edits", opt->edits,
+                  "Edit lines from FILE, or '-' for standard input: add X Y [Z] | remove ID | move ID X Y [Z] | "
+                  "export PATH | preview PATH | preview-change PATH | stats ('#' comments)")
+      ->required();
+  cmd->add_flag("--json", opt->json, "Reply with one JSON object per line (for programs)");
+  cmd->add_option("--rho", opt->rho, "Quality bound rho > 1 (default sqrt 2)");
+  cmd->add_option("--box", opt->box, "Fix the box: X0 Y0 [Z0] SIDE (default: the input's bounding box + 5%)")
+      ->expected(3, 4);
+  cmd->add_option("--dim", opt->dim, "Dimension: 2 or 3 (default: the input's)")->check(CLI::IsMember({2, 3}));
+  cmd->add_option("--preview-colour", opt->preview.colouring, "Previews coloured by none, quality or size")
+      ->check(CLI::IsMember({"none", "quality", "size"}));
+  cmd->footer(
+      "Ids: input points are numbered from 0 in the order they were read (files in order); each add takes the next\n"
+      "unused id and its reply says which; ids are never reused. Coordinates are the mesh's: metres for lon/lat\n"
+      "input (the replies give lon/lat too), pixels for plain images. 'export PATH.csv' writes the point set\n"
+      "exactly as 'shoremesh mesh INPUT -o OUT.csv --box ...' would for the current input and the session's box.\n"
+      "A bad edit line gets an error reply naming it and the session goes on; the exit code is then 1.\n"
+      "\n"
+      "Example:\n"
+      "  printf 'move 10 1.5 2.5\\nadd 3 4\\nstats\\nexport final.csv\\n' | shoremesh edit points.csv --edits -");
+  return [opt]() {
+    std::ifstream file;
+    if (opt->edits != "-") {
+      file.open(opt->edits);
+      if (!file) throw InputError("cannot read the edits", opt->edits);
+    }
+    std::istream& edits = opt->edits == "-" ? std::cin : file;
+    Progress progress(!opt->in.quiet && Progress::stderr_is_terminal(), opt->in.files.size() + 1);
+    const io::InputSet set = read_user_inputs(opt->in, progress);
+    const int dim = opt->dim != 0 ? opt->dim : set.dimension;
+    return dim == 3 ? run_edit<3>(*opt, set, progress, edits) : run_edit<2>(*opt, set, progress, edits);
+  };
+}
+
+}  // namespace shoremesh::tool

@@ -1,0 +1,418 @@
+#include "edit_session.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "shoremesh/error.hpp"
+#include "shoremesh/io/point_set_csv.hpp"
+#include "shoremesh/io/ring_check.hpp"
+
+namespace shoremesh::tool {
+
+namespace {
+
+using json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+std::vector<std::string> split_words(const std::string& text) {
+  std::istringstream in(text);
+  std::vector<std::string> words;
+  for (std::string w; in >> w;) words.push_back(w);
+  return words;
+}
+
+// The text after the first word, trimmed: a path may contain blanks.
+std::string rest_after_op(const std::string& text) {
+  const std::size_t start = text.find_first_not_of(" \t");
+  const std::size_t op_end = text.find_first_of(" \t", start);
+  if (op_end == std::string::npos) return {};
+  const std::size_t a = text.find_first_not_of(" \t", op_end);
+  if (a == std::string::npos) return {};
+  const std::size_t b = text.find_last_not_of(" \t\r");
+  return text.substr(a, b - a + 1);
+}
+
+double parse_number(const std::string& word) {
+  double v = 0;
+  const char* first = word.data();
+  if (!word.empty() && word[0] == '+') ++first;
+  const auto [end, ec] = std::from_chars(first, word.data() + word.size(), v);
+  if (ec != std::errc{} || end != word.data() + word.size() || first == word.data() + word.size())
+    throw InputError("'" + word + "' is not a number");
+  if (!std::isfinite(v)) throw InputError("'" + word + "' is not a finite number");
+  return v;
+}
+
+template <int D>
+std::vector<ElementCorners<D>> sorted_corners(const Mesh<D>& mesh) {
+  std::vector<ElementCorners<D>> out;
+  const auto& points = mesh.points();
+  for (const auto& e : mesh.elements()) {
+    ElementCorners<D> c;
+    for (int i = 0; i <= D; ++i) c[std::size_t(i)] = points[e[std::size_t(i)]];
+    std::sort(c.begin(), c.end());
+    out.push_back(c);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+template <int D>
+MeshDelta<D> diff(const std::vector<ElementCorners<D>>& before, const std::vector<ElementCorners<D>>& after) {
+  MeshDelta<D> d;
+  std::set_difference(before.begin(), before.end(), after.begin(), after.end(), std::back_inserter(d.removed));
+  std::set_difference(after.begin(), after.end(), before.begin(), before.end(), std::back_inserter(d.added));
+  return d;
+}
+
+template <int D>
+Domain2 initial_domain(const io::InputSet& set) {
+  if constexpr (D == 2) return set.domain;
+  return {};
+}
+
+}  // namespace
+
+template <int D>
+EditSession<D>::EditSession(const io::InputSet& set, double rho, std::optional<BoxTransform<D>> box, PreviewArgs preview)
+    : frame_(UserFrame::of(set)),
+      rho_(rho),
+      preview_(std::move(preview)),
+      set_([&] {
+        try {
+          return DynamicWellSpaced<D>(input_points<D>(set), engine_parameters<D>(rho), box);
+        } catch (const PointInputError& e) {
+          rethrow_with_origin(e, set);
+        }
+      }()),
+      domain_(initial_domain<D>(set)),
+      mesh_(make_mesh<D>(set_.points(), set_.input_count(), domain_)),
+      next_id_(set.size()) {
+  preview_.rho = rho;
+  for (std::size_t r = 0; r < domain_.rings.size(); ++r) {
+    std::vector<std::size_t> ids;
+    for (std::size_t k = 0; k < domain_.rings[r].points.size(); ++k) {
+      const std::size_t id = set.ring_offsets.at(r) + k;
+      ids.push_back(id);
+      ring_of_[id] = {r, k};
+    }
+    ring_ids_.push_back(std::move(ids));
+  }
+}
+
+template <int D>
+json EditSession<D>::build_reply(double ms) const {
+  json r = {{"line", 0}, {"ok", true}, {"op", "build"}};
+  r["input_points"] = set_.input_count();
+  r["steiner_points"] = set_.points().size() - set_.input_count();
+  r["elements"] = mesh_.element_count();
+  std::vector<double> box(set_.box().origin.begin(), set_.box().origin.end());
+  box.push_back(set_.box().side);
+  r["box"] = box;
+  r["units"] = io::to_string(frame_.units);
+  if (!frame_.projection.is_none()) r["projection"] = frame_.projection.describe();
+  r["ms"] = ms;
+  return r;
+}
+
+template <int D>
+std::optional<json> EditSession<D>::run(std::size_t line, const std::string& text) {
+  const std::vector<std::string> words = split_words(text);
+  if (words.empty() || words[0][0] == '#') return std::nullopt;
+  const std::string& op = words[0];
+  json reply;
+  try {
+    if (op == "add") reply = add(words);
+    else if (op == "remove") reply = remove(words);
+    else if (op == "move") reply = move(words);
+    else if (op == "export") reply = export_to({op, rest_after_op(text)});
+    else if (op == "preview") reply = preview({op, rest_after_op(text)});
+    else if (op == "preview-change") reply = preview_change({op, rest_after_op(text)});
+    else if (op == "stats") {
+      if (words.size() != 1) throw InputError("stats takes no arguments");
+      reply = stats();
+    } else {
+      throw InputError("unknown edit '" + op + "' (add, remove, move, export, preview, preview-change, stats)");
+    }
+  } catch (const InputError& e) {
+    return json{{"line", line}, {"ok", false}, {"op", op}, {"error", e.what()}};
+  } catch (const ParameterError& e) {
+    return json{{"line", line}, {"ok", false}, {"op", op}, {"error", e.what()}};
+  }
+  json out = {{"line", line}, {"ok", true}, {"op", op}};
+  out.update(reply);
+  return out;
+}
+
+template <int D>
+Point<D> EditSession<D>::parse_point(const std::vector<std::string>& words, std::size_t first) const {
+  const std::size_t given = words.size() - first;
+  if (given != std::size_t(D))
+    throw InputError(words[0] + " takes " + (first == 2 ? "ID " : "") + (D == 2 ? "X Y" : "X Y Z") + " in a " +
+                     std::to_string(D) + "D session");
+  Point<D> p;
+  for (int i = 0; i < D; ++i) p[std::size_t(i)] = parse_number(words[first + std::size_t(i)]);
+  if (!set_.box().contains(p)) {
+    Point<D> hi = set_.box().origin;
+    for (auto& x : hi) x += set_.box().side;
+    throw InputError("the point " + frame_.point(p) + " is outside the session's box, " + frame_.point(set_.box().origin) +
+                     " to " + frame_.point(hi) + "; the box never grows (start the session with a larger --box)");
+  }
+  return p;
+}
+
+template <int D>
+std::size_t EditSession<D>::parse_id(const std::string& word) const {
+  std::size_t id = 0;
+  const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), id);
+  if (ec != std::errc{} || end != word.data() + word.size()) throw InputError("'" + word + "' is not an id");
+  return id;
+}
+
+template <int D>
+void EditSession<D>::check_id(std::size_t id) const {
+  if (set_.has_input(id)) return;
+  if (id < next_id_) throw InputError("input point " + std::to_string(id) + " was removed");
+  throw InputError("no input point " + std::to_string(id) + " (ids so far: 0.." + std::to_string(next_id_ - 1) + ")");
+}
+
+template <int D>
+std::optional<Domain2> EditSession<D>::domain_with(std::size_t id, const std::optional<Point<D>>& to) const {
+  if constexpr (D != 2) {
+    return std::nullopt;
+  } else {
+    const auto it = ring_of_.find(id);
+    if (it == ring_of_.end()) return std::nullopt;
+    const auto [r, k] = it->second;
+    Domain2 d = domain_;
+    auto& ring = d.rings[r].points;
+    if (to) {
+      ring[k] = *to;
+    } else {
+      if (ring.size() <= 3)
+        throw InputError("input point " + std::to_string(id) + " is one of the last three points of ring " +
+                         std::to_string(r + 1) + "; it cannot be removed");
+      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
+    }
+    if (const auto defect = io::find_ring_defect(d))
+      throw InputError(std::string(to ? "moving" : "removing") + " input point " + std::to_string(id) +
+                       " would break the shoreline: " + defect->describe());
+    return d;
+  }
+}
+
+template <int D>
+void EditSession<D>::commit_ring_removal(std::size_t id) {
+  const auto it = ring_of_.find(id);
+  if (it == ring_of_.end()) return;
+  const auto [r, k] = it->second;
+  ring_of_.erase(it);
+  auto& ids = ring_ids_[r];
+  ids.erase(ids.begin() + static_cast<std::ptrdiff_t>(k));
+  for (std::size_t j = k; j < ids.size(); ++j) ring_of_[ids[j]] = {r, j};
+}
+
+template <int D>
+void EditSession<D>::add_counts(const UpdateReport<D>& report, json& reply) const {
+  reply["steiner_added"] = report.steiner_added.size();
+  reply["steiner_removed"] = report.steiner_removed.size();
+  reply["operations"] = report.operations_touched();
+}
+
+template <int D>
+void EditSession<D>::update_mesh(PointChange<D> change, std::optional<Domain2> new_domain, json& reply) {
+  const auto start = Clock::now();
+  bool rebuilt = false;
+  if (!new_domain) {
+    try {
+      last_delta_ = mesh_.apply(change);
+    } catch (const InputError&) {
+      rebuilt = true;  // the mesh and the engine disagree: rebuild from the engine's points
+    }
+  }
+  if (new_domain || rebuilt) {
+    // The water changed (a shore point moved or went): the same points, clipped to the new rings.
+    const auto before = sorted_corners<D>(mesh_);
+    if (new_domain) domain_ = std::move(*new_domain);
+    mesh_ = make_mesh<D>(set_.points(), set_.input_count(), domain_);
+    last_delta_ = diff<D>(before, sorted_corners<D>(mesh_));
+  }
+  reply["elements_removed"] = last_delta_.removed.size();
+  reply["elements_added"] = last_delta_.added.size();
+  reply["elements_changed"] = last_delta_.removed.size() + last_delta_.added.size();
+  reply["elements"] = mesh_.element_count();
+  reply["input_points"] = set_.input_count();
+  reply["steiner_points"] = set_.points().size() - set_.input_count();
+  reply["mesh_ms"] = ms_since(start);
+}
+
+template <int D>
+json EditSession<D>::point_json(const Point<D>& p) const {
+  return json(std::vector<double>(p.begin(), p.end()));
+}
+
+template <int D>
+json EditSession<D>::add(const std::vector<std::string>& words) {
+  const Point<D> p = parse_point(words, 1);
+  const auto start = Clock::now();
+  UpdateReport<D> report;
+  const std::size_t id = set_.add(p, &report);
+  next_id_ = std::max(next_id_, id + 1);
+  json reply = {{"id", id}, {"point", point_json(p)}, {"at", frame_.point(p)}};
+  reply["engine_ms"] = ms_since(start);
+  add_counts(report, reply);
+  PointChange<D> change{report.steiner_removed, {p}, 1};
+  change.added.insert(change.added.end(), report.steiner_added.begin(), report.steiner_added.end());
+  update_mesh(std::move(change), std::nullopt, reply);
+  reply["ms"] = ms_since(start);
+  return reply;
+}
+
+template <int D>
+json EditSession<D>::remove(const std::vector<std::string>& words) {
+  if (words.size() != 2) throw InputError("remove takes one ID");
+  const std::size_t id = parse_id(words[1]);
+  check_id(id);
+  const Point<D> old = set_.input_point(id);
+  std::optional<Domain2> domain = domain_with(id, std::nullopt);
+  const auto start = Clock::now();
+  UpdateReport<D> report;
+  set_.remove(id, &report);
+  commit_ring_removal(id);
+  json reply = {{"id", id}, {"point", point_json(old)}, {"at", frame_.point(old)}};
+  reply["engine_ms"] = ms_since(start);
+  add_counts(report, reply);
+  PointChange<D> change{{old}, report.steiner_added, 0};
+  change.removed.insert(change.removed.end(), report.steiner_removed.begin(), report.steiner_removed.end());
+  update_mesh(std::move(change), std::move(domain), reply);
+  reply["ms"] = ms_since(start);
+  return reply;
+}
+
+template <int D>
+json EditSession<D>::move(const std::vector<std::string>& words) {
+  if (words.size() < 2) throw InputError(std::string("move takes ID ") + (D == 2 ? "X Y" : "X Y Z"));
+  const std::size_t id = parse_id(words[1]);
+  const Point<D> p = parse_point(words, 2);
+  check_id(id);
+  const Point<D> old = set_.input_point(id);
+  std::optional<Domain2> domain = domain_with(id, p);
+  const auto start = Clock::now();
+  UpdateReport<D> report;
+  set_.move(id, p, &report);
+  json reply = {{"id", id}, {"point", point_json(p)}, {"at", frame_.point(p)}, {"from", frame_.point(old)}};
+  reply["engine_ms"] = ms_since(start);
+  add_counts(report, reply);
+  PointChange<D> change{{old}, {p}, 1};
+  change.removed.insert(change.removed.end(), report.steiner_removed.begin(), report.steiner_removed.end());
+  change.added.insert(change.added.end(), report.steiner_added.begin(), report.steiner_added.end());
+  update_mesh(std::move(change), std::move(domain), reply);
+  reply["ms"] = ms_since(start);
+  return reply;
+}
+
+template <int D>
+json EditSession<D>::export_to(const std::vector<std::string>& words) {
+  if (words.size() != 2 || words[1].empty()) throw InputError("export takes a PATH (.csv for the point set, or a mesh)");
+  const std::filesystem::path path = words[1];
+  const auto start = Clock::now();
+  json reply = {{"path", path.string()}};
+  if (is_point_set_path(path)) {
+    const auto points = set_.points();
+    io::write_point_set_csv<D>(path, set_.box(), points);
+    reply["points"] = points.size();
+  } else {
+    export_mesh_file<D>(mesh_, path, std::nullopt, frame_);
+    reply["elements"] = mesh_.element_count();
+  }
+  reply["ms"] = ms_since(start);
+  return reply;
+}
+
+template <int D>
+json EditSession<D>::preview(const std::vector<std::string>& words) {
+  if (words.size() != 2 || words[1].empty()) throw InputError("preview takes a PATH (.png)");
+  const auto start = Clock::now();
+  write_preview<D>(mesh_, words[1], preview_);
+  return {{"path", words[1]}, {"ms", ms_since(start)}};
+}
+
+template <int D>
+json EditSession<D>::preview_change(const std::vector<std::string>& words) {
+  if (words.size() != 2 || words[1].empty()) throw InputError("preview-change takes a PATH (.png)");
+  if constexpr (D != 2) {
+    throw InputError("preview-change is for 2D sessions");
+  } else {
+    const auto start = Clock::now();
+    const io::MeshSnapshot<2> snapshot(mesh_);
+    io::render_delta_preview(words[1], snapshot.view(), last_delta_, preview_options(preview_));
+    return {{"path", words[1]}, {"elements_changed", last_delta_.removed.size() + last_delta_.added.size()},
+            {"ms", ms_since(start)}};
+  }
+}
+
+template <int D>
+json EditSession<D>::stats() const {
+  const auto start = Clock::now();
+  const QualityNumbers q = quality_numbers<D>(mesh_, rho_, set_.box(), frame_);
+  json r;
+  r["input_points"] = set_.input_count();
+  r["steiner_points"] = set_.points().size() - set_.input_count();
+  r["next_id"] = next_id_;
+  r["elements"] = q.elements;
+  r["min_angle"] = q.min_angle;
+  r["max_angle"] = q.max_angle;
+  r["min_angle_bound"] = q.min_angle_bound;
+  r["covered"] = q.covered;
+  r["covered_meeting_bound"] = q.covered_meeting_bound;
+  r["covered_max_radius_edge"] = q.covered_max_radius_edge;
+  r["rho"] = q.rho;
+  if (q.shore_segments) {
+    r["shore_segments"] = *q.shore_segments;
+    r["shore_covered"] = *q.shore_covered;
+  }
+  r["ms"] = ms_since(start);
+  return r;
+}
+
+namespace {
+std::string count(const json& r, const char* key) { return r.contains(key) ? r[key].dump() : "?"; }
+std::string millis(const json& r) { return approx(r.value("ms", 0.0), 3) + " ms"; }
+}  // namespace
+
+std::string reply_text(const json& r) {
+  const std::string line = "line " + r["line"].dump() + ": ";
+  const std::string op = r.value("op", "");
+  if (!r.value("ok", false)) return line + "error: " + r.value("error", "");
+  auto change = [&] {
+    return ": +" + count(r, "steiner_added") + " Steiner, -" + count(r, "steiner_removed") + " Steiner, " +
+           count(r, "elements_changed") + " elements changed, " + millis(r);
+  };
+  if (op == "build")
+    return "built: " + count(r, "input_points") + " input points, " + count(r, "steiner_points") + " Steiner points, " +
+           count(r, "elements") + " elements, " + millis(r) + "; box " + r["box"].dump() + " (" +
+           r.value("units", "") + ")";
+  if (op == "add") return line + "added id " + count(r, "id") + " at " + r.value("at", "") + change();
+  if (op == "remove") return line + "removed id " + count(r, "id") + change();
+  if (op == "move") return line + "moved id " + count(r, "id") + " to " + r.value("at", "") + change();
+  if (op == "export" || op == "preview" || op == "preview-change")
+    return line + "wrote " + r.value("path", "") + ", " + millis(r);
+  if (op == "stats")
+    return line + "stats: " + count(r, "input_points") + " input points, " + count(r, "steiner_points") +
+           " Steiner points, " + count(r, "elements") + " elements, angles " + approx(r.value("min_angle", 0.0), 4) +
+           ".." + approx(r.value("max_angle", 0.0), 4) + " deg, bound met by " + count(r, "covered_meeting_bound") +
+           " of " + count(r, "covered") + " covered elements";
+  return line + r.dump();
+}
+
+template class EditSession<2>;
+template class EditSession<3>;
+
+}  // namespace shoremesh::tool

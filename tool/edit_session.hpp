@@ -1,0 +1,70 @@
+#pragma once
+// The state of `shoremesh edit`: the dynamic well-spaced set, its mesh, the water domain and the ids, kept
+// up to date one edit line at a time. Every line gets one reply (a JSON object, printed as JSON or as
+// text); a bad line gets an error reply and leaves the state as it was.
+#include <nlohmann/json.hpp>
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "pipeline.hpp"
+#include "shoremesh/io/input_set.hpp"
+#include "shoremesh/mesh.hpp"
+#include "shoremesh/well_spaced.hpp"
+#include "user_frame.hpp"
+
+namespace shoremesh::tool {
+
+template <int D>
+class EditSession {
+ public:
+  // Builds the set and the mesh of `set`'s points (ids 0..n-1 in reading order).
+  EditSession(const io::InputSet& set, double rho, std::optional<BoxTransform<D>> box, PreviewArgs preview);
+
+  // The reply to the initial build (op "build", line 0): counts, the box, and `ms`, the time it took.
+  nlohmann::json build_reply(double ms) const;
+
+  // Runs one edit line (1-based `line` for the reply). Blank and '#' lines give no reply (nullopt).
+  std::optional<nlohmann::json> run(std::size_t line, const std::string& text);
+
+ private:
+  nlohmann::json add(const std::vector<std::string>& words);
+  nlohmann::json remove(const std::vector<std::string>& words);
+  nlohmann::json move(const std::vector<std::string>& words);
+  nlohmann::json export_to(const std::vector<std::string>& words);
+  nlohmann::json preview(const std::vector<std::string>& words);
+  nlohmann::json preview_change(const std::vector<std::string>& words);
+  nlohmann::json stats() const;
+
+  Point<D> parse_point(const std::vector<std::string>& words, std::size_t first) const;
+  std::size_t parse_id(const std::string& word) const;
+  // The domain with input `id` at `to` (nullopt: removed); InputError when the rings would be invalid.
+  // nullopt when `id` is not a ring vertex.
+  std::optional<Domain2> domain_with(std::size_t id, const std::optional<Point<D>>& to) const;
+  void commit_ring_removal(std::size_t id);
+  // Updates the mesh for an engine change; fills the reply's element counts and timing.
+  void update_mesh(PointChange<D> change, std::optional<Domain2> new_domain, nlohmann::json& reply);
+  void add_counts(const UpdateReport<D>& report, nlohmann::json& reply) const;
+  void check_id(std::size_t id) const;
+  nlohmann::json point_json(const Point<D>& p) const;
+
+  UserFrame frame_;
+  double rho_;
+  PreviewArgs preview_;
+  DynamicWellSpaced<D> set_;
+  Domain2 domain_;
+  std::vector<std::vector<std::size_t>> ring_ids_;                          // ring r's vertices as input ids
+  std::unordered_map<std::size_t, std::pair<std::size_t, std::size_t>> ring_of_;  // id -> (ring, position)
+  Mesh<D> mesh_;
+  MeshDelta<D> last_delta_;
+  std::size_t next_id_ = 0;
+};
+
+// One reply as a line of text for a person.
+std::string reply_text(const nlohmann::json& reply);
+
+}  // namespace shoremesh::tool

@@ -1,0 +1,132 @@
+#include "input_args.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <filesystem>
+
+#include "progress.hpp"
+#include "shoremesh/error.hpp"
+
+namespace shoremesh::tool {
+
+void add_quiet_option(CLI::App* cmd, bool& quiet) {
+  cmd->add_flag("-q,--quiet", quiet, "No progress bar (it is drawn only when stderr is a terminal anyway)");
+}
+
+void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
+  auto* files = cmd->add_option("input", a.files,
+                                several ? "Input files: image (png/jpg/tif), GPS track (gpx, lat/lon csv), point "
+                                          "file (csv/txt/xyz), ring file, Triangle .node/.poly, GeoJSON"
+                                        : "The file to describe")
+                    ->required()
+                    ->check(CLI::ExistingFile);
+  if (!several) files->expected(1);
+  auto* group = cmd->add_option_group("Reading inputs");
+  group->add_option("--spacing", a.spacing,
+                    "Largest sample spacing along shorelines, tracks and segments, in the input's units "
+                    "(metres for georeferenced or lon/lat input, pixels for plain images; default: 4 pixels "
+                    "for images, the vertices as given otherwise)")
+      ->check(CLI::PositiveNumber);
+  group->add_option("--water", a.water,
+                    "Images: which side is water, 'light' (default), 'dark', or a colour ('#b0c4de', "
+                    "'176,196,222', 'lightsteelblue') for map images");
+  group->add_option("--threshold", a.threshold, "Images: grey level between water and land (default: Otsu)");
+  group->add_option("--colour-tolerance", a.colour_tolerance,
+                    "Images with --water COLOUR: RGB distance still counted as water (default 40)");
+  group->add_option("--min-area", a.min_area, "Images: drop islands and lakes under this many pixels (default 16)")
+      ->check(CLI::Range(3.0, 1e12));
+  group->add_flag("--largest-water", a.largest_water, "Images: keep only the largest body of water");
+  group->add_flag("--lonlat", a.lonlat, "Point and ring files hold lon,lat degrees (projected to metres)");
+  group->add_option("--projection", a.projection,
+                    "Projection of lon/lat input: 'utm' (the data's UTM zone, default) or 'local' "
+                    "(transverse Mercator centred on the data)")
+      ->check(CLI::IsMember({"utm", "local"}));
+  add_quiet_option(cmd, a.quiet);
+}
+
+namespace {
+
+bool parse_int(const std::string& s, int& v) {
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  return ec == std::errc{} && end == s.data() + s.size();
+}
+
+}  // namespace
+
+std::array<int, 3> parse_colour(const std::string& text) {
+  std::string t;
+  for (char c : text)
+    if (!std::isspace(static_cast<unsigned char>(c))) t += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  static const std::pair<const char*, std::array<int, 3>> names[] = {
+      {"blue", {0, 0, 255}},       {"lightsteelblue", {176, 196, 222}}, {"lightblue", {173, 216, 230}},
+      {"cyan", {0, 255, 255}},     {"navy", {0, 0, 128}},               {"white", {255, 255, 255}},
+      {"black", {0, 0, 0}},        {"steelblue", {70, 130, 180}},       {"skyblue", {135, 206, 235}}};
+  for (const auto& [name, rgb] : names)
+    if (t == name) return rgb;
+  std::array<int, 3> rgb{};
+  if (t.size() == 7 && t[0] == '#') {
+    for (int i = 0; i < 3; ++i) {
+      const std::string h = t.substr(1 + 2 * i, 2);
+      const auto [end, ec] = std::from_chars(h.data(), h.data() + 2, rgb[i], 16);
+      if (ec != std::errc{} || end != h.data() + 2) throw InputError("bad colour '" + text + "' (expected #rrggbb)");
+    }
+    return rgb;
+  }
+  std::size_t start = 0;
+  for (int i = 0; i < 3; ++i) {
+    const std::size_t comma = t.find(',', start);
+    const std::string part = t.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (!parse_int(part, rgb[i]) || rgb[i] < 0 || rgb[i] > 255 || (i < 2) == (comma == std::string::npos))
+      throw InputError("bad --water '" + text + "': expected light, dark, #rrggbb, R,G,B (0..255) or a colour name");
+    start = comma + 1;
+  }
+  return rgb;
+}
+
+io::InputOptions input_options(const InputArgs& a) {
+  io::InputOptions o;
+  o.lonlat = a.lonlat;
+  o.projection_choice = a.projection == "local" ? io::ProjectionChoice::LocalTransverseMercator : io::ProjectionChoice::Utm;
+  if (a.water == "light") {
+    o.image.water = io::WaterSide::Light;
+  } else if (a.water == "dark") {
+    o.image.water = io::WaterSide::Dark;
+  } else {
+    o.image.water = io::WaterSide::Colour;
+    o.image.water_colour = parse_colour(a.water);
+  }
+  o.image.threshold = a.threshold;
+  o.image.colour_tolerance = a.colour_tolerance;
+  o.image.min_area = a.min_area;
+  o.image.largest_water_only = a.largest_water;
+  if (a.spacing) {
+    o.image.spacing = *a.spacing;
+    o.image.spacing_unit = io::ImageTraceOptions::SpacingUnit::Map;
+    o.track.spacing = *a.spacing;
+    o.poly.spacing = *a.spacing;
+    o.geojson.spacing = *a.spacing;
+  }
+  return o;
+}
+
+io::InputSet read_user_inputs(const InputArgs& a, Progress& progress) {
+  const io::InputOptions options = input_options(a);
+  std::vector<io::InputSet> sets;
+  for (const std::string& file : a.files) {
+    const bool image = io::detect_input_format(file) == io::InputFormat::Image;
+    progress.stage((image ? "tracing " : "reading ") + std::filesystem::path(file).filename().string());
+    // One projection for all: the first lon/lat input fixes it for the ones after it (inputs before it
+    // have none).
+    io::InputOptions o = options;
+    for (const auto& s : sets)
+      if (!s.projection.is_none()) {
+        o.projection = s.projection;
+        break;
+      }
+    sets.push_back(io::read_input(file, o));
+  }
+  return sets.size() == 1 ? std::move(sets.front()) : io::merge(sets);
+}
+
+}  // namespace shoremesh::tool

@@ -1,0 +1,43 @@
+#pragma once
+// The options every command that reads inputs shares (mesh, edit, info): the files and how to read them.
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "shoremesh/io/input_set.hpp"
+#include "shoremesh/io/read_input.hpp"
+
+namespace shoremesh::tool {
+
+class Progress;
+
+struct InputArgs {
+  std::vector<std::string> files;
+  std::optional<double> spacing;   // along shorelines, tracks and segments, in the input's units
+  std::string water = "light";     // dark | light | a colour
+  std::optional<double> threshold;
+  double colour_tolerance = 40;
+  double min_area = 16;
+  bool largest_water = false;
+  bool lonlat = false;
+  std::string projection = "utm";  // utm | local
+  bool quiet = false;
+};
+
+// Registers INPUT... and the reading options on `cmd`. `several`: more than one input file allowed.
+void add_input_options(CLI::App* cmd, InputArgs& args, bool several = true);
+// Registers --quiet.
+void add_quiet_option(CLI::App* cmd, bool& quiet);
+
+// The io options the arguments ask for (InputError for a bad --water colour).
+io::InputOptions input_options(const InputArgs& args);
+
+// Reads and merges the inputs (one progress stage per file).
+io::InputSet read_user_inputs(const InputArgs& args, Progress& progress);
+
+// "#rrggbb", "R,G,B" or a few names (blue, lightsteelblue, lightblue, cyan, navy, white, black).
+std::array<int, 3> parse_colour(const std::string& text);
+
+}  // namespace shoremesh::tool

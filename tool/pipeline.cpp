@@ -1,0 +1,210 @@
+#include "pipeline.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <sstream>
+
+#include "shoremesh/error.hpp"
+
+namespace shoremesh::tool {
+
+template <int D>
+Parameters<D> engine_parameters(double rho) {
+  Parameters<D> parameters;
+  parameters.rho = rho;
+  if (parameters.beta <= rho) parameters.beta = 1.5 * rho;  // keep the picking region non-empty
+  return parameters;
+}
+
+template <int D>
+std::optional<BoxTransform<D>> parse_box(const std::vector<double>& numbers) {
+  if (numbers.empty()) return std::nullopt;
+  if (numbers.size() != D + 1)
+    throw InputError("--box takes " + std::to_string(D + 1) + " numbers for " + std::to_string(D) + "D input (X0 Y0" +
+                     (D == 3 ? " Z0" : "") + " SIDE)");
+  BoxTransform<D> b;
+  for (int i = 0; i < D; ++i) b.origin[i] = numbers[std::size_t(i)];
+  b.side = numbers[D];
+  if (!(b.side > 0)) throw InputError("--box: the side must be positive");
+  return b;
+}
+
+io::ExportFormat parse_export_format(const std::string& name) {
+  using F = io::ExportFormat;
+  if (name == "msh") return F::Gmsh;
+  if (name == "vtu") return F::Vtu;
+  if (name == "node") return F::Triangle;
+  if (name == "fort14") return F::Adcirc;
+  if (name == "geojson") return F::GeoJson;
+  if (name == "obj") return F::Obj;
+  if (name == "ply") return F::Ply;
+  if (name == "off") return F::Off;
+  throw ParameterError("unknown format '" + name + "' (msh, vtu, node, fort14, geojson, obj, ply, off)");
+}
+
+bool is_point_set_path(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == ".csv";
+}
+
+template <int D>
+std::vector<Point<D>> input_points(const io::InputSet& set) {
+  if constexpr (D == 2) {
+    if (set.dimension == 2) return set.points;
+    std::vector<Point2> out;
+    out.reserve(set.points3.size());
+    for (const auto& p : set.points3) out.push_back({p[0], p[1]});
+    return out;
+  } else {
+    if (set.dimension != 3) throw InputError("--dim 3 needs 3D input (a point file with three columns)");
+    return set.points3;
+  }
+}
+
+void rethrow_with_origin(const PointInputError& e, const io::InputSet& set) {
+  if (e.points().empty() || e.points().front() >= set.origins.size()) throw e;
+  const io::PointOrigin& o = set.origins[e.points().front()];
+  const io::Source& s = set.sources.at(o.source);
+  if (s.location == io::Source::Location::Line && o.ring == io::PointOrigin::kNoRing)
+    throw InputError(e.message(), s.file, o.location);
+  throw InputError(io::describe_origin(set, e.points().front()) + ": " + e.message());
+}
+
+template <int D>
+Mesh<D> make_mesh(std::span<const Point<D>> points, std::size_t input_count, const Domain2& domain) {
+  if constexpr (D == 2)
+    if (!domain.empty()) return Mesh<2>(points, input_count, domain);
+  return Mesh<D>(points, input_count);
+}
+
+template <int D>
+void export_mesh_file(const Mesh<D>& mesh, const std::filesystem::path& path, std::optional<io::ExportFormat> format,
+                      const UserFrame& frame) {
+  const io::MeshSnapshot<D> snapshot(mesh);
+  if (D == 2 && !frame.projection.is_none()) {
+    const io::Projection projection = frame.projection;
+    io::export_mesh<D>(path, snapshot.view([projection](const Point2& p) {
+      const io::LonLat ll = projection.reverse(p);
+      return Point2{ll.lon, ll.lat};
+    }), format);
+  } else {
+    io::export_mesh<D>(path, snapshot.view(), format);
+  }
+}
+
+io::PreviewOptions preview_options(const PreviewArgs& args) {
+  io::PreviewOptions o;
+  o.width = args.width;
+  o.rho = args.rho;
+  if (args.colouring == "quality") o.colouring = io::PreviewColouring::Quality;
+  else if (args.colouring == "size") o.colouring = io::PreviewColouring::Size;
+  else if (args.colouring != "none") throw ParameterError("--preview-colour must be none, quality or size");
+  return o;
+}
+
+template <int D>
+void write_preview(const Mesh<D>& mesh, const std::filesystem::path& path, const PreviewArgs& args) {
+  const io::MeshSnapshot<D> snapshot(mesh);
+  io::render_preview<D>(path, snapshot.view(), preview_options(args));
+}
+
+template <int D>
+QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransform<D>& box, const UserFrame& frame) {
+  const QualityReport<D> r = mesh.quality(rho, box);
+  QualityNumbers q;
+  q.elements = r.elements;
+  // Points of the mesh: those an element uses (the fill on land is not part of it).
+  const auto elements = mesh.elements();
+  std::vector<bool> used(mesh.points().size(), elements.empty());
+  for (const auto& e : elements)
+    for (auto i : e) used[i] = true;
+  for (std::size_t i = 0; i < used.size(); ++i) {
+    if (!used[i]) continue;
+    ++q.points;
+    ++(mesh.kinds()[i] == PointKind::Input ? q.input_points : q.steiner_points);
+  }
+  q.min_angle = r.min_angle;
+  q.max_angle = r.max_angle;
+  q.min_angle_bound = r.min_angle_bound;
+  q.rho = r.rho;
+  q.max_radius_edge = r.max_radius_edge;
+  q.covered_max_radius_edge = r.covered_max_radius_edge;
+  q.covered = r.covered;
+  q.covered_meeting_bound = r.covered_meeting_bound;
+  q.meeting_bound = r.meeting_bound;
+  if (!r.worst.empty()) q.worst_at = frame.point(r.worst.front().shape.centroid);
+  if constexpr (D == 2) {
+    if (!mesh.domain().empty()) {
+      const ShorelineReport s = mesh.shoreline_crossings();
+      q.shore_segments = s.segments;
+      q.shore_covered = s.covered;
+      q.shore_worst_depth = s.worst_depth;
+      q.shore_worst_depth_text = frame.length(s.worst_depth);
+    }
+  }
+  return q;
+}
+
+std::string quality_text(const QualityNumbers& q, int dimension) {
+  std::ostringstream out;
+  const char* elements = dimension == 2 ? "triangles" : "tetrahedra";
+  const double percent =
+      q.covered == 0 ? 100.0 : 100.0 * static_cast<double>(q.covered_meeting_bound) / static_cast<double>(q.covered);
+  out << "quality: " << q.elements << ' ' << elements << ", " << q.points << " points (" << q.input_points << " input, "
+      << q.steiner_points << " Steiner); bound met by " << q.covered_meeting_bound << " of " << q.covered
+      << " covered " << elements << " (" << approx(percent, 4) << "%)\n";
+  out << "  " << (dimension == 2 ? "angles " : "dihedral angles ") << approx(q.min_angle, 4) << ".."
+      << approx(q.max_angle, 4) << " deg";
+  if (dimension == 2) out << " (guaranteed >= " << approx(q.min_angle_bound, 4) << " deg for rho = " << approx(q.rho) << ")";
+  out << "; radius-edge <= " << approx(q.max_radius_edge, 4) << ", covered <= " << approx(q.covered_max_radius_edge, 4)
+      << " (bound " << approx(q.rho, 4) << ")\n";
+  out << "  covered: " << elements << " whose circumcentre lies in the box, where rho-well-spacing guarantees the bound; "
+      << q.meeting_bound << " of " << q.elements << " meet it overall\n";
+  if (!q.worst_at.empty()) out << "  worst " << (dimension == 2 ? "triangle" : "tetrahedron") << " near " << q.worst_at << "\n";
+  if (q.shore_segments) {
+    out << "  shoreline: " << *q.shore_covered << " of " << *q.shore_segments << " shore segments are mesh edges";
+    if (*q.shore_covered < *q.shore_segments)
+      out << "; the others are crossed by mesh edges at most " << q.shore_worst_depth_text
+          << " from the shore (sample the shore finer with --spacing)";
+    out << "\n";
+  }
+  return out.str();
+}
+
+std::string describe_input(const io::InputSet& set) {
+  std::ostringstream out;
+  std::size_t shores = 0, islands = 0, ring_points = 0;
+  for (const Ring& r : set.domain.rings) {
+    ++(r.role == RingRole::Shore ? shores : islands);
+    ring_points += r.points.size();
+  }
+  out << "input: " << set.size() << ' ' << set.dimension << "D points";
+  if (!set.domain.empty())
+    out << ", " << set.domain.rings.size() << " rings (" << shores << " shore, " << islands << " island; " << ring_points
+        << " ring points)";
+  out << "; " << io::to_string(set.units);
+  if (!set.projection.is_none()) out << ", projected with " << set.projection.describe();
+  out << "\n";
+  for (const std::string& note : set.notes) out << "  " << note << "\n";
+  return out.str();
+}
+
+template Parameters<2> engine_parameters<2>(double);
+template Parameters<3> engine_parameters<3>(double);
+template std::optional<BoxTransform<2>> parse_box<2>(const std::vector<double>&);
+template std::optional<BoxTransform<3>> parse_box<3>(const std::vector<double>&);
+template std::vector<Point<2>> input_points<2>(const io::InputSet&);
+template std::vector<Point<3>> input_points<3>(const io::InputSet&);
+template Mesh<2> make_mesh<2>(std::span<const Point<2>>, std::size_t, const Domain2&);
+template Mesh<3> make_mesh<3>(std::span<const Point<3>>, std::size_t, const Domain2&);
+template void export_mesh_file<2>(const Mesh<2>&, const std::filesystem::path&, std::optional<io::ExportFormat>,
+                                  const UserFrame&);
+template void export_mesh_file<3>(const Mesh<3>&, const std::filesystem::path&, std::optional<io::ExportFormat>,
+                                  const UserFrame&);
+template void write_preview<2>(const Mesh<2>&, const std::filesystem::path&, const PreviewArgs&);
+template void write_preview<3>(const Mesh<3>&, const std::filesystem::path&, const PreviewArgs&);
+template QualityNumbers quality_numbers<2>(const Mesh<2>&, double, const BoxTransform<2>&, const UserFrame&);
+template QualityNumbers quality_numbers<3>(const Mesh<3>&, double, const BoxTransform<3>&, const UserFrame&);
+
+}  // namespace shoremesh::tool

@@ -1,0 +1,86 @@
+#pragma once
+// The steps `mesh` and `edit` share, each a call into the library: engine parameters and box from the
+// options, the mesh of a point set (clipped to the water when the input has rings), exports, previews and
+// the quality summary in the user's units.
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "shoremesh/box_transform.hpp"
+#include "shoremesh/domain.hpp"
+#include "shoremesh/error.hpp"
+#include "shoremesh/io/export.hpp"
+#include "shoremesh/io/input_set.hpp"
+#include "shoremesh/io/preview.hpp"
+#include "shoremesh/mesh.hpp"
+#include "shoremesh/parameters.hpp"
+#include "shoremesh/well_spaced.hpp"
+#include "user_frame.hpp"
+
+namespace shoremesh::tool {
+
+template <int D>
+Parameters<D> engine_parameters(double rho);
+
+// --box X0 Y0 [Z0] SIDE (empty: none). InputError for the wrong count or a non-positive side.
+template <int D>
+std::optional<BoxTransform<D>> parse_box(const std::vector<double>& numbers);
+
+// "msh", "vtu", "node", "fort14", "geojson", "obj", "ply", "off" (ParameterError otherwise).
+io::ExportFormat parse_export_format(const std::string& name);
+// True when `path` names the point-set CSV (`.csv`), not a mesh.
+bool is_point_set_path(const std::filesystem::path& path);
+
+// The input points of the chosen dimension (3D points dropped to x, y for dim 2). InputError when dim 3
+// is asked of 2D input.
+template <int D>
+std::vector<Point<D>> input_points(const io::InputSet& set);
+
+// An engine error about particular input points, said with the file and line they came from.
+[[noreturn]] void rethrow_with_origin(const PointInputError& e, const io::InputSet& set);
+
+// The Delaunay mesh of `points` (the first `input_count` are input points); in 2D only the water of
+// `domain` when it has rings.
+template <int D>
+Mesh<D> make_mesh(std::span<const Point<D>> points, std::size_t input_count, const Domain2& domain);
+
+// Exports `mesh` to `path` (format from the extension unless given); GeoJSON and fort.14 in lon/lat when
+// the input was projected.
+template <int D>
+void export_mesh_file(const Mesh<D>& mesh, const std::filesystem::path& path, std::optional<io::ExportFormat> format,
+                      const UserFrame& frame);
+
+struct PreviewArgs {
+  std::string colouring = "none";  // none | quality | size
+  int width = 1024;
+  double rho = 1.4142135623730951;
+};
+io::PreviewOptions preview_options(const PreviewArgs& args);
+
+template <int D>
+void write_preview(const Mesh<D>& mesh, const std::filesystem::path& path, const PreviewArgs& args);
+
+// The numbers of the quality summary, for text and JSON.
+struct QualityNumbers {
+  std::size_t elements = 0, points = 0, input_points = 0, steiner_points = 0;
+  double min_angle = 0, max_angle = 0, min_angle_bound = 0, rho = 0;
+  double max_radius_edge = 0, covered_max_radius_edge = 0;
+  std::size_t covered = 0, covered_meeting_bound = 0, meeting_bound = 0;
+  std::string worst_at;                 // the worst element's centroid in the user's frame
+  std::optional<std::size_t> shore_segments, shore_covered;
+  double shore_worst_depth = 0;
+  std::string shore_worst_depth_text;  // in the user's units
+};
+
+template <int D>
+QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransform<D>& box, const UserFrame& frame);
+
+// A few lines for a person, the first "quality: ..." one stable for scripts.
+std::string quality_text(const QualityNumbers& q, int dimension);
+
+// What the input holds, a few lines (files, points, rings, units, projection, notes).
+std::string describe_input(const io::InputSet& set);
+
+}  // namespace shoremesh::tool
