@@ -155,15 +155,16 @@ QualityReport<D> quality_report(std::span<const Point<D>> points, std::span<cons
     r.min_radius_edge = std::min(r.min_radius_edge, s.radius_edge);
     r.max_radius_edge = std::max(r.max_radius_edge, s.radius_edge);
     const bool meets = s.radius_edge <= tolerance;
+    const bool covered = in_box(s.circumcentre);
     r.meeting_bound += meets;
-    if (in_box(s.circumcentre)) {
+    if (covered) {
       ++r.covered;
       r.covered_meeting_bound += meets;
       r.covered_max_radius_edge = std::max(r.covered_max_radius_edge, s.radius_edge);
     }
     add_to(r.min_angle_histogram, s.min_angle);
     add_to(r.radius_edge_histogram, s.radius_edge);
-    shapes.push_back({e, s});
+    shapes.push_back({e, s, covered});
   }
   if (elements.empty()) r.min_angle = r.min_radius_edge = 0;
   const std::size_t k = std::min(worst_count, shapes.size());
@@ -186,7 +187,7 @@ std::string QualityReport<D>::summary() const {
     out << "  element " << w.element << " at (";
     for (int i = 0; i < D; ++i) out << (i ? ", " : "") << w.shape.centroid[i];
     out << "): radius-edge " << w.shape.radius_edge << ", angles " << w.shape.min_angle << ".." << w.shape.max_angle
-        << "\n";
+        << (w.covered ? "" : " (circumcentre outside the box: not covered by the bound)") << "\n";
   }
   return out.str();
 }

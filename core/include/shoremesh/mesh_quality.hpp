@@ -39,6 +39,7 @@ template <int D>
 struct WorstElement {
   std::size_t element = 0;  // index into the element list the report was made from
   ElementShape<D> shape;
+  bool covered = false;     // circumcentre in the box: the rho bound applies to this element
 };
 
 template <int D>
