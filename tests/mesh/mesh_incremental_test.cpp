@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <set>
 
@@ -122,6 +123,66 @@ TEST(MeshIncremental, InsertionChangesOnlyTheCavity) {
   EXPECT_EQ(d.added.size(), d.removed.size() + 2);
   for (const auto& e : d.added) EXPECT_NE(std::find(e.begin(), e.end(), Point2{0.5, 0.5}), e.end());
   EXPECT_LT(d.removed.size(), 20u);
+}
+
+// A grid is the degenerate case: four points on every circle, so the Delaunay mesh is not unique and the
+// diagonal CGAL picks depends on the order of insertion. What does not depend on it is checked: CGAL's
+// validity (which includes the empty-circle property), the element count, and the area covered.
+TEST(MeshIncremental, CocircularGridStaysDelaunayThroughChanges) {
+  std::vector<Point2> grid;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j) grid.push_back({i * 0.25, j * 0.25});
+  Mesh2 mesh(grid, grid.size());
+  EXPECT_EQ(mesh.element_count(), 2u * 19 * 19);
+  auto area = [](const Mesh2& m) {
+    double a = 0;
+    for (const auto& e : m.elements()) {
+      const auto &p = m.points()[e[0]], &q = m.points()[e[1]], &r = m.points()[e[2]];
+      a += 0.5 * ((q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0]));
+    }
+    return a;
+  };
+  std::mt19937 rng(5);
+  std::vector<Point2> present = grid, absent;
+  for (int step = 0; step < 40; ++step) {
+    PointChange<2> change;
+    std::shuffle(present.begin(), present.end(), rng);
+    std::shuffle(absent.begin(), absent.end(), rng);
+    // Keep the four corners, so the hull (and the area) stays the square.
+    for (std::size_t i = 0; i < present.size() && change.removed.size() < 3; ++i) {
+      const Point2 p = present[i];
+      if ((p[0] == 0 || p[0] == 4.75) && (p[1] == 0 || p[1] == 4.75)) continue;
+      change.removed.push_back(p);
+    }
+    change.added.assign(absent.begin(), absent.begin() + static_cast<std::ptrdiff_t>(std::min<std::size_t>(2, absent.size())));
+    for (const auto& p : change.removed) present.erase(std::find(present.begin(), present.end(), p));
+    for (const auto& p : change.added) absent.erase(std::find(absent.begin(), absent.end(), p));
+    present.insert(present.end(), change.added.begin(), change.added.end());
+    absent.insert(absent.end(), change.removed.begin(), change.removed.end());
+    const auto before = corner_list(mesh);
+    const MeshDelta<2> delta = mesh.apply(change);
+    mesh.check_valid();
+    // Whatever diagonals were chosen, the delta is exactly what changed.
+    std::set<ElementCorners<2>> expected(before.begin(), before.end());
+    for (const auto& e : delta.removed) ASSERT_EQ(expected.erase(e), 1u);
+    for (const auto& e : delta.added) ASSERT_TRUE(expected.insert(e).second);
+    ASSERT_EQ(std::vector<ElementCorners<2>>(expected.begin(), expected.end()), corner_list(mesh));
+    const Mesh2 fresh(present, present.size());
+    ASSERT_EQ(mesh.element_count(), fresh.element_count()) << "step " << step;
+    ASSERT_DOUBLE_EQ(area(mesh), 4.75 * 4.75) << "step " << step;
+  }
+}
+
+// Exact predicates: scaling by a power of two (exact in floating point) changes no decision, so the
+// mesh of the scaled points is the same mesh, element for element.
+TEST(MeshIncremental, ScalingByPowersOfTwoKeepsTheMesh) {
+  const auto points = random_points<2>(2000, 12);
+  const Mesh2 reference(points, points.size());
+  for (const double scale : {std::ldexp(1.0, -30), std::ldexp(1.0, 30)}) {
+    std::vector<Point2> scaled = points;
+    for (auto& p : scaled) p = {p[0] * scale, p[1] * scale};
+    EXPECT_EQ(Mesh2(scaled, scaled.size()).elements(), reference.elements()) << "scale " << scale;
+  }
 }
 
 TEST(MeshIncremental, KeepsInputAndSteinerKinds) {
