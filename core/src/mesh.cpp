@@ -184,8 +184,6 @@ class MeshTriangulation {
     }
   }
 
-  WaterSide classify_point(const Point2& p) const { return water_.classify(p); }
-
   // The keys of the water elements incident to any of `vertices`.
   std::set<Key> incident_keys(const std::vector<Vertex>& vertices) const {
     std::set<Key> keys;

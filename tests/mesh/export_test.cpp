@@ -305,6 +305,13 @@ TEST_F(MeshExport, FailedWriteLeavesExistingFileUntouched) {
   EXPECT_THROW(io::export_mesh<2>(dir.path("lake.xyz"), snap.view()), InputError);
 }
 
+TEST_F(MeshExport, ExplicitFormatOverridesTheFileName) {
+  io::export_mesh<2>(dir.path("lake.dat"), snap.view(), ExportFormat::Vtu);
+  expect_same_mesh<2>(meshio_read(dir.path("lake.dat"), "vtu"), snap.view(), "triangle", mesh.element_count());
+  const Mesh3 mesh3(mesh_test::random_points<3>(30, 8), 30);
+  EXPECT_THROW(io::export_mesh<3>(dir.path("cube.geojson"), MeshSnapshot<3>(mesh3).view()), InputError);
+}
+
 TEST_F(MeshExport, FormatFromPath) {
   EXPECT_EQ(io::export_format_from_path("a/b.MSH"), ExportFormat::Gmsh);
   EXPECT_EQ(io::export_format_from_path("fort.14"), ExportFormat::Adcirc);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <set>
 
 #include "shoremesh/io/preview_canvas.hpp"
@@ -50,7 +51,7 @@ PreviewImage draw_2d(const MeshView<2>& view, const PreviewOptions& o) {
     for (const auto& e : view.elements) corners.push_back({view.points[e[0]], view.points[e[1]], view.points[e[2]]});
     double small = std::numeric_limits<double>::infinity(), large = 0;
     for (const auto& c : corners) small = std::min(small, element_size(c)), large = std::max(large, element_size(c));
-    const double bound = std::asin(std::min(1.0, 1 / (2 * o.rho))) * 180 / 3.141592653589793;
+    const double bound = std::asin(std::min(1.0, 1 / (2 * o.rho))) * 180 / std::numbers::pi;
     for (const auto& c : corners) {
       const Rgb colour = o.colouring == PreviewColouring::Quality
                              ? quality_colour(element_shape<2>(c).min_angle, bound, 60)
