@@ -167,6 +167,9 @@ TEST(Preview, DeltaShowsRemovedRedAndAddedGreen) {
     }
   EXPECT_GT(checked_removed, 0u);
   EXPECT_GE(checked_added, 3u);
+  const Rgb new_point = pixel_at(image, 0.5, 0.5);  // drawn as a green dot
+  EXPECT_GT(new_point.g, 0.45f);
+  EXPECT_LT(new_point.r, 0.3f);
 }
 
 TEST(Preview, Surface3DAndSliceCoverTheCubeOnly) {

@@ -88,12 +88,21 @@ PreviewImage draw_delta_preview(const MeshView<2>& after, const MeshDelta<2>& de
   if (o.background) canvas.underlay(read_image(*o.background), o.background_extent);
   const Rgb grey{0.72f, 0.72f, 0.72f}, red{0.85f, 0.1f, 0.1f}, green{0.1f, 0.6f, 0.2f};
   for (const auto& [a, b] : unique_edges(after.elements)) canvas.line(xy(after.points[a]), xy(after.points[b]), o.line_width, grey);
-  // Removed first, so that where new elements overlap old ones the new colour shows.
+  // The region that changed is tinted green; removed edges in red, new ones in green on top.
+  for (const auto& c : delta.added) canvas.triangle(xy(c[0]), xy(c[1]), xy(c[2]), green, 0.15);
   for (const auto& [list, colour] : {std::pair{&delta.removed, red}, std::pair{&delta.added, green}})
-    for (const auto& c : *list) {
-      canvas.triangle(xy(c[0]), xy(c[1]), xy(c[2]), colour, 0.3);
+    for (const auto& c : *list)
       for (int i = 0; i < 3; ++i) canvas.line(xy(c[i]), xy(c[(i + 1) % 3]), o.line_width, colour);
-    }
+  // Points only in removed elements were removed; points only in added elements are new.
+  if (o.point_radius > 0) {
+    std::set<Point2> old_corners, new_corners;
+    for (const auto& c : delta.removed) old_corners.insert(c.begin(), c.end());
+    for (const auto& c : delta.added) new_corners.insert(c.begin(), c.end());
+    for (const Point2& p : old_corners)
+      if (!new_corners.count(p)) canvas.disc(xy(p), 1.5 * o.point_radius, red);
+    for (const Point2& p : new_corners)
+      if (!old_corners.count(p)) canvas.disc(xy(p), 1.5 * o.point_radius, green);
+  }
   return canvas.take();
 }
 

@@ -61,8 +61,8 @@ struct PreviewImage {
 // Draws in memory (testable pixel by pixel).
 template <int D>
 PreviewImage draw_preview(const MeshView<D>& view, const PreviewOptions& options = {});
-// `after` is the mesh after the change; removed elements are drawn in red, added ones in green, the rest
-// of the mesh in light grey.
+// `after` is the mesh after the change, drawn in light grey; the edges of removed elements in red, those of
+// added elements in green over a green tint, removed points as red dots and new points as green dots.
 PreviewImage draw_delta_preview(const MeshView<2>& after, const MeshDelta<2>& delta, const PreviewOptions& options = {});
 
 // Writes PNG or any format OpenImageIO writes (by extension), 8 bits per channel, atomically. Throws
