@@ -301,3 +301,58 @@ TEST(TrackCsv, MalformedRowsNameFileAndLine) {
   e = expect_input_error([] { parse_track_csv_text("lat,lon\n", "t.csv"); });
   EXPECT_EQ(e.message(), "no points");
 }
+
+TEST(GpxTrack, ResampleDropsPointsCloserThanSpacingAndSmoothingReducesNoise) {
+  // A dense, noisy walk along a straight shore: 2000 fixes 1 m apart eastwards at 46N with +-1.5 m of
+  // deterministic lateral noise.
+  GpsData d;
+  d.version = "1.1";
+  GpsSequence s;
+  const double mlat = 111132.0, mlon = 111320.0 * std::cos(46.0 * std::numbers::pi / 180);
+  for (int i = 0; i < 2000; ++i) {
+    const double noise = 1.5 * std::sin(i * 2.3) * std::cos(i * 0.7);
+    s.points.push_back({8.0 + i / mlon, 46.0 + noise / mlat, std::nullopt, static_cast<std::size_t>(i + 1)});
+  }
+  s.points.push_back(s.points.back());  // a repeated fix
+  d.sequences.push_back(s);
+  auto deviation = [&](const InputSet& set) {
+    // RMS distance from the straight line through the first and last points.
+    const Point2 a = set.points.front(), b = set.points.back();
+    const double len = std::hypot(b[0] - a[0], b[1] - a[1]);
+    double sum = 0;
+    for (const auto& p : set.points) {
+      const double cross = (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+      sum += (cross / len) * (cross / len);
+    }
+    return std::sqrt(sum / static_cast<double>(set.points.size()));
+  };
+  TrackOptions opt;
+  opt.spacing = 10;
+  opt.close_tolerance = 0;
+  const auto raw = gps_to_input(d, "walk.gpx", opt);
+  EXPECT_NEAR(static_cast<double>(raw.points.size()), 2000 / 10, 25);
+  for (std::size_t i = 0; i + 1 < raw.points.size(); ++i)
+    EXPECT_GE(std::hypot(raw.points[i + 1][0] - raw.points[i][0], raw.points[i + 1][1] - raw.points[i][1]), 10.0);
+  opt.smooth_window = 5;
+  const auto smooth = gps_to_input(d, "walk.gpx", opt);
+  std::printf("lateral RMS noise: %.2f m raw, %.2f m smoothed (window 11)\n", deviation(raw), deviation(smooth));
+  EXPECT_LT(deviation(smooth), 0.5 * deviation(raw));
+  TrackOptions all;
+  all.close_tolerance = 0;
+  EXPECT_EQ(gps_to_input(d, "walk.gpx", all).points.size(), 2000u);  // spacing 0: only the exact repeat goes
+}
+
+TEST(GpxTrack, RoutesAndWaypointsAreRead) {
+  const auto d = parse_gpx_text(gpx_with("<wpt lat=\"45.1\" lon=\"14.1\"><name>a</name></wpt>\n"
+                                         "<rte><name>r</name><rtept lat=\"45.2\" lon=\"14.2\"/><rtept lat=\"45.3\" lon=\"14.3\"/></rte>\n"),
+                                "r.gpx");
+  ASSERT_EQ(d.sequences.size(), 2u);
+  EXPECT_EQ(d.sequences[0].kind, GpsSequence::Kind::Route);
+  EXPECT_EQ(d.sequences[0].name, "r");
+  EXPECT_EQ(d.sequences[0].points[1].line, 4u);
+  EXPECT_EQ(d.sequences[1].kind, GpsSequence::Kind::Waypoints);
+  TrackOptions opt;
+  EXPECT_EQ(gps_to_input(d, "r.gpx", opt).points.size(), 3u);
+  opt.waypoints = false;
+  EXPECT_EQ(gps_to_input(d, "r.gpx", opt).points.size(), 2u);
+}

@@ -3,7 +3,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <OpenImageIO/imageio.h>
+
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 
 #include "io_test_util.hpp"
@@ -509,4 +512,72 @@ TEST(Georeference, WorldFileErrorsNameTheLine) {
   const Point2 p = w(3, 4);
   EXPECT_EQ(p, (Point2{106, 192}));
   EXPECT_EQ(w.inverse(p), (Point2{3, 4}));
+}
+
+namespace {
+
+// Writes the Superior mask in another format/bit depth through OpenImageIO (8-bit source values scaled to the
+// target depth), with a copy of the world file and .prj under the names that format uses.
+std::string convert_mask(const shoremesh::io::test::ScratchDir& dir, const std::string& name, OIIO::TypeDesc type,
+                         int channels, const std::string& world_ext) {
+  auto in = OIIO::ImageInput::open(kMask);
+  const auto spec = in->spec();
+  std::vector<std::uint8_t> grey(static_cast<std::size_t>(spec.width) * spec.height);
+  in->read_image(0, 0, 0, 1, OIIO::TypeDesc::UINT8, grey.data());
+  in->close();
+  std::vector<float> pixels;
+  for (auto g : grey)
+    for (int c = 0; c < channels; ++c) pixels.push_back(c == 2 ? g / 255.0f : g / 255.0f * 0.8f);  // bluish water
+  const std::string path = dir.path(name);
+  auto out = OIIO::ImageOutput::create(path);
+  OIIO::ImageSpec ospec(spec.width, spec.height, channels, type);
+  out->open(path, ospec);
+  out->write_image(OIIO::TypeDesc::FLOAT, pixels.data());
+  out->close();
+  dir.write(std::filesystem::path(name).stem().string() + world_ext,
+            shoremesh::io::test::read_file(shared_data("raster/superior_watermask_h.wld")));
+  dir.write(std::filesystem::path(name).stem().string() + ".prj",
+            shoremesh::io::test::read_file(shared_data("raster/superior_watermask_h.prj")));
+  return path;
+}
+
+}  // namespace
+
+TEST(ImageTrace, JpegAndTiffGreyAndColourEightAndSixteenBit) {
+  shoremesh::io::test::ScratchDir dir;
+  ImageTraceOptions opt;
+  opt.min_area = 20;
+  opt.largest_water_only = true;
+  const auto reference = trace_image(kMask, opt);
+  struct Case {
+    std::string name;
+    OIIO::TypeDesc type;
+    int channels;
+    std::string world;
+    int bits;
+  };
+  const std::vector<Case> cases{{"grey.jpg", OIIO::TypeDesc::UINT8, 1, ".jgw", 8},
+                                {"colour.jpg", OIIO::TypeDesc::UINT8, 3, ".jpgw", 8},
+                                {"grey16.tif", OIIO::TypeDesc::UINT16, 1, ".tfw", 16},
+                                {"colour16.tif", OIIO::TypeDesc::UINT16, 3, ".tfw", 16},
+                                {"colour.png", OIIO::TypeDesc::UINT8, 3, ".pgw", 8}};
+  for (const auto& c : cases) {
+    const auto path = convert_mask(dir, c.name, c.type, c.channels, c.world);
+    const auto img = trace_image(path, opt);
+    EXPECT_EQ(img.bits, c.bits) << c.name;
+    EXPECT_EQ(img.channels, c.channels) << c.name;
+    EXPECT_EQ(img.georeference.source, Georeference::Source::WorldFile) << c.name;
+    EXPECT_EQ(img.input.projection, reference.input.projection) << c.name;
+    // Same lake: area within 0.5 %, island count within 2 (JPEG blurs edges of the smallest islands).
+    EXPECT_NEAR(img.rings[0].area_pixels, reference.rings[0].area_pixels, 0.005 * reference.rings[0].area_pixels) << c.name;
+    EXPECT_NEAR(static_cast<double>(img.rings.size()), static_cast<double>(reference.rings.size()), 2.0) << c.name;
+  }
+  // Colour selection on the colour TIFF: water is the bluish colour (0.8*255, 0.8*255, 255) scaled to 16 bits.
+  ImageTraceOptions colour = opt;
+  colour.water = WaterSide::Colour;
+  colour.water_colour = {204, 204, 255};
+  colour.colour_tolerance = 10;
+  const auto img = trace_image(dir.path("colour16.tif"), colour);
+  EXPECT_EQ(img.rings.size(), reference.rings.size());
+  EXPECT_NEAR(img.rings[0].area_pixels, reference.rings[0].area_pixels, 1.0);
 }
