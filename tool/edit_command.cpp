@@ -68,8 +68,7 @@ Command add_edit_command(CLI::App& app) {
   cmd->add_option("--box", opt->box, "Fix the box: X0 Y0 [Z0] SIDE (default: the input's bounding box + 5%)")
       ->expected(3, 4);
   cmd->add_option("--dim", opt->dim, "Dimension: 2 or 3 (default: the input's)")->check(CLI::IsMember({2, 3}));
-  cmd->add_option("--preview-colour", opt->preview.colouring, "Previews coloured by none, quality or size")
-      ->check(CLI::IsMember({"none", "quality", "size"}));
+  add_preview_options(cmd, opt->preview);
   cmd->footer(
       "Ids: input points are numbered from 0 in the order they were read (files in order); each add takes the next\n"
       "unused id and its reply says which; ids are never reused. Coordinates are the mesh's: metres for lon/lat\n"

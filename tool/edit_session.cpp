@@ -351,7 +351,44 @@ json EditSession<D>::preview_change(const std::vector<std::string>& words) {
     throw InputError("preview-change is for 2D sessions");
   } else {
     const auto start = Clock::now();
-    const io::MeshSnapshot<2> snapshot(mesh_);
+    // The neighbourhood of the change: the elements within the change's extent grown 3 times.
+    double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+    for (const auto* list : {&last_delta_.removed, &last_delta_.added})
+      for (const auto& e : *list)
+        for (const auto& p : e)
+          for (int i = 0; i < 2; ++i) {
+            lo[i] = std::min(lo[i], p[i]);
+            hi[i] = std::max(hi[i], p[i]);
+          }
+    const auto elements = mesh_.elements();
+    std::vector<Element<2>> near;
+    if (last_delta_.empty()) {
+      near = elements;
+    } else {
+      const double grow = std::max(hi[0] - lo[0], hi[1] - lo[1]);
+      for (const auto& e : elements) {
+        bool inside = false;
+        for (auto v : e) {
+          const Point2& p = mesh_.points()[v];
+          inside = inside || (p[0] >= lo[0] - grow && p[0] <= hi[0] + grow && p[1] >= lo[1] - grow && p[1] <= hi[1] + grow);
+        }
+        if (inside) near.push_back(e);
+      }
+    }
+    // Only the points those elements use, so that the picture frames the neighbourhood.
+    std::vector<std::uint32_t> used;
+    for (const auto& e : near) used.insert(used.end(), e.begin(), e.end());
+    std::sort(used.begin(), used.end());
+    used.erase(std::unique(used.begin(), used.end()), used.end());
+    std::vector<Point2> points;
+    std::vector<PointKind> kinds;
+    for (auto v : used) {
+      points.push_back(mesh_.points()[v]);
+      kinds.push_back(mesh_.kinds()[v]);
+    }
+    for (auto& e : near)
+      for (auto& v : e) v = static_cast<std::uint32_t>(std::lower_bound(used.begin(), used.end(), v) - used.begin());
+    const io::MeshSnapshot<2> snapshot(std::move(points), std::move(near), std::move(kinds));
     io::render_delta_preview(words[1], snapshot.view(), last_delta_, preview_options(preview_));
     return {{"path", words[1]}, {"elements_changed", last_delta_.removed.size() + last_delta_.added.size()},
             {"ms", ms_since(start)}};

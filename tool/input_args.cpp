@@ -14,6 +14,12 @@ void add_quiet_option(CLI::App* cmd, bool& quiet) {
   cmd->add_flag("-q,--quiet", quiet, "No progress bar (it is drawn only when stderr is a terminal anyway)");
 }
 
+void add_preview_options(CLI::App* cmd, PreviewArgs& args) {
+  cmd->add_option("--preview-colour", args.colouring, "Preview triangles coloured by none, quality or size")
+      ->check(CLI::IsMember({"none", "quality", "size"}));
+  cmd->add_option("--preview-width", args.width, "Preview width in pixels (default 1024)")->check(CLI::Range(16, 16384));
+}
+
 void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
   auto* files = cmd->add_option("input", a.files,
                                 several ? "Input files: image (png/jpg/tif), GPS track (gpx, lat/lon csv), point "

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "shoremesh/io/input_set.hpp"
+#include "pipeline.hpp"
 #include "shoremesh/io/read_input.hpp"
 
 namespace shoremesh::tool {
@@ -28,6 +29,8 @@ struct InputArgs {
 
 // Registers INPUT... and the reading options on `cmd`. `several`: more than one input file allowed.
 void add_input_options(CLI::App* cmd, InputArgs& args, bool several = true);
+// Registers --preview-colour and --preview-width.
+void add_preview_options(CLI::App* cmd, PreviewArgs& args);
 // Registers --quiet.
 void add_quiet_option(CLI::App* cmd, bool& quiet);
 

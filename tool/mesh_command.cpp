@@ -88,10 +88,7 @@ Command add_mesh_command(CLI::App& app) {
                   "'# box X0 Y0 [Z0] SIDE', input points, Steiner points)")
       ->required();
   cmd->add_option("--preview", opt->preview, "Also draw the mesh to this PNG");
-  cmd->add_option("--preview-colour", opt->preview_args.colouring, "Preview triangles coloured by none, quality or size")
-      ->check(CLI::IsMember({"none", "quality", "size"}));
-  cmd->add_option("--preview-width", opt->preview_args.width, "Preview width in pixels (default 1024)")
-      ->check(CLI::Range(16, 16384));
+  add_preview_options(cmd, opt->preview_args);
   cmd->add_option("--rho", opt->rho, "Quality bound rho > 1 (default sqrt 2: angles >= 20.7 degrees in 2D)");
   cmd->add_option("--box", opt->box, "Fix the box: X0 Y0 [Z0] SIDE (default: the input's bounding box + 5%)")
       ->expected(3, 4);

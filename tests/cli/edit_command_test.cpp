@@ -1,0 +1,183 @@
+// `shoremesh edit` end to end: replies (text and JSON), ids, bad lines that leave the state intact, and
+// the pin of the dynamic engine at the tool's level: after any edits, `export PATH.csv` equals what
+// `shoremesh mesh FINAL_INPUT --box BOX -o OUT.csv` writes for the final input and the session's box.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <map>
+
+#include "cli_test_util.hpp"
+#include "shoremesh/io/point_file.hpp"
+#include "shoremesh/io/point_set_csv.hpp"
+
+namespace shoremesh::cli_test {
+namespace {
+
+using ::testing::HasSubstr;
+using json = nlohmann::json;
+
+std::vector<json> json_lines(const std::string& out) {
+  std::vector<json> replies;
+  for (const auto& l : lines_of(out)) replies.push_back(json::parse(l));
+  return replies;
+}
+
+// The final input of a session by increasing id, as a point file, and the box of the session's export.
+void write_final_input(const fs::path& path, const std::map<std::size_t, Point2>& by_id) {
+  std::string text = "x,y\n";
+  for (const auto& [id, p] : by_id) text += io::format_double(p[0]) + "," + io::format_double(p[1]) + "\n";
+  write_file(path, text);
+}
+
+std::string box_of(const fs::path& point_set_csv) {
+  const std::string first = lines_of(read_file(point_set_csv)).at(0);
+  EXPECT_EQ(first.rfind("# box ", 0), 0u);
+  return first.substr(6);
+}
+
+std::map<std::size_t, Point2> read_by_id(const fs::path& point_file) {
+  const auto f = io::read_point_file(point_file.string());
+  std::map<std::size_t, Point2> by_id;
+  for (std::size_t i = 0; i < f.points2.size(); ++i) by_id[i] = f.points2[i];
+  return by_id;
+}
+
+TEST(EditCommand, SessionEqualsAFreshRunOnTheFinalInput) {
+  TempDir dir;
+  write_file(dir / "p.csv", random_points(300, 100, 50, 11));
+  auto input = read_by_id(dir / "p.csv");
+  const std::string edits =
+      "# a comment, then edits\n"
+      "add 10 10\n"
+      "move 3 50 25\n"
+      "remove 5\n"
+      "\n"
+      "add 60.5 12.25\n"
+      "move 300 11 12\n"
+      "remove 17\n"
+      "stats\n"
+      "export final.csv\n";
+  const RunResult r = shoremesh(dir, "edit p.csv --edits -", edits);
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+  input[300] = {11, 12};
+  input[3] = {50, 25};
+  input.erase(5);
+  input[301] = {60.5, 12.25};
+  input.erase(17);
+  write_final_input(dir / "final_input.csv", input);
+  const RunResult fresh = shoremesh(dir, "mesh final_input.csv --box " + box_of(dir / "final.csv") + " -o fresh.csv");
+  ASSERT_EQ(fresh.code, 0) << fresh.err;
+  EXPECT_EQ(read_file(dir / "final.csv"), read_file(dir / "fresh.csv"));
+
+  // Text replies: one per edit line, naming the line, with the change and its time.
+  EXPECT_THAT(r.out, HasSubstr("line 2: added id 300 at (10, 10): +"));
+  EXPECT_THAT(r.out, ::testing::ContainsRegex(R"(line 3: moved id 3 to \(50, 25\): \+[0-9]+ Steiner, -[0-9]+ Steiner, [0-9]+ elements changed, [0-9.e+-]+ ms)"));
+  EXPECT_THAT(r.out, HasSubstr("line 6: added id 301"));
+  EXPECT_THAT(r.out, HasSubstr("line 9: stats: 300 input points"));
+  EXPECT_THAT(r.out, HasSubstr("line 10: wrote final.csv"));
+}
+
+TEST(EditCommand, JsonRepliesIdsAndBadLinesThatKeepTheState) {
+  TempDir dir;
+  write_file(dir / "p.csv", random_points(120, 40, 40, 5));
+  const std::string good = "add 1 1\nremove 120\nadd 2 2\nmove 0 20 20\nexport good.csv\n";
+  const std::string bad_mixed =
+      "add 1 1\n"
+      "remove 999\n"        // no such id
+      "remove 120\n"
+      "remove 120\n"        // already removed
+      "add 2 2\n"
+      "add 1e9 1e9\n"       // outside the box
+      "add 2 2\n"           // repeats an input point
+      "move 0 x 20\n"       // not a number
+      "move 0 20 20 20\n"   // a 2D session
+      "frob 1\n"            // unknown edit
+      "stats extra\n"
+      "move 0 20 20\n"
+      "export good.csv.d/none.csv\n"  // cannot write there
+      "export mixed.csv\n";
+  ASSERT_EQ(shoremesh(dir, "edit p.csv --json --edits -", good).code, 0);
+  fs::rename(dir / "good.csv", dir / "expected.csv");
+  write_file(dir / "edits.txt", bad_mixed);
+  const RunResult r = shoremesh(dir, "edit p.csv --json --edits edits.txt");
+  EXPECT_EQ(r.code, 1);  // some lines failed
+  const auto replies = json_lines(r.out);
+  ASSERT_EQ(replies.size(), 15u) << r.out;
+  EXPECT_EQ(replies[0]["op"], "build");
+  EXPECT_EQ(replies[0]["input_points"], 120);
+  EXPECT_EQ(replies[0]["box"].size(), 3u);
+  for (std::size_t i = 1; i < replies.size(); ++i) EXPECT_EQ(replies[i]["line"], i) << replies[i];
+  const std::vector<int> ok = {1, 0, 1, 0, 1, 0, 0, 0, 0, 0, 0, 1, 0, 1};
+  for (std::size_t i = 0; i < ok.size(); ++i) {
+    EXPECT_EQ(replies[i + 1]["ok"].get<bool>(), ok[i] == 1) << replies[i + 1];
+    if (!ok[i]) {
+      EXPECT_FALSE(replies[i + 1]["error"].get<std::string>().empty());
+    }
+  }
+  EXPECT_EQ(replies[1]["id"], 120);
+  EXPECT_EQ(replies[5]["id"], 121);  // ids are never reused
+  EXPECT_THAT(replies[2]["error"].get<std::string>(), HasSubstr("no input point 999"));
+  EXPECT_THAT(replies[4]["error"].get<std::string>(), HasSubstr("120 was removed"));
+  EXPECT_THAT(replies[6]["error"].get<std::string>(), HasSubstr("outside the session's box"));
+  EXPECT_THAT(replies[8]["error"].get<std::string>(), HasSubstr("'x' is not a number"));
+  EXPECT_THAT(replies[9]["error"].get<std::string>(), HasSubstr("2D session"));
+  EXPECT_THAT(replies[10]["error"].get<std::string>(), HasSubstr("unknown edit 'frob'"));
+  for (const char* key : {"steiner_added", "steiner_removed", "elements_changed", "ms", "engine_ms", "mesh_ms"})
+    EXPECT_TRUE(replies[1].contains(key)) << key;
+  // The failed lines changed nothing: the same result as the good lines alone.
+  EXPECT_EQ(read_file(dir / "mixed.csv"), read_file(dir / "expected.csv"));
+}
+
+TEST(EditCommand, SuperiorShorelineEditsFollowTheRingsAndEqualAFreshRun) {
+  TempDir dir;
+  const std::string image = quote(superior_mask());
+  const std::string read = image + " --largest-water --spacing 8000";
+  // The traced input points, by id, from the point set `mesh` writes.
+  const RunResult start = shoremesh(dir, "mesh -q " + read + " -o start.csv");
+  ASSERT_EQ(start.code, 0) << start.err;
+  const RunResult first = shoremesh(dir, "edit " + read + " --json --edits -", "stats\n");
+  ASSERT_EQ(first.code, 0) << first.err;
+  const std::size_t n = json_lines(first.out).at(0)["input_points"].get<std::size_t>();
+  const auto all = io::read_point_set_csv<2>(dir / "start.csv");
+  std::map<std::size_t, Point2> input;
+  for (std::size_t i = 0; i < n; ++i) input[i] = all.points[i];
+
+  // Shore vertex 40 a little toward its neighbour 41, vertex 60 far across the lake (breaks the ring).
+  const Point2 a = input[40], b = input[41];
+  const Point2 moved{a[0] + 0.3 * (b[0] - a[0]), a[1] + 0.3 * (b[1] - a[1])};
+  const Point2 far = input[400];
+  const Point2 added{0.5 * (input[100][0] + input[300][0]), 0.5 * (input[100][1] + input[300][1])};
+  auto xy = [](const Point2& p) { return io::format_double(p[0]) + " " + io::format_double(p[1]); };
+  const std::string edits = "move 40 " + xy(moved) + "\n" +
+                            "move 60 " + xy(far) + "\n" +
+                            "preview-change change.png\n"
+                            "add " + xy(added) + "\n" +
+                            "remove 70\n"
+                            "export final.csv\nexport final.msh\nexport final.geojson\npreview final.png\nstats\n";
+  const RunResult r = shoremesh(dir, "edit " + read + " --json --edits -", edits);
+  EXPECT_EQ(r.code, 1) << r.err;  // the second move is refused
+  const auto replies = json_lines(r.out);
+  ASSERT_EQ(replies.size(), 11u) << r.out;
+  EXPECT_TRUE(replies[1]["ok"].get<bool>()) << replies[1];
+  EXPECT_GT(replies[1]["elements_changed"].get<int>(), 0);
+  EXPECT_FALSE(replies[2]["ok"].get<bool>());
+  EXPECT_THAT(replies[2]["error"].get<std::string>(), HasSubstr("would break the shoreline"));
+  for (std::size_t i = 3; i < replies.size(); ++i) EXPECT_TRUE(replies[i]["ok"].get<bool>()) << replies[i];
+  EXPECT_EQ(replies[4]["id"], n);
+  const json& stats = replies.back();
+  EXPECT_EQ(stats["covered_meeting_bound"], stats["covered"]);
+  EXPECT_GE(stats["min_angle"].get<double>(), stats["min_angle_bound"].get<double>());
+  for (const char* f : {"change.png", "final.msh", "final.geojson", "final.png"}) EXPECT_TRUE(fs::exists(dir / f)) << f;
+
+  input[40] = moved;
+  input[n] = added;
+  input.erase(70);
+  write_final_input(dir / "final_input.csv", input);
+  const RunResult fresh = shoremesh(dir, "mesh -q final_input.csv --box " + box_of(dir / "final.csv") + " -o fresh.csv");
+  ASSERT_EQ(fresh.code, 0) << fresh.err;
+  EXPECT_EQ(read_file(dir / "final.csv"), read_file(dir / "fresh.csv"));
+}
+
+}  // namespace
+}  // namespace shoremesh::cli_test
