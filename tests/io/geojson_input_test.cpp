@@ -8,12 +8,6 @@
 #include "io_test_util.hpp"
 #include "shoremesh/io/ring_file.hpp"
 
-using namespace shoremesh;
-using namespace shoremesh::io;
-using shoremesh::io::test::expect_input_error;
-using shoremesh::io::test::shared_data;
-using ::testing::HasSubstr;
-
 namespace {
 
 double ring_area(const std::vector<Point2>& r) {
@@ -100,10 +94,8 @@ TEST(GeoJson, LegacyUtmCrsKeepsMetres) {
 }
 
 TEST(GeoJson, MalformedInputsNameFileAndElement) {
-  struct Case {
-    std::string text, expect;
-  };
-  const std::vector<Case> cases{
+  shoremesh::io::test::expect_errors(
+      {
       {"{\"type\":\"Point\",\n\"coordinates\":[1,2,]}", "malformed JSON"},
       {R"({"type":"Polygon","coordinates":[[[0,0],[1,0],[0,0]]]})", "coordinates[0]: polygon ring has fewer than three points"},
       {R"({"type":"FeatureCollection","features":[{"type":"Feature","geometry":{"type":"Point","coordinates":["14",45]}}]})",
@@ -116,12 +108,8 @@ TEST(GeoJson, MalformedInputsNameFileAndElement) {
       {R"({"type":"LineString","coordinates":[[0,0]]})", "at least two positions"},
       {"", "malformed JSON"},
       {std::string(300, '[') + std::string(300, ']'), "nested deeper than 256"},
-  };
-  for (const auto& c : cases) {
-    const auto e = expect_input_error([&] { parse_geojson_text(c.text, "bad.geojson"); });
-    EXPECT_EQ(e.file(), "bad.geojson") << c.text;
-    EXPECT_THAT(e.message(), HasSubstr(c.expect)) << c.text.substr(0, 100);
-  }
+  },
+      "bad.geojson", [](const std::string& text) { parse_geojson_text(text, "bad.geojson"); });
   const auto e = expect_input_error([] { parse_geojson_text("{\"type\":\"Point\",\n\"coordinates\":[1,2,]}", "l.geojson"); });
   EXPECT_EQ(e.line(), 2u);
 }

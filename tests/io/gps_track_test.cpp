@@ -10,12 +10,6 @@
 #include "io_test_util.hpp"
 #include "shoremesh/io/point_file.hpp"
 
-using namespace shoremesh;
-using namespace shoremesh::io;
-using shoremesh::io::test::expect_input_error;
-using shoremesh::io::test::shared_data;
-using ::testing::HasSubstr;
-
 namespace {
 
 const std::string kCerknica = shared_data("gpx/cerknicko-jezero.gpx");
@@ -247,11 +241,8 @@ TEST(GpxTrack, TruncatedFileNamesFileAndLine) {
 }
 
 TEST(GpxTrack, MalformedInputsGetClearErrors) {
-  struct Case {
-    std::string text, expect;
-    std::size_t line;
-  };
-  const std::vector<Case> cases{
+  shoremesh::io::test::expect_errors(
+      {
       {"<gpx version=\"1.1\"><trk><trkseg><trkpt lat=\"1\" lon=\"2\"></trkseg></trk></gpx>", "malformed XML", 1},
       {"<?xml version=\"1.0\"?>\n<kml><Placemark/></kml>\n", "not a GPX file", 2},
       {gpx_with("<wpt lat=\"45\" lon=\"14\"/>\n<wpt lon=\"14\"/>\n"), "without a lat attribute", 4},
@@ -262,15 +253,8 @@ TEST(GpxTrack, MalformedInputsGetClearErrors) {
       {gpx_with("<wpt lat=\"45\" lon=\"14\"/>\n", "2.0"), "unsupported GPX version", 2},
       {gpx_with("<trk><trkseg></trkseg></trk>\n"), "no points", 0},
       {"", "", 0},
-  };
-  for (const auto& c : cases) {
-    const auto e = expect_input_error([&] { parse_gpx_text(c.text, "t.gpx"); });
-    EXPECT_EQ(e.file(), "t.gpx");
-    EXPECT_THAT(e.message(), HasSubstr(c.expect)) << c.text;
-    if (c.line) {
-      EXPECT_EQ(e.line(), c.line) << c.text;
-    }
-  }
+  },
+      "t.gpx", [](const std::string& text) { parse_gpx_text(text, "t.gpx"); });
 }
 
 TEST(TrackCsv, ColumnsFoundByHeaderName) {

@@ -12,12 +12,6 @@
 #include "io_test_util.hpp"
 #include "shoremesh/io/ring_file.hpp"
 
-using namespace shoremesh;
-using namespace shoremesh::io;
-using shoremesh::io::test::expect_input_error;
-using shoremesh::io::test::shared_data;
-using ::testing::HasSubstr;
-
 namespace {
 
 const std::string kMask = shared_data("raster/superior_watermask_h.png");
@@ -180,11 +174,20 @@ TEST(ImageTrace, SuperiorIslandsAboveMinimumArea) {
   }
 }
 
+// The mask traced with islands of 10 pixels and more, samples at most 3 pixels apart (shared by two tests).
+constexpr double kShapeMinArea = 10;
+const TracedImage& superior_traced_for_shape() {
+  static const TracedImage img = [] {
+    ImageTraceOptions opt;
+    opt.min_area = kShapeMinArea;
+    opt.spacing = 3;
+    return trace_image(kMask, opt);
+  }();
+  return img;
+}
+
 TEST(ImageTrace, SuperiorShorelineLengthWithinFewPercent) {
-  ImageTraceOptions opt;
-  opt.min_area = 10;
-  opt.spacing = 3;
-  const auto img = trace_image(kMask, opt);
+  const auto& img = superior_traced_for_shape();
   const auto truth = superior_truth();
   const int sup = largest_water(img);
   const double outer = length_west_of(img.rings[sup].pixels, kRiverColumn);
@@ -193,7 +196,7 @@ TEST(ImageTrace, SuperiorShorelineLengthWithinFewPercent) {
   for (const auto& r : img.rings)
     if (r.parent == sup) islands += ring_length(r.pixels);
   for (const auto& isl : truth.islands)
-    if (ring_area(isl) >= opt.min_area) islands_truth += ring_length(isl);
+    if (ring_area(isl) >= kShapeMinArea) islands_truth += ring_length(isl);
   const double total_error = (outer + islands) / (outer_truth + islands_truth) - 1;
   std::printf("shore length (pixels): outer %.1f vs %.1f (%+.2f%%), islands %.1f vs %.1f (%+.2f%%), total %+.2f%%\n", outer,
               outer_truth, 100 * (outer / outer_truth - 1), islands, islands_truth, 100 * (islands / islands_truth - 1),
@@ -204,10 +207,7 @@ TEST(ImageTrace, SuperiorShorelineLengthWithinFewPercent) {
 }
 
 TEST(ImageTrace, SuperiorSamplesWithinOnePixelOfTrueBoundary) {
-  ImageTraceOptions opt;
-  opt.min_area = 10;
-  opt.spacing = 3;
-  const auto img = trace_image(kMask, opt);
+  const auto& img = superior_traced_for_shape();
   const auto truth = superior_truth();
   std::vector<std::pair<Point2, Point2>> segments;
   auto add = [&](const std::vector<Point2>& r) {

@@ -1,5 +1,6 @@
 #pragma once
 // Helpers for the io tests: a scratch directory for generated (often malformed) files, and data paths.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -7,6 +8,7 @@
 #include <iterator>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "shoremesh/error.hpp"
 
@@ -58,4 +60,31 @@ InputError expect_input_error(F&& f) {
   return InputError("no error thrown");
 }
 
+// A malformed input, the part of the message it must produce and its line (0: not checked).
+struct ErrorCase {
+  std::string text, expect;
+  std::size_t line = 0;
+};
+
+// Runs parse(text) for each case: an InputError naming `file`, with the expected message part and line.
+template <class F>
+void expect_errors(const std::vector<ErrorCase>& cases, const std::string& file, F&& parse) {
+  for (const auto& c : cases) {
+    const InputError e = expect_input_error([&] { parse(c.text); });
+    EXPECT_EQ(e.file(), file) << c.text.substr(0, 200);
+    EXPECT_THAT(e.message(), ::testing::HasSubstr(c.expect)) << c.text.substr(0, 200);
+    if (c.line) {
+      EXPECT_EQ(e.line(), c.line) << c.text.substr(0, 200);
+    }
+  }
+}
+
 }  // namespace shoremesh::io::test
+
+// Names every io test uses.
+using namespace shoremesh;
+using namespace shoremesh::io;
+using shoremesh::io::test::expect_input_error;
+using shoremesh::io::test::samples;
+using shoremesh::io::test::shared_data;
+using ::testing::HasSubstr;

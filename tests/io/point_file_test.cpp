@@ -5,11 +5,6 @@
 
 #include "io_test_util.hpp"
 
-using namespace shoremesh;
-using namespace shoremesh::io;
-using shoremesh::io::test::expect_input_error;
-using ::testing::HasSubstr;
-
 TEST(PointFile, CsvWithHeaderCommentsAndBlankLines) {
   const auto pf = parse_point_file_text("# a comment\n\nx,y\n0.5, 1.25  # trailing\n\n-2,3e2\r\n", "pts.csv");
   ASSERT_EQ(pf.dimension, 2);

@@ -5,12 +5,6 @@
 
 #include "io_test_util.hpp"
 
-using namespace shoremesh;
-using namespace shoremesh::io;
-using shoremesh::io::test::expect_input_error;
-using shoremesh::io::test::shared_data;
-using ::testing::HasSubstr;
-
 TEST(PolyFile, DoubleHexRingsAndHoles) {
   const auto p = read_poly_file(shared_data("pslg/double_hex.poly"));
   EXPECT_EQ(p.points.size(), 96u);
@@ -79,11 +73,8 @@ TEST(PolyFile, VerticesFromTheSiblingNodeFile) {
 }
 
 TEST(PolyFile, MalformedFilesNameTheLine) {
-  struct Case {
-    std::string text, expect;
-    std::size_t line;
-  };
-  const std::vector<Case> cases{
+  shoremesh::io::test::expect_errors(
+      {
       {"3 2 0 0\n1 0 0\n2 1 0\n", "file ends before vertex 3 of 3", 3},
       {"3 3 0 0\n1 0 0 0\n", "dimension 3", 1},
       {"3 2 0 0\n1 0 0\n2 1 0\n4 0 1\n", "vertex number 4 where 3 was expected", 4},
@@ -97,15 +88,8 @@ TEST(PolyFile, MalformedFilesNameTheLine) {
       {"3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n0 0\n1\n", "file ends before hole 1 of 1", 6},
       {"", "file ends before the header", 0},
       {"x 2 0 0\n", "not an integer", 1},
-  };
-  for (const auto& c : cases) {
-    const auto e = expect_input_error([&] { parse_poly_text(c.text, "t.poly"); });
-    EXPECT_EQ(e.file(), "t.poly") << c.text;
-    EXPECT_THAT(e.message(), HasSubstr(c.expect)) << c.text;
-    if (c.line) {
-      EXPECT_EQ(e.line(), c.line) << c.text;
-    }
-  }
+  },
+      "t.poly", [](const std::string& text) { parse_poly_text(text, "t.poly"); });
 }
 
 TEST(PolyFile, FewerThanThreePointsAndSelfIntersectingRing) {

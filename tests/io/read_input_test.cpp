@@ -5,12 +5,6 @@
 
 #include "io_test_util.hpp"
 
-using namespace shoremesh;
-using namespace shoremesh::io;
-using shoremesh::io::test::expect_input_error;
-using shoremesh::io::test::samples;
-using ::testing::HasSubstr;
-
 TEST(ReadInput, DetectsEverySampleFormat) {
   EXPECT_EQ(detect_input_format(samples("superior/superior_watermask_h.png")), InputFormat::Image);
   EXPECT_EQ(detect_input_format(samples("superior/superior_watermask_h.tif")), InputFormat::Image);

@@ -10,10 +10,6 @@
 #include "io_test_util.hpp"
 #include "shoremesh/io/input_set.hpp"
 
-using namespace shoremesh;
-using namespace shoremesh::io;
-using ::testing::HasSubstr;
-
 namespace {
 
 __extension__ typedef __int128 int128;  // GCC/Clang extension, exact 2x64-bit products

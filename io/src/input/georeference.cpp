@@ -166,17 +166,8 @@ class TiffTags {
   bool ok() const { return ok_; }
 
   std::vector<double> doubles(unsigned tag) const {
-    const Entry* en = find(tag);
     std::vector<double> out;
-    if (!en || en->type != 12) return out;  // DOUBLE
-    const std::size_t off = en->count * 8 <= 4 ? en->value_pos : u32(en->value_pos);
-    if (en->count > 1000 || off + en->count * 8 > data_.size()) return out;
-    for (std::size_t k = 0; k < en->count; ++k) {
-      std::uint64_t bits = 0;
-      for (int b = 0; b < 8; ++b) {
-        const std::uint64_t byte = static_cast<unsigned char>(data_[off + 8 * k + (little_ ? b : 7 - b)]);
-        bits |= byte << (8 * b);
-      }
+    for (std::uint64_t bits : values(tag, 12, 8)) {  // DOUBLE
       double d;
       std::memcpy(&d, &bits, 8);
       out.push_back(d);
@@ -184,12 +175,8 @@ class TiffTags {
     return out;
   }
   std::vector<unsigned> shorts(unsigned tag) const {
-    const Entry* en = find(tag);
     std::vector<unsigned> out;
-    if (!en || en->type != 3) return out;  // SHORT
-    const std::size_t off = en->count * 2 <= 4 ? en->value_pos : u32(en->value_pos);
-    if (en->count > 100000 || off + en->count * 2 > data_.size()) return out;
-    for (std::size_t k = 0; k < en->count; ++k) out.push_back(u16(off + 2 * k));
+    for (std::uint64_t v : values(tag, 3, 2)) out.push_back(static_cast<unsigned>(v));  // SHORT
     return out;
   }
 
@@ -203,20 +190,25 @@ class TiffTags {
       if (e.tag == tag) return &e;
     return nullptr;
   }
-  unsigned u16(std::size_t p) const {
-    if (p + 2 > data_.size()) return 0;
-    const unsigned b0 = static_cast<unsigned char>(data_[p]), b1 = static_cast<unsigned char>(data_[p + 1]);
-    return little_ ? b0 | (b1 << 8) : (b0 << 8) | b1;
+  // The values of a tag of TIFF type `type`, `size` bytes each; empty when absent, of another type or truncated.
+  std::vector<std::uint64_t> values(unsigned tag, unsigned type, std::size_t size) const {
+    const Entry* en = find(tag);
+    std::vector<std::uint64_t> out;
+    if (!en || en->type != type || en->count > 100000) return out;
+    const std::size_t off = en->count * size <= 4 ? en->value_pos : u32(en->value_pos);
+    if (off + en->count * size > data_.size()) return out;
+    for (std::size_t k = 0; k < en->count; ++k) out.push_back(uint(off + size * k, size));
+    return out;
   }
-  std::size_t u32(std::size_t p) const {
-    if (p + 4 > data_.size()) return 0;
-    std::size_t v = 0;
-    for (int b = 0; b < 4; ++b) {
-      const std::size_t byte = static_cast<unsigned char>(data_[p + (little_ ? b : 3 - b)]);
-      v |= byte << (8 * b);
-    }
+  std::uint64_t uint(std::size_t p, std::size_t bytes) const {
+    if (p + bytes > data_.size()) return 0;
+    std::uint64_t v = 0;
+    for (std::size_t b = 0; b < bytes; ++b)
+      v |= static_cast<std::uint64_t>(static_cast<unsigned char>(data_[p + (little_ ? b : bytes - 1 - b)])) << (8 * b);
     return v;
   }
+  unsigned u16(std::size_t p) const { return static_cast<unsigned>(uint(p, 2)); }
+  std::size_t u32(std::size_t p) const { return static_cast<std::size_t>(uint(p, 4)); }
   std::string data_;
   bool little_ = true, ok_ = false;
   std::vector<Entry> entries_;
