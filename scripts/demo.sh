@@ -13,12 +13,9 @@ out=$2
 here=$(cd "$(dirname "$0")/.." && pwd)
 [[ -x $tool ]] || { echo "$0: $tool is not an executable (build it first: make build)" >&2; exit 1; }
 
-# The bundled sample, or the shared data it is copied from.
-image=""
-for candidate in "$here/samples/superior/superior_watermask_h.png" "$here/../shared/data/raster/superior_watermask_h.png"; do
-  if [[ -f $candidate ]]; then image=$candidate; break; fi
-done
-[[ -n $image ]] || { echo "$0: the Lake Superior sample (samples/superior/superior_watermask_h.png) is missing" >&2; exit 1; }
+# The bundled sample: GSHHG water mask of Lake Superior with its world file and .prj (samples/superior/NOTICE).
+image=$here/samples/superior/superior_watermask_h.png
+[[ -f $image ]] || { echo "$0: the Lake Superior sample $image is missing" >&2; exit 1; }
 
 mkdir -p "$out"
 out=$(cd "$out" && pwd)

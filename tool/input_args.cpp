@@ -43,6 +43,17 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
   group->add_option("--min-area", a.min_area, "Images: drop islands and lakes under this many pixels (default 16)")
       ->check(CLI::Range(3.0, 1e12));
   group->add_flag("--largest-water", a.largest_water, "Images: keep only the largest body of water");
+  group->add_option("--open-radius", a.open_radius, "Images: morphological opening in pixels (removes specks of water)")
+      ->check(CLI::Range(0, 100));
+  group->add_option("--close-radius", a.close_radius,
+                    "Images: morphological closing in pixels (removes specks of land, e.g. a border line drawn "
+                    "across the water)")
+      ->check(CLI::Range(0, 100));
+  group->add_option("--map-box", a.map_box,
+                    "Images without georeference: XMIN YMIN XMAX YMAX of the image's outer edges on the map")
+      ->expected(4);
+  group->add_option("--crs", a.crs, "Images: coordinate system of --map-box or of a world file without .prj "
+                                    "('EPSG:4326', 'lonlat', 'UTM 16N', WKT)");
   group->add_flag("--lonlat", a.lonlat, "Point and ring files hold lon,lat degrees (projected to metres)");
   group->add_option("--projection", a.projection,
                     "Projection of lon/lat input: 'utm' (the data's UTM zone, default) or 'local' "
@@ -106,6 +117,10 @@ io::InputOptions input_options(const InputArgs& a) {
   o.image.colour_tolerance = a.colour_tolerance;
   o.image.min_area = a.min_area;
   o.image.largest_water_only = a.largest_water;
+  o.image.open_radius = a.open_radius;
+  o.image.close_radius = a.close_radius;
+  if (!a.map_box.empty()) o.image.georeference.box = io::MapBox{a.map_box[0], a.map_box[1], a.map_box[2], a.map_box[3]};
+  o.image.georeference.crs = a.crs;
   if (a.spacing) {
     o.image.spacing = *a.spacing;
     o.image.spacing_unit = io::ImageTraceOptions::SpacingUnit::Map;

@@ -22,6 +22,9 @@ struct InputArgs {
   double colour_tolerance = 40;
   double min_area = 16;
   bool largest_water = false;
+  int open_radius = 0, close_radius = 0;
+  std::vector<double> map_box;     // images: XMIN YMIN XMAX YMAX of the image's outer edges
+  std::string crs;                 // images: coordinate system of --map-box (or of a world file without .prj)
   bool lonlat = false;
   std::string projection = "utm";  // utm | local
   bool quiet = false;

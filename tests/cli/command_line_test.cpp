@@ -74,6 +74,7 @@ TEST(CommandLine, BadInputsExitWithOneAndNameTheLine) {
       {"mesh notes.xyz.bak -o out.csv", "unknown input format"},
       {"mesh p.csv -o out.csv --dim 3", "--dim 3 needs 3D input"},
       {"edit p.csv --edits missing.txt", "missing.txt"},
+      {"mesh p.csv -o out.csv --water 300,0,0", "bad --water '300,0,0'"},
   };
   for (const auto& c : cases) {
     const RunResult r = shoremesh(dir, c.args);

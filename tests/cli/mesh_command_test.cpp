@@ -140,5 +140,19 @@ TEST(MeshCommand, SuperiorImageToMeshPreviewAndGeoJson) {
   EXPECT_LT(lon_max, -83.9);
 }
 
+TEST(MeshCommand, ColourMapImageWithAUserBox) {
+  TempDir dir;
+  const std::string map = quote(data_file("superior/superior_map_gmt.png", "raster/superior_map_gmt.png"));
+  const RunResult r = shoremesh(dir, "mesh " + map +
+                                         " --water lightsteelblue --close-radius 1 --largest-water --map-box -92.5 46.2 "
+                                         "-84 49.2 --crs lonlat --spacing 8000 -o map.ply");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("UTM zone 16N"));
+  const Summary s = parse_summary(r.out);
+  EXPECT_GT(s.covered, 500u);
+  EXPECT_EQ(s.met, s.covered);
+  EXPECT_EQ(read_file(dir / "map.ply").rfind("ply\n", 0), 0u);
+}
+
 }  // namespace
 }  // namespace shoremesh::cli_test
