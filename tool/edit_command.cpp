@@ -1,6 +1,5 @@
 // shoremesh edit INPUT... --edits FILE|-: build once, then apply a stream of edits dynamically.
 #include <chrono>
-#include <cmath>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -21,9 +20,7 @@ struct EditOptions {
   InputArgs in;
   std::string edits;
   bool json = false;
-  double rho = std::sqrt(2.0);
-  std::vector<double> box;
-  int dim = 0;
+  EngineArgs engine;
   PreviewArgs preview;
 };
 
@@ -35,7 +32,7 @@ template <int D>
 int run_edit(const EditOptions& opt, const io::InputSet& set, Progress& progress, std::istream& edits) {
   progress.stage("StableWS and mesh of " + std::to_string(set.size()) + " points");
   const auto start = std::chrono::steady_clock::now();
-  EditSession<D> session(set, opt.rho, parse_box<D>(opt.box), opt.preview);
+  EditSession<D> session(set, opt.engine.rho, parse_box<D>(opt.engine.box), opt.preview);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   progress.finish();
   if (!opt.json) std::cout << describe_input(set);
@@ -64,10 +61,7 @@ Command add_edit_command(CLI::App& app) {
                   "export PATH | preview PATH | preview-change PATH | stats ('#' comments)")
       ->required();
   cmd->add_flag("--json", opt->json, "Reply with one JSON object per line (for programs)");
-  cmd->add_option("--rho", opt->rho, "Quality bound rho > 1 (default sqrt 2)");
-  cmd->add_option("--box", opt->box, "Fix the box: X0 Y0 [Z0] SIDE (default: the input's bounding box + 5%)")
-      ->expected(3, 4);
-  cmd->add_option("--dim", opt->dim, "Dimension: 2 or 3 (default: the input's)")->check(CLI::IsMember({2, 3}));
+  add_engine_options(cmd, opt->engine);
   add_preview_options(cmd, opt->preview);
   cmd->footer(
       "Ids: input points are numbered from 0 in the order they were read (files in order); each add takes the next\n"
@@ -87,7 +81,7 @@ Command add_edit_command(CLI::App& app) {
     std::istream& edits = opt->edits == "-" ? std::cin : file;
     Progress progress(!opt->in.quiet && Progress::stderr_is_terminal(), opt->in.files.size() + 1);
     const io::InputSet set = read_user_inputs(opt->in, progress);
-    const int dim = opt->dim != 0 ? opt->dim : set.dimension;
+    const int dim = opt->engine.dim != 0 ? opt->engine.dim : set.dimension;
     return dim == 3 ? run_edit<3>(*opt, set, progress, edits) : run_edit<2>(*opt, set, progress, edits);
   };
 }

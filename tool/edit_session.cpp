@@ -220,14 +220,17 @@ void EditSession<D>::commit_ring_removal(std::size_t id) {
 }
 
 template <int D>
-void EditSession<D>::add_counts(const UpdateReport<D>& report, json& reply) const {
+void EditSession<D>::update_mesh(const UpdateReport<D>& report, std::vector<Point<D>> inputs_removed,
+                                 std::vector<Point<D>> inputs_added, std::optional<Domain2> new_domain,
+                                 Clock::time_point engine_start, json& reply) {
+  reply["engine_ms"] = ms_since(engine_start);
   reply["steiner_added"] = report.steiner_added.size();
   reply["steiner_removed"] = report.steiner_removed.size();
   reply["operations"] = report.operations_touched();
-}
-
-template <int D>
-void EditSession<D>::update_mesh(PointChange<D> change, std::optional<Domain2> new_domain, json& reply) {
+  PointChange<D> change{std::move(inputs_removed), std::move(inputs_added), 0};
+  change.added_input_count = change.added.size();
+  change.removed.insert(change.removed.end(), report.steiner_removed.begin(), report.steiner_removed.end());
+  change.added.insert(change.added.end(), report.steiner_added.begin(), report.steiner_added.end());
   const auto start = Clock::now();
   bool rebuilt = false;
   if (!new_domain) {
@@ -251,6 +254,7 @@ void EditSession<D>::update_mesh(PointChange<D> change, std::optional<Domain2> n
   reply["input_points"] = set_.input_count();
   reply["steiner_points"] = set_.points().size() - set_.input_count();
   reply["mesh_ms"] = ms_since(start);
+  reply["ms"] = ms_since(engine_start);
 }
 
 template <int D>
@@ -266,12 +270,7 @@ json EditSession<D>::add(const std::vector<std::string>& words) {
   const std::size_t id = set_.add(p, &report);
   next_id_ = std::max(next_id_, id + 1);
   json reply = {{"id", id}, {"point", point_json(p)}, {"at", frame_.point(p)}};
-  reply["engine_ms"] = ms_since(start);
-  add_counts(report, reply);
-  PointChange<D> change{report.steiner_removed, {p}, 1};
-  change.added.insert(change.added.end(), report.steiner_added.begin(), report.steiner_added.end());
-  update_mesh(std::move(change), std::nullopt, reply);
-  reply["ms"] = ms_since(start);
+  update_mesh(report, {}, {p}, std::nullopt, start, reply);
   return reply;
 }
 
@@ -287,12 +286,7 @@ json EditSession<D>::remove(const std::vector<std::string>& words) {
   set_.remove(id, &report);
   commit_ring_removal(id);
   json reply = {{"id", id}, {"point", point_json(old)}, {"at", frame_.point(old)}};
-  reply["engine_ms"] = ms_since(start);
-  add_counts(report, reply);
-  PointChange<D> change{{old}, report.steiner_added, 0};
-  change.removed.insert(change.removed.end(), report.steiner_removed.begin(), report.steiner_removed.end());
-  update_mesh(std::move(change), std::move(domain), reply);
-  reply["ms"] = ms_since(start);
+  update_mesh(report, {old}, {}, std::move(domain), start, reply);
   return reply;
 }
 
@@ -308,13 +302,7 @@ json EditSession<D>::move(const std::vector<std::string>& words) {
   UpdateReport<D> report;
   set_.move(id, p, &report);
   json reply = {{"id", id}, {"point", point_json(p)}, {"at", frame_.point(p)}, {"from", frame_.point(old)}};
-  reply["engine_ms"] = ms_since(start);
-  add_counts(report, reply);
-  PointChange<D> change{{old}, {p}, 1};
-  change.removed.insert(change.removed.end(), report.steiner_removed.begin(), report.steiner_removed.end());
-  change.added.insert(change.added.end(), report.steiner_added.begin(), report.steiner_added.end());
-  update_mesh(std::move(change), std::move(domain), reply);
-  reply["ms"] = ms_since(start);
+  update_mesh(report, {old}, {p}, std::move(domain), start, reply);
   return reply;
 }
 

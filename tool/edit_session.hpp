@@ -4,6 +4,7 @@
 // text); a bad line gets an error reply and leaves the state as it was.
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -46,9 +47,12 @@ class EditSession {
   // nullopt when `id` is not a ring vertex.
   std::optional<Domain2> domain_with(std::size_t id, const std::optional<Point<D>>& to) const;
   void commit_ring_removal(std::size_t id);
-  // Updates the mesh for an engine change; fills the reply's element counts and timing.
-  void update_mesh(PointChange<D> change, std::optional<Domain2> new_domain, nlohmann::json& reply);
-  void add_counts(const UpdateReport<D>& report, nlohmann::json& reply) const;
+  // After an engine update that started at `start`: the mesh takes the engine's Steiner changes plus the
+  // edited input points (and the new rings when a shore point moved or went); the reply gets the counts
+  // and the times.
+  void update_mesh(const UpdateReport<D>& report, std::vector<Point<D>> inputs_removed,
+                   std::vector<Point<D>> inputs_added, std::optional<Domain2> new_domain,
+                   std::chrono::steady_clock::time_point start, nlohmann::json& reply);
   void check_id(std::size_t id) const;
   nlohmann::json point_json(const Point<D>& p) const;
 

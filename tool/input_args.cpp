@@ -14,6 +14,13 @@ void add_quiet_option(CLI::App* cmd, bool& quiet) {
   cmd->add_flag("-q,--quiet", quiet, "No progress bar (it is drawn only when stderr is a terminal anyway)");
 }
 
+void add_engine_options(CLI::App* cmd, EngineArgs& args) {
+  cmd->add_option("--rho", args.rho, "Quality bound rho > 1 (default sqrt 2: angles >= 20.7 degrees in 2D)");
+  cmd->add_option("--box", args.box, "Fix the box: X0 Y0 [Z0] SIDE (default: the input's bounding box + 5%)")
+      ->expected(3, 4);
+  cmd->add_option("--dim", args.dim, "Dimension: 2 or 3 (default: the input's; 2 drops z)")->check(CLI::IsMember({2, 3}));
+}
+
 void add_preview_options(CLI::App* cmd, PreviewArgs& args) {
   cmd->add_option("--preview-colour", args.colouring, "Preview triangles coloured by none, quality or size")
       ->check(CLI::IsMember({"none", "quality", "size"}));

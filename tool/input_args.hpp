@@ -32,6 +32,14 @@ struct InputArgs {
 
 // Registers INPUT... and the reading options on `cmd`. `several`: more than one input file allowed.
 void add_input_options(CLI::App* cmd, InputArgs& args, bool several = true);
+// The engine's options: --rho, --box, --dim.
+struct EngineArgs {
+  double rho = 1.4142135623730951;
+  std::vector<double> box;
+  int dim = 0;  // 0: the input's
+};
+void add_engine_options(CLI::App* cmd, EngineArgs& args);
+
 // Registers --preview-colour and --preview-width.
 void add_preview_options(CLI::App* cmd, PreviewArgs& args);
 // Registers --quiet.

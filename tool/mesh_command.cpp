@@ -1,6 +1,5 @@
 // shoremesh mesh INPUT... -o OUT: inputs to the well-spaced point set, its mesh, a preview and a quality
 // summary. `-o OUT.csv` writes the point set itself ('# box' line, input points, Steiner points).
-#include <cmath>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -24,9 +23,7 @@ struct MeshOptions {
   std::string output;
   std::string preview;
   PreviewArgs preview_args;
-  double rho = std::sqrt(2.0);
-  std::vector<double> box;
-  int dim = 0;
+  EngineArgs engine;
   std::string format;
 };
 
@@ -43,7 +40,7 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
   progress.stage("StableWS on " + std::to_string(points.size()) + " points");
   StableResult<D> result;
   try {
-    result = stable_well_spaced<D>(points, engine_parameters<D>(opt.rho), parse_box<D>(opt.box));
+    result = stable_well_spaced<D>(points, engine_parameters<D>(opt.engine.rho), parse_box<D>(opt.engine.box));
   } catch (const PointInputError& e) {
     rethrow_with_origin(e, set);
   }
@@ -59,11 +56,11 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
   if (!opt.preview.empty()) {
     progress.stage("drawing " + std::filesystem::path(opt.preview).filename().string());
     PreviewArgs args = opt.preview_args;
-    args.rho = opt.rho;
+    args.rho = opt.engine.rho;
     write_preview<D>(mesh, opt.preview, args);
   }
   progress.stage("measuring quality");
-  const QualityNumbers quality = quality_numbers<D>(mesh, opt.rho, result.box, frame);
+  const QualityNumbers quality = quality_numbers<D>(mesh, opt.engine.rho, result.box, frame);
   progress.finish();
 
   std::cerr << "shoremesh: " << result.input_count << " input points, " << result.points.size() - result.input_count
@@ -89,10 +86,7 @@ Command add_mesh_command(CLI::App& app) {
       ->required();
   cmd->add_option("--preview", opt->preview, "Also draw the mesh to this PNG");
   add_preview_options(cmd, opt->preview_args);
-  cmd->add_option("--rho", opt->rho, "Quality bound rho > 1 (default sqrt 2: angles >= 20.7 degrees in 2D)");
-  cmd->add_option("--box", opt->box, "Fix the box: X0 Y0 [Z0] SIDE (default: the input's bounding box + 5%)")
-      ->expected(3, 4);
-  cmd->add_option("--dim", opt->dim, "Dimension: 2 or 3 (default: the input's; 2 drops z)")->check(CLI::IsMember({2, 3}));
+  add_engine_options(cmd, opt->engine);
   cmd->add_option("--format", opt->format, "Output format (default: from the output's extension)")
       ->check(CLI::IsMember({"msh", "vtu", "node", "fort14", "geojson", "obj", "ply", "off"}));
   cmd->footer(
@@ -104,7 +98,7 @@ Command add_mesh_command(CLI::App& app) {
   return [opt]() {
     Progress progress(!opt->in.quiet && Progress::stderr_is_terminal(), opt->in.files.size() + 4);
     const io::InputSet set = read_user_inputs(opt->in, progress);
-    const int dim = opt->dim != 0 ? opt->dim : set.dimension;
+    const int dim = opt->engine.dim != 0 ? opt->engine.dim : set.dimension;
     return dim == 3 ? run_mesh<3>(*opt, set, progress) : run_mesh<2>(*opt, set, progress);
   };
 }

@@ -26,13 +26,25 @@ TEST(CommandLine, VersionAndHelpOnEveryCommand) {
   }
 }
 
+struct FailureCase {
+  const char* args;
+  const char* says;
+};
+
+// Every case exits with `code`, and stderr starts "shoremesh: " and says what is wrong.
+void expect_failures(const TempDir& dir, std::initializer_list<FailureCase> cases, int code) {
+  for (const auto& c : cases) {
+    const RunResult r = shoremesh(dir, c.args);
+    EXPECT_EQ(r.code, code) << c.args << "\n" << r.err;
+    EXPECT_THAT(r.err, HasSubstr(c.says)) << c.args;
+    EXPECT_THAT(r.err, ::testing::StartsWith("shoremesh: ")) << c.args;
+  }
+}
+
 TEST(CommandLine, UsageErrorsExitWithTwo) {
   TempDir dir;
   write_file(dir / "p.csv", random_points(20, 10, 10, 1));
-  const struct {
-    const char* args;
-    const char* says;
-  } cases[] = {
+  expect_failures(dir, {
       {"", "A subcommand is required"},
       {"frobnicate", "unknown command 'frobnicate'"},
       {"mesh p.csv -o out.csv --box 0 0", "--box"},
@@ -45,13 +57,7 @@ TEST(CommandLine, UsageErrorsExitWithTwo) {
       {"edit p.csv", "--edits is required"},
       {"info", "input is required"},
       {"info p.csv p.csv", "input"},
-  };
-  for (const auto& c : cases) {
-    const RunResult r = shoremesh(dir, c.args);
-    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.err;
-    EXPECT_THAT(r.err, HasSubstr(c.says)) << c.args;
-    EXPECT_THAT(r.err, ::testing::StartsWith("shoremesh: ")) << c.args;
-  }
+  }, 2);
   EXPECT_FALSE(fs::exists(dir / "out.csv"));
 }
 
@@ -61,10 +67,7 @@ TEST(CommandLine, BadInputsExitWithOneAndNameTheLine) {
   write_file(dir / "dup.csv", "1,2\n3,4\n1,2\n");
   write_file(dir / "p.csv", random_points(20, 10, 10, 2));
   write_file(dir / "notes.xyz.bak", "1 2\n");
-  const struct {
-    const char* args;
-    const char* says;
-  } cases[] = {
+  expect_failures(dir, {
       {"mesh text.csv -o out.csv", "text.csv:3"},
       {"mesh dup.csv -o out.csv", "dup.csv:3"},
       {"mesh p.csv -o out.stl", "out.stl"},
@@ -75,13 +78,7 @@ TEST(CommandLine, BadInputsExitWithOneAndNameTheLine) {
       {"mesh p.csv -o out.csv --dim 3", "--dim 3 needs 3D input"},
       {"edit p.csv --edits missing.txt", "missing.txt"},
       {"mesh p.csv -o out.csv --water 300,0,0", "bad --water '300,0,0'"},
-  };
-  for (const auto& c : cases) {
-    const RunResult r = shoremesh(dir, c.args);
-    EXPECT_EQ(r.code, 1) << c.args << "\n" << r.err;
-    EXPECT_THAT(r.err, HasSubstr(c.says)) << c.args;
-    EXPECT_THAT(r.err, ::testing::StartsWith("shoremesh: ")) << c.args;
-  }
+  }, 1);
   EXPECT_FALSE(fs::exists(dir / "out.csv"));
   EXPECT_FALSE(fs::exists(dir / "out.geojson"));
 }
