@@ -20,6 +20,7 @@ struct EditOptions {
   InputArgs in;
   std::string edits;
   bool json = false;
+  bool lonlat_edits = false;
   EngineArgs engine;
   PreviewArgs preview;
 };
@@ -32,7 +33,7 @@ template <int D>
 int run_edit(const EditOptions& opt, const io::InputSet& set, Progress& progress, std::istream& edits) {
   progress.stage("StableWS and mesh of " + std::to_string(set.size()) + " points");
   const auto start = std::chrono::steady_clock::now();
-  EditSession<D> session(set, opt.engine.rho, parse_box<D>(opt.engine.box), opt.preview);
+  EditSession<D> session(set, opt.engine.rho, parse_box<D>(opt.engine.box), opt.preview, opt.lonlat_edits);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   progress.finish();
   if (!opt.json) std::cout << describe_input(set);
@@ -61,13 +62,16 @@ Command add_edit_command(CLI::App& app) {
                   "export PATH | preview PATH | preview-change PATH | stats ('#' comments)")
       ->required();
   cmd->add_flag("--json", opt->json, "Reply with one JSON object per line (for programs)");
+  cmd->add_flag("--lonlat-edits", opt->lonlat_edits,
+                "Edit lines give lon lat in degrees (lon/lat input only; projected like the input)");
   add_engine_options(cmd, opt->engine);
   add_preview_options(cmd, opt->preview);
   cmd->footer(
       "Ids: input points are numbered from 0 in the order they were read (files in order); each add takes the next\n"
       "unused id and its reply says which; ids are never reused. Coordinates are the mesh's: metres for lon/lat\n"
-      "input (the replies give lon/lat too), pixels for plain images. 'export PATH.csv' writes the point set\n"
-      "exactly as 'shoremesh mesh INPUT -o OUT.csv --box ...' would for the current input and the session's box.\n"
+      "input (the replies give lon/lat too; --lonlat-edits to give degrees), pixels for plain images.\n"
+      "'export PATH.csv' writes the point set exactly as 'shoremesh mesh INPUT -o OUT.csv --box ...' writes it\n"
+      "for the current input and the session's box.\n"
       "A bad edit line gets an error reply naming it and the session goes on; the exit code is then 1.\n"
       "\n"
       "Example:\n"

@@ -81,8 +81,10 @@ Domain2 initial_domain(const io::InputSet& set) {
 }  // namespace
 
 template <int D>
-EditSession<D>::EditSession(const io::InputSet& set, double rho, std::optional<BoxTransform<D>> box, PreviewArgs preview)
+EditSession<D>::EditSession(const io::InputSet& set, double rho, std::optional<BoxTransform<D>> box, PreviewArgs preview,
+                            bool lonlat_edits)
     : frame_(UserFrame::of(set)),
+      lonlat_edits_(lonlat_edits),
       rho_(rho),
       preview_(std::move(preview)),
       set_([&] {
@@ -96,6 +98,8 @@ EditSession<D>::EditSession(const io::InputSet& set, double rho, std::optional<B
       mesh_(make_mesh<D>(set_.points(), set_.input_count(), domain_)),
       next_id_(set.size()) {
   preview_.rho = rho;
+  if (lonlat_edits_ && (D != 2 || frame_.projection.is_none()))
+    throw InputError("--lonlat-edits needs 2D lon/lat input (GPS, GeoJSON, a geographic image, --lonlat files)");
   for (std::size_t r = 0; r < domain_.rings.size(); ++r) {
     std::vector<std::size_t> ids;
     for (std::size_t k = 0; k < domain_.rings[r].points.size(); ++k) {
@@ -159,6 +163,15 @@ Point<D> EditSession<D>::parse_point(const std::vector<std::string>& words, std:
                      std::to_string(D) + "D session");
   Point<D> p;
   for (int i = 0; i < D; ++i) p[std::size_t(i)] = parse_number(words[first + std::size_t(i)]);
+  if constexpr (D == 2) {
+    if (lonlat_edits_) {
+      try {
+        p = frame_.projection.forward({p[0], p[1]});
+      } catch (const std::domain_error& e) {
+        throw InputError(e.what());
+      }
+    }
+  }
   if (!set_.box().contains(p)) {
     Point<D> hi = set_.box().origin;
     for (auto& x : hi) x += set_.box().side;

@@ -24,7 +24,9 @@ template <int D>
 class EditSession {
  public:
   // Builds the set and the mesh of `set`'s points (ids 0..n-1 in reading order).
-  EditSession(const io::InputSet& set, double rho, std::optional<BoxTransform<D>> box, PreviewArgs preview);
+  // `lonlat_edits`: edit lines give lon lat (degrees), projected like the input (2D lon/lat input only).
+  EditSession(const io::InputSet& set, double rho, std::optional<BoxTransform<D>> box, PreviewArgs preview,
+              bool lonlat_edits = false);
 
   // The reply to the initial build (op "build", line 0): counts, the box, and `ms`, the time it took.
   nlohmann::json build_reply(double ms) const;
@@ -57,6 +59,7 @@ class EditSession {
   nlohmann::json point_json(const Point<D>& p) const;
 
   UserFrame frame_;
+  bool lonlat_edits_ = false;
   double rho_;
   PreviewArgs preview_;
   DynamicWellSpaced<D> set_;

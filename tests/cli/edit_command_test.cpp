@@ -181,3 +181,23 @@ TEST(EditCommand, SuperiorShorelineEditsFollowTheRingsAndEqualAFreshRun) {
 
 }  // namespace
 }  // namespace shoremesh::cli_test
+
+namespace shoremesh::cli_test {
+namespace {
+
+TEST(EditCommand, LonLatEditsAreProjectedLikeTheInput) {
+  TempDir dir;
+  const std::string read = quote(superior_mask()) + " --largest-water --spacing 8000";
+  const RunResult r = shoremesh(dir, "edit " + read + " --lonlat-edits --edits -", "add -86.5 47.5\nadd -200 40\n");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_THAT(r.out, ::testing::HasSubstr("m = 47.50000N 86.50000W: +"));
+  EXPECT_THAT(r.out, ::testing::HasSubstr("line 2: error: "));
+  EXPECT_THAT(r.out, ::testing::HasSubstr("UTM zone 16N"));
+  write_file(dir / "p.csv", random_points(20, 10, 10, 4));
+  const RunResult plain = shoremesh(dir, "edit p.csv --lonlat-edits --edits -", "add 1 1\n");
+  EXPECT_EQ(plain.code, 1);
+  EXPECT_THAT(plain.err, ::testing::HasSubstr("--lonlat-edits needs 2D lon/lat input"));
+}
+
+}  // namespace
+}  // namespace shoremesh::cli_test
