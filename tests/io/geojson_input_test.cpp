@@ -107,6 +107,7 @@ TEST(GeoJson, MalformedInputsNameFileAndElement) {
       {R"({"type":"Polygon","coordinates":[[[0,0],[1,1],[1,0],[0,1],[0,0]]]})", "self-intersecting rings"},
       {R"({"type":"LineString","coordinates":[[0,0]]})", "at least two positions"},
       {"", "malformed JSON"},
+      {R"({"type":"Point","coordinates":[1e999,2]})", "malformed JSON: number overflow"},
       {std::string(300, '[') + std::string(300, ']'), "nested deeper than 256"},
   },
       "bad.geojson", [](const std::string& text) { parse_geojson_text(text, "bad.geojson"); });

@@ -27,6 +27,12 @@ std::size_t line_of_offset(std::string_view text, std::size_t offset) {
   return line;
 }
 
+// nlohmann's messages start with "[json.exception.parse_error.101] ": keep what follows.
+std::string without_id(const std::string& what) {
+  const auto p = what.find("] ");
+  return p == std::string::npos ? what : what.substr(p + 2);
+}
+
 // Depth of [ and { nesting outside strings; refuses deep documents before the recursive parser sees them.
 void check_depth(std::string_view text, const std::string& name) {
   int depth = 0;
@@ -218,10 +224,9 @@ InputSet parse_geojson_text(std::string_view text, const std::string& name, cons
   try {
     root = json::parse(text.begin(), text.end());
   } catch (const json::parse_error& e) {
-    std::string what = e.what();
-    const auto p = what.find("] ");
-    if (p != std::string::npos) what = what.substr(p + 2);
-    throw InputError("malformed JSON: " + what, name, line_of_offset(text, e.byte > 0 ? e.byte - 1 : 0));
+    throw InputError("malformed JSON: " + without_id(e.what()), name, line_of_offset(text, e.byte > 0 ? e.byte - 1 : 0));
+  } catch (const json::exception& e) {  // e.g. out_of_range: a number too large for a double
+    throw InputError("malformed JSON: " + without_id(e.what()), name);
   }
   Reader reader(name);
   reader.object(root, "");
