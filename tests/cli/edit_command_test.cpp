@@ -120,6 +120,7 @@ TEST(EditCommand, JsonRepliesIdsAndBadLinesThatKeepTheState) {
   EXPECT_THAT(replies[2]["error"].get<std::string>(), HasSubstr("no input point 999"));
   EXPECT_THAT(replies[4]["error"].get<std::string>(), HasSubstr("120 was removed"));
   EXPECT_THAT(replies[6]["error"].get<std::string>(), HasSubstr("outside the session's box"));
+  EXPECT_EQ(replies[7]["error"], "the point equals input point 121");
   EXPECT_THAT(replies[8]["error"].get<std::string>(), HasSubstr("'x' is not a number"));
   EXPECT_THAT(replies[9]["error"].get<std::string>(), HasSubstr("2D session"));
   EXPECT_THAT(replies[10]["error"].get<std::string>(), HasSubstr("unknown edit 'frob'"));
