@@ -433,18 +433,24 @@ TracedImage trace_image(const std::string& path, const ImageTraceOptions& opt) {
   else if (img.channels() == 2) cv::extractChannel(img, colour, 0);
   else colour = img;
   cv::Mat water;
+  // Per-pixel loops over the native samples: no floating-point copies of the image (memory stays near
+  // the decoded image plus the one-byte mask).
+  auto sample = [&](const cv::Mat& m, int r, int c, int ch) -> double {
+    return m.depth() == CV_8U ? m.ptr<std::uint8_t>(r)[c * m.channels() + ch] : m.ptr<std::uint16_t>(r)[c * m.channels() + ch];
+  };
+  water = cv::Mat(colour.rows, colour.cols, CV_8U);
   if (opt.water == WaterSide::Colour) {
-    cv::Mat f;
-    colour.convertTo(f, CV_32F, 255.0 / full);
-    if (f.channels() == 1) cv::cvtColor(f, f, cv::COLOR_GRAY2BGR);
-    const cv::Scalar target(opt.water_colour[2], opt.water_colour[1], opt.water_colour[0]);
-    cv::Mat diff = f - target;
-    cv::Mat sq;
-    cv::multiply(diff, diff, sq);
-    std::vector<cv::Mat> ch;
-    cv::split(sq, ch);
-    cv::Mat d2 = ch[0] + ch[1] + ch[2];
-    water = d2 <= opt.colour_tolerance * opt.colour_tolerance;
+    const double scale = 255.0 / full, tol2 = opt.colour_tolerance * opt.colour_tolerance;
+    const int cn = colour.channels();
+    for (int r = 0; r < colour.rows; ++r)
+      for (int c = 0; c < colour.cols; ++c) {
+        double d2 = 0;
+        for (int k = 0; k < 3; ++k) {  // OpenCV order B, G, R; grey images count as equal channels
+          const double v = sample(colour, r, c, cn == 3 ? k : 0) * scale - opt.water_colour[2 - k];
+          d2 += v * v;
+        }
+        water.at<std::uint8_t>(r, c) = d2 <= tol2 ? 255 : 0;
+      }
   } else {
     cv::Mat grey;
     if (colour.channels() == 3) cv::cvtColor(colour, grey, cv::COLOR_BGR2GRAY);
@@ -455,21 +461,22 @@ TracedImage trace_image(const std::string& path, const ImageTraceOptions& opt) {
     } else {
       std::vector<double> hist(static_cast<std::size_t>(full) + 1, 0.0);
       for (int r = 0; r < grey.rows; ++r)
-        for (int c = 0; c < grey.cols; ++c)
-          hist[grey.depth() == CV_8U ? grey.at<std::uint8_t>(r, c) : grey.at<std::uint16_t>(r, c)] += 1;
+        for (int c = 0; c < grey.cols; ++c) hist[static_cast<std::size_t>(sample(grey, r, c, 0))] += 1;
       std::size_t levels = 0;
       for (double v : hist) levels += v > 0;
       if (levels < 2)
-        throw InputError("the image has a single grey level (" +
-                             std::to_string(grey.depth() == CV_8U ? grey.at<std::uint8_t>(0, 0) : grey.at<std::uint16_t>(0, 0)) +
+        throw InputError("the image has a single grey level (" + std::to_string(static_cast<int>(sample(grey, 0, 0, 0))) +
                              "): all water or all land, no shoreline to trace",
                          path);
       t = otsu(hist);
     }
     result.threshold = t;
-    cv::Mat g64;
-    grey.convertTo(g64, CV_64F);
-    water = opt.water == WaterSide::Light ? (g64 > t) : (g64 <= t);
+    const bool light = opt.water == WaterSide::Light;
+    for (int r = 0; r < grey.rows; ++r)
+      for (int c = 0; c < grey.cols; ++c) {
+        const double v = sample(grey, r, c, 0);
+        water.at<std::uint8_t>(r, c) = (light ? v > t : v <= t) ? 255 : 0;
+      }
   }
   const Georeference g = find_georeference(path, img.cols, img.rows, opt.georeference);
   return trace_mask(water, opt, g, std::move(result));

@@ -62,7 +62,9 @@ struct ImageTraceOptions {
   double spacing = 4;                       // largest sample spacing along rings
   SpacingUnit spacing_unit = SpacingUnit::Pixels;
   double width_fraction = 0.5;              // spacing <= width_fraction * local width
-  std::size_t max_pixels = 100'000'000;     // refuse larger images (width*height) before decoding
+  // Refuse larger images (width*height) before decoding. Working memory is about 12 bytes per pixel plus the
+  // decoded image (1-8 bytes per pixel): about 1 GB at the default of 50 million pixels (7000 x 7000).
+  std::size_t max_pixels = 50'000'000;
   GeoreferenceOptions georeference;         // user box / coordinate system
   std::optional<Projection> projection;     // for geographic images; none: chosen from the image's extent
   ProjectionChoice projection_choice = ProjectionChoice::Utm;
