@@ -31,6 +31,8 @@ void print(const nlohmann::json& reply, bool as_json) {
 
 template <int D>
 int run_edit(const EditOptions& opt, const io::InputSet& set, Progress& progress, std::istream& edits) {
+  if (opt.lonlat_edits && (D != 2 || set.projection.is_none()))
+    throw InputError("--lonlat-edits needs 2D lon/lat input (GPS, GeoJSON, a geographic image, --lonlat files)");
   progress.stage("StableWS and mesh of " + std::to_string(set.size()) + " points");
   const auto start = std::chrono::steady_clock::now();
   EditSession<D> session(set, opt.engine.rho, parse_box<D>(opt.engine.box), opt.preview, opt.lonlat_edits);

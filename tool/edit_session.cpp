@@ -98,8 +98,6 @@ EditSession<D>::EditSession(const io::InputSet& set, double rho, std::optional<B
       mesh_(make_mesh<D>(set_.points(), set_.input_count(), domain_)),
       next_id_(set.size()) {
   preview_.rho = rho;
-  if (lonlat_edits_ && (D != 2 || frame_.projection.is_none()))
-    throw InputError("--lonlat-edits needs 2D lon/lat input (GPS, GeoJSON, a geographic image, --lonlat files)");
   for (std::size_t r = 0; r < domain_.rings.size(); ++r) {
     std::vector<std::size_t> ids;
     for (std::size_t k = 0; k < domain_.rings[r].points.size(); ++k) {

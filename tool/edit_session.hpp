@@ -24,7 +24,8 @@ template <int D>
 class EditSession {
  public:
   // Builds the set and the mesh of `set`'s points (ids 0..n-1 in reading order).
-  // `lonlat_edits`: edit lines give lon lat (degrees), projected like the input (2D lon/lat input only).
+  // `lonlat_edits`: edit lines give lon lat (degrees), projected like the input (2D lon/lat input only:
+  // the caller checks).
   EditSession(const io::InputSet& set, double rho, std::optional<BoxTransform<D>> box, PreviewArgs preview,
               bool lonlat_edits = false);
 
