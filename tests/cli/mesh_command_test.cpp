@@ -110,6 +110,7 @@ TEST(MeshCommand, SuperiorImageToMeshPreviewAndGeoJson) {
   EXPECT_EQ(read_file(dir / "superior.png").substr(1, 3), "PNG");
   EXPECT_THAT(r.out, HasSubstr("UTM zone 16N"));
   EXPECT_THAT(r.out, HasSubstr("shoreline: "));
+  EXPECT_EQ(r.err.find('\033'), std::string::npos) << "a progress bar on a stderr that is not a terminal";
   // The summary: every covered triangle meets the radius-edge bound, so its angles are >= 20.7 degrees.
   const Summary s = parse_summary(r.out);
   EXPECT_GT(s.elements, 1000u);
