@@ -91,6 +91,10 @@ TEST(GeoJson, LegacyUtmCrsKeepsMetres) {
   const auto other = parse_geojson_text(
       R"({"type":"Point","coordinates":[1000,2000],"crs":{"type":"name","properties":{"name":"EPSG:3857"}}})", "m.geojson");
   EXPECT_EQ(other.units, Units::MapUnits);
+  const auto versioned = parse_geojson_text(
+      R"({"type":"Point","coordinates":[450000,5065000],"crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG:6.6:32733"}}})",
+      "s.geojson");
+  EXPECT_EQ(versioned.projection.describe(), "UTM zone 33S (WGS84)");
 }
 
 TEST(GeoJson, MalformedInputsNameFileAndElement) {

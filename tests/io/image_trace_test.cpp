@@ -495,6 +495,11 @@ TEST(Georeference, CoordinateSystemsFromPrjAndShortForms) {
   EXPECT_EQ(utm.kind, CoordinateSystem::Kind::Utm);
   EXPECT_EQ(utm.zone, 10);
   EXPECT_EQ(parse_coordinate_system("utm 5s").zone, 5);
+  EXPECT_FALSE(parse_coordinate_system("UTM zone 16 S").north);
+  EXPECT_EQ(parse_coordinate_system("EPSG: 4326").kind, CoordinateSystem::Kind::Geographic);
+  EXPECT_EQ(parse_coordinate_system("PROJCRS[\"WGS 84 / UTM zone 16N\",BASEGEOGCRS[\"WGS 84\"],ID[\"EPSG\",32616]]").zone, 16);
+  EXPECT_THROW(parse_coordinate_system("UTM 61N"), InputError);
+  EXPECT_THROW(parse_coordinate_system("EPSG:99999999999"), InputError);
   EXPECT_EQ(parse_coordinate_system("WGS84").kind, CoordinateSystem::Kind::Geographic);
   EXPECT_EQ(parse_coordinate_system("PROJCS[\"NAD83 / Wisconsin Central\",GEOGCS[\"NAD83\"]]").kind, CoordinateSystem::Kind::Unknown);
   const auto e = expect_input_error([] { parse_coordinate_system("hello", "x.prj"); });

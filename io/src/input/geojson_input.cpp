@@ -2,8 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cctype>
 #include <cmath>
-#include <regex>
 #include <set>
 #include <stdexcept>
 
@@ -186,11 +186,14 @@ std::optional<CoordinateSystem> legacy_crs(const json& root, const std::string& 
   if (props == it->end() || !props->is_object()) return std::nullopt;
   const auto n = props->find("name");
   if (n == props->end() || !n->is_string()) return std::nullopt;
-  const std::string s = n->get<std::string>().substr(0, 256);  // bounded: std::regex recurses per character
-  static const std::regex epsg(R"re(EPSG:+(?:[0-9.]*:)?(\d+)$)re", std::regex::icase);
-  std::smatch m;
-  if (std::regex_search(s, m, epsg)) {
-    const auto cs = parse_coordinate_system("EPSG:" + m[1].str(), name);
+  const std::string s = n->get<std::string>();
+  // "EPSG:32633", "urn:ogc:def:crs:EPSG::32633", "urn:ogc:def:crs:EPSG:6.6:32633": the code ends the name.
+  std::size_t d = s.size();
+  while (d > 0 && std::isdigit(static_cast<unsigned char>(s[d - 1]))) --d;
+  std::string up = s;
+  for (auto& ch : up) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+  if (d < s.size() && d > 0 && s[d - 1] == ':' && up.find("EPSG") != std::string::npos) {
+    const auto cs = parse_coordinate_system("EPSG:" + s.substr(d), name);
     if (cs.kind == CoordinateSystem::Kind::Geographic) return std::nullopt;
     return cs.kind == CoordinateSystem::Kind::Unknown ? CoordinateSystem{CoordinateSystem::Kind::Unknown, 0, true, s} : cs;
   }

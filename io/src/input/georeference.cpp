@@ -8,7 +8,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <stdexcept>
 #include <vector>
 
@@ -25,7 +24,7 @@ std::string upper(std::string_view s) {
   return out;
 }
 
-// Digits of a regex match as an int; -1 when out of range (std::stoi would throw on "EPSG:99999999999").
+// Digits as an int; -1 when out of range (std::stoi would throw on "EPSG:99999999999").
 int small_int(const std::string& digits) {
   const auto v = detail::parse_integer(digits);
   return v && *v >= 0 && *v <= 1000000 ? static_cast<int>(*v) : -1;
@@ -44,14 +43,66 @@ CoordinateSystem from_epsg(int code, const std::string& name) {
   return cs;
 }
 
-// The last AUTHORITY["EPSG","n"] / ID["EPSG",n] at the top level of a WKT (the one after the last bracket
-// that closes a nested element is the outermost's); simplified: the last occurrence in the text.
+// A cursor over upper-cased text for the few fixed grammars of coordinate-system names (no std::regex: its
+// libstdc++ implementation recurses per character of the subject).
+struct Scan {
+  std::string_view s;
+  std::size_t i = 0;
+  void blanks() {
+    while (i < s.size() && (s[i] == ' ' || s[i] == '\t' || s[i] == '\r' || s[i] == '\n')) ++i;
+  }
+  bool word(std::string_view w) {
+    if (s.substr(i, w.size()) != w) return false;
+    i += w.size();
+    return true;
+  }
+  bool one_of(std::string_view chars) {
+    if (i < s.size() && chars.find(s[i]) != std::string_view::npos) return ++i, true;
+    return false;
+  }
+  std::string digits(std::size_t max) {
+    const std::size_t j = i;
+    while (i < s.size() && i - j < max && std::isdigit(static_cast<unsigned char>(s[i]))) ++i;
+    return std::string(s.substr(j, i - j));
+  }
+  bool end() const { return i == s.size(); }
+};
+
+// The code of the outermost AUTHORITY["EPSG","n"] / ID["EPSG",n]: the one that closes the WKT ("...]]" at
+// the end).
 std::optional<int> wkt_epsg(const std::string& wkt) {
-  static const std::regex re(R"re((?:AUTHORITY|ID)\[\s*"EPSG"\s*,\s*"?(\d+)"?\s*\]\s*\]\s*$)re", std::regex::icase);
-  // libstdc++'s regex recurses per character: search only the tail, where the outermost authority is.
-  const std::string tail = wkt.size() > 200 ? wkt.substr(wkt.size() - 200) : wkt;
-  std::smatch m;
-  if (std::regex_search(tail, m, re)) return small_int(m[1].str());
+  const std::string up = upper(wkt);
+  const auto at = up.rfind("\"EPSG\"");
+  if (at == std::string::npos) return std::nullopt;
+  Scan c{up, at + 6};
+  c.blanks();
+  if (!c.word(",")) return std::nullopt;
+  c.blanks();
+  c.word("\"");
+  const std::string code = c.digits(9);
+  c.word("\"");
+  c.blanks();
+  if (code.empty() || !c.word("]")) return std::nullopt;
+  c.blanks();
+  if (!c.word("]")) return std::nullopt;
+  c.blanks();
+  if (!c.end()) return std::nullopt;
+  const int v = small_int(code);
+  return v >= 0 ? std::optional<int>(v) : std::nullopt;
+}
+
+// "UTM zone 16N" (also "UTM_Zone_16N", "UTM ZONE 16 N") inside a name: zone and hemisphere.
+std::optional<std::pair<int, bool>> utm_in_name(const std::string& name) {
+  const std::string up = upper(name);
+  for (std::size_t at = up.find("UTM"); at != std::string::npos; at = up.find("UTM", at + 1)) {
+    Scan c{up, at + 3};
+    if (!c.one_of(" _") || !c.word("ZONE") || !c.one_of(" _")) continue;
+    const std::string zone = c.digits(2);
+    c.blanks();
+    const std::size_t h = c.i;
+    if (zone.empty() || !c.one_of("NS")) continue;
+    return std::make_pair(small_int(zone), up[h] == 'N');
+  }
   return std::nullopt;
 }
 
@@ -67,20 +118,30 @@ std::string wkt_name(const std::string& wkt) {
 CoordinateSystem parse_coordinate_system(std::string_view text_in, const std::string& file) {
   const std::string text(detail::trim(detail::strip_bom(text_in)));
   const std::string up = upper(text);
-  std::smatch m;
-  const bool short_form = text.size() <= 64;  // regexes below recurse per character: only on short text
-  static const std::regex epsg_re(R"(^EPSG:\s*(\d+)$)", std::regex::icase);
-  if (short_form && std::regex_match(text, m, epsg_re)) {
-    auto cs = from_epsg(small_int(m[1].str()), text);
-    return cs;
+  {
+    Scan c{up};  // "EPSG:n"
+    if (c.word("EPSG:")) {
+      c.blanks();
+      const std::string code = c.digits(9);
+      if (!code.empty() && c.end()) return from_epsg(small_int(code), text);
+    }
   }
   if (up == "WGS84" || up == "WGS 84" || up == "LONLAT" || up == "LON/LAT" || up == "CRS84" || up == "OGC:CRS84")
     return {CoordinateSystem::Kind::Geographic, 0, true, text};
-  static const std::regex utm_short(R"(^UTM\s*(?:ZONE\s*)?(\d{1,2})\s*([NS])$)", std::regex::icase);
-  if (short_form && std::regex_match(text, m, utm_short)) {
-    const int zone = small_int(m[1].str());
-    if (zone < 1 || zone > 60) throw InputError("UTM zone " + std::to_string(zone) + " is not 1..60", file);
-    return {CoordinateSystem::Kind::Utm, zone, upper(m[2].str()) == "N", text};
+  {
+    Scan c{up};  // "UTM 16N", "UTM zone 16 S", "utm5s"
+    if (c.word("UTM")) {
+      c.blanks();
+      if (c.word("ZONE")) c.blanks();
+      const std::string zone = c.digits(2);
+      c.blanks();
+      const std::size_t h = c.i;
+      if (!zone.empty() && c.one_of("NS") && c.end()) {
+        const int z = small_int(zone);
+        if (z < 1 || z > 60) throw InputError("UTM zone " + zone + " is not 1..60", file);
+        return {CoordinateSystem::Kind::Utm, z, up[h] == 'N', text};
+      }
+    }
   }
   const bool projected = up.rfind("PROJCS[", 0) == 0 || up.rfind("PROJCRS[", 0) == 0 || up.rfind("PROJECTEDCRS[", 0) == 0;
   const bool geographic = up.rfind("GEOGCS[", 0) == 0 || up.rfind("GEOGCRS[", 0) == 0 || up.rfind("GEODCRS[", 0) == 0 ||
@@ -93,18 +154,15 @@ CoordinateSystem parse_coordinate_system(std::string_view text_in, const std::st
     if (cs.kind != CoordinateSystem::Kind::Unknown) return cs;
   }
   if (geographic) {
-    const std::string n = upper(text);
-    if (n.find("WGS") != std::string::npos && n.find("84") != std::string::npos)
+    if (up.find("WGS") != std::string::npos && up.find("84") != std::string::npos)
       return {CoordinateSystem::Kind::Geographic, 0, true, name};
-    if (n.find("NAD83") != std::string::npos || n.find("NORTH_AMERICAN_DATUM_1983") != std::string::npos ||
-        n.find("ETRS") != std::string::npos)
+    if (up.find("NAD83") != std::string::npos || up.find("NORTH_AMERICAN_DATUM_1983") != std::string::npos ||
+        up.find("ETRS") != std::string::npos)
       return {CoordinateSystem::Kind::Geographic, 0, true, name};
     return {CoordinateSystem::Kind::Unknown, 0, true, name};
   }
-  static const std::regex utm_name(R"(UTM[ _]ZONE[ _](\d{1,2})\s*([NS]))", std::regex::icase);
-  if (name.size() <= 256 && std::regex_search(name, m, utm_name) && upper(text).find("WGS") != std::string::npos) {
-    const int zone = small_int(m[1].str());
-    if (zone >= 1 && zone <= 60) return {CoordinateSystem::Kind::Utm, zone, upper(m[2].str()) == "N", name};
+  if (const auto utm = utm_in_name(name); utm && up.find("WGS") != std::string::npos) {
+    if (utm->first >= 1 && utm->first <= 60) return {CoordinateSystem::Kind::Utm, utm->first, utm->second, name};
   }
   return {CoordinateSystem::Kind::Unknown, 0, true, name};
 }

@@ -17,8 +17,10 @@
 //
 // Tracing. OpenCV's findContours with the full hierarchy on the land mask framed by one pixel of land:
 // water regions are 4-connected and land 8-connected, so diagonal pixel contacts never pinch a water ring.
-// Each ring is moved from the land pixel centres half a pixel toward the water (onto the pixel edges), so
-// it lies within about half a pixel of the true shoreline. Roles: the outer boundary of a water region is a
+// Each ring is moved from the land pixel centres a quarter pixel toward the water, along the normal of the
+// traced chain: a one-pixel channel or spit keeps half a pixel of width instead of collapsing, and the
+// samples stay within a pixel of the true shoreline (Lake Superior mask: mean 0.24, max 0.76 pixel from the
+// polygon it was rendered from). Roles: the outer boundary of a water region is a
 // Shore ring, land inside it an Island ring, a pond on an island a Shore ring again (even-odd rule).
 //
 // Sampling rule. Points are placed along each ring at a spacing h(p) that is
