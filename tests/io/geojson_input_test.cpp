@@ -5,7 +5,7 @@
 
 #include <cstdio>
 
-#include "io_test_util.hpp"
+#include "io_test_names.hpp"
 #include "shoremesh/io/ring_file.hpp"
 
 namespace {

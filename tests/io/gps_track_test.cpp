@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "io_test_util.hpp"
+#include "io_test_names.hpp"
 #include "shoremesh/io/point_file.hpp"
 
 namespace {

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <cmath>
 
-#include "io_test_util.hpp"
+#include "io_test_names.hpp"
 #include "shoremesh/io/ring_file.hpp"
 
 namespace {

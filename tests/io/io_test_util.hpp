@@ -80,11 +80,3 @@ void expect_errors(const std::vector<ErrorCase>& cases, const std::string& file,
 }
 
 }  // namespace shoremesh::io::test
-
-// Names every io test uses.
-using namespace shoremesh;
-using namespace shoremesh::io;
-using shoremesh::io::test::expect_input_error;
-using shoremesh::io::test::samples;
-using shoremesh::io::test::shared_data;
-using ::testing::HasSubstr;

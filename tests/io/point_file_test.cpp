@@ -3,7 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "io_test_util.hpp"
+#include "io_test_names.hpp"
 
 TEST(PointFile, CsvWithHeaderCommentsAndBlankLines) {
   const auto pf = parse_point_file_text("# a comment\n\nx,y\n0.5, 1.25  # trailing\n\n-2,3e2\r\n", "pts.csv");

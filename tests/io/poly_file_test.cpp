@@ -3,7 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "io_test_util.hpp"
+#include "io_test_names.hpp"
 
 TEST(PolyFile, DoubleHexRingsAndHoles) {
   const auto p = read_poly_file(shared_data("pslg/double_hex.poly"));

@@ -3,7 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "io_test_util.hpp"
+#include "io_test_names.hpp"
 
 TEST(ReadInput, DetectsEverySampleFormat) {
   EXPECT_EQ(detect_input_format(samples("superior/superior_watermask_h.png")), InputFormat::Image);

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "../../io/src/input/exact_orient.hpp"
-#include "io_test_util.hpp"
+#include "io_test_names.hpp"
 #include "shoremesh/io/input_set.hpp"
 
 namespace {
