@@ -143,7 +143,9 @@ void WellSpacedEngine<D>::mark_obsolete(OpId o) {
 template <int D>
 void WellSpacedEngine<D>::mark_redo(OpId o) {
   Op& op = ops_[o];
-  if ((op.flags & (kDead | kObsolete)) || !(op.flags & kExecuted)) return;
+  // Also when obsolete: a fill whose requesters all went away may be asked for again before its time,
+  // and must then run again if what it read changed meanwhile.
+  if ((op.flags & kDead) || !(op.flags & kExecuted)) return;
   op.flags |= kRedo;
   enqueue(o);
 }
@@ -155,9 +157,9 @@ void WellSpacedEngine<D>::mark_readers_at(const Point<D>& p, NodeId leaf, int ra
       const Op& op = ops_[o];
       if (op.rank < rank || (op.rank == rank && op.color <= color)) continue;
       const Point<D>& c = positions_[op.vertex];
-      bool inside = true;
-      for (int i = 0; i < D && inside; ++i) inside = std::abs(p[i] - c[i]) <= op.read_half;
-      if (inside) mark_redo(o);
+      double d2 = 0;
+      for (int i = 0; i < D; ++i) d2 += (p[i] - c[i]) * (p[i] - c[i]);
+      if (d2 <= op.depends2) mark_redo(o);
     }
 }
 
@@ -226,6 +228,10 @@ void WellSpacedEngine<D>::undo(OpId o) {
       if (child.flags & kDead) continue;
       if (child.requesters > 0 && --child.requesters == 0) mark_obsolete(children_[k]);
     }
+  } else if ((op.flags & kRedo) && !(op.flags & kObsolete)) {
+    // About to run again: keep its Steiner vertices for now. The new run reuses those it inserts again
+    // at the very same place (their subtrees stay valid); fill() takes back the others.
+    op.flags |= kStashed;
   } else {
     for (std::uint32_t k = cb; k < ce; ++k) {
       const OpId d = children_[k];
@@ -248,7 +254,8 @@ void WellSpacedEngine<D>::undo(OpId o) {
   }
   Op& again = ops_[o];
   garbage_ += (again.children_end - again.children_begin) + (again.reads_end - again.reads_begin);
-  again.children_begin = again.children_end = again.reads_begin = again.reads_end = 0;
+  if (!(again.flags & kStashed)) again.children_begin = again.children_end = 0;
+  again.reads_begin = again.reads_end = 0;
   again.flags &= std::uint8_t(~kExecuted);
   ++counters_.operations_undone;
   if (stats_) ++stats_->undone;
@@ -379,6 +386,7 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   };
   if (hood_.nearest == kNoVertex) {
     record_reads(half);
+    ops_[o].depends2 = 4.0 * D;  // anything anywhere in the box gives it a neighbour
     return;
   }
 
@@ -418,6 +426,10 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
     if (pool.size() > old_size) std::sort(pool.begin() + long(next), pool.end(), by_distance);
   }
   record_reads(searched);
+  // Only a vertex that could cut the cell or be nearer than NN can change what this operation decides:
+  // one within 2 x the cell's reach (capped at 2 beta NN), or within NN. A little margin on the rounding.
+  const double reach2 = std::min(4 * cell_.max_vertex_distance2(), cap2);
+  ops_[o].depends2 = std::max(reach2, best_d2) * (1 + 1e-6);
 }
 
 template <int D>
@@ -470,14 +482,32 @@ void WellSpacedEngine<D>::fill(OpId o) {
   const VertexId v = ops_[o].vertex;
   const int op_rank = ops_[o].rank;
   const std::uint32_t op_color = ops_[o].color;
+  // The Steiner vertices of this fill's previous run, when it runs again (see undo).
+  stash_.clear();
+  if (ops_[o].flags & kStashed) {
+    for (std::uint32_t k = ops_[o].children_begin; k < ops_[o].children_end; ++k) stash_.push_back(children_[k]);
+    ops_[o].flags &= std::uint8_t(~kStashed);
+  }
   compute_cell(o, v);
   ops_[o].children_begin = ops_[o].children_end = std::uint32_t(children_.size());
-  if (hood_.nearest == kNoVertex) return;
   PredicateCounters& pc = cell_.counters();
-  const Point<D> u = positions_[hood_.nearest];
-  for (int inserted = 0; !cell_.within_scaled_distance(params_.rho_squared, u); ++inserted) {
+  for (int inserted = 0; hood_.nearest != kNoVertex &&
+                         !cell_.within_scaled_distance(params_.rho_squared, positions_[hood_.nearest]);
+       ++inserted) {
     if (inserted > 1000) throw std::logic_error("fill inserted over 1000 Steiner points around one vertex");
     const Point<D> w = pick_steiner(v);
+    auto again = std::find_if(stash_.begin(), stash_.end(), [&](OpId d) { return positions_[ops_[d].vertex] == w; });
+    if (again != stash_.end()) {
+      // The same Steiner point as before: keep the vertex and its dispatch, nothing changes around it.
+      const OpId d = *again;
+      *again = stash_.back();
+      stash_.pop_back();
+      const VertexId id = ops_[d].vertex;
+      children_.push_back(d);
+      cell_.clip(id, w);
+      hood_.candidates.push_back({squared_distance(v, id), id});
+      continue;
+    }
     const VertexId id = new_vertex(w);
     vertices_[id].creator = o;
     vertices_[id].born_rank = op_rank;
@@ -497,6 +527,16 @@ void WellSpacedEngine<D>::fill(OpId o) {
     hood_.candidates.push_back({squared_distance(v, id), id});
   }
   ops_[o].children_end = std::uint32_t(children_.size());
+  // Steiner vertices of the previous run not inserted again leave the output.
+  for (OpId d : stash_) {
+    const VertexId w = ops_[d].vertex;
+    mark_obsolete(d);
+    tree_.erase_vertex(w, vertices_[w].leaf);
+    mark_readers_at(positions_[w], vertices_[w].leaf, op_rank, op_color);
+    kill_vertex(w);
+    if (stats_) stats_->steiner_removed.push_back(positions_[w]);
+  }
+  stash_.clear();
 }
 
 // The Steiner point: toward the cell vertex c farthest from v, at distance min(|vc|, beta NN) shrunk by

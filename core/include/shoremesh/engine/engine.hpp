@@ -51,6 +51,7 @@ class WellSpacedEngine {
     kRedo = 8,        // inconsistent: read a square that changed, to undo and execute again
     kObsolete = 16,   // to undo and delete
     kDead = 32,       // deleted; the slot is freed when the propagation ends
+    kStashed = 64,    // an inconsistent fill undone but for its Steiner vertices: it may insert them again
   };
 
   struct Op {
@@ -64,7 +65,8 @@ class WellSpacedEngine {
     std::uint32_t requesters = 0;      // fills: how many dispatches currently ask for it
     std::uint32_t children_begin = 0, children_end = 0;  // into children_
     std::uint32_t reads_begin = 0, reads_end = 0;        // into reads_
-    double read_half = 0;              // it read every vertex in the box of this half-side around its vertex
+    double read_half = 0;              // it registered on the nodes covering this box around its vertex
+    double depends2 = 0;               // its result depends only on vertices within this squared distance
   };
 
   // One edit for apply(): add a point (id returned) or remove an input vertex.
@@ -182,6 +184,7 @@ class WellSpacedEngine {
   Neighbourhood hood_;
   std::vector<VertexId> neighbours_;
   std::vector<NodeId> covering_;
+  std::vector<OpId> stash_;
   Counters counters_;
 };
 

@@ -1,0 +1,265 @@
+// PropagateWS: after every edit the output (and the multiset of operations) is bit-identical to StableWS
+// run from scratch on the current input (Lemma 7.2); memory is reclaimed; bad edits change nothing; the
+// work per update does not grow with n.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <random>
+
+#include "shoremesh/engine/engine.hpp"
+#include "shoremesh/error.hpp"
+#include "shoremesh/families.hpp"
+#include "shoremesh/verify.hpp"
+#include "shoremesh/well_spaced.hpp"
+
+namespace shoremesh {
+namespace {
+
+bool sanitizer_build() { return std::getenv("SHOREMESH_SANITIZER_BUILD") != nullptr; }
+
+template <class T>
+std::vector<T> sorted(std::vector<T> v) {
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+template <int D>
+std::vector<Point<D>> live_inputs(const WellSpacedSet<D>& set) {
+  std::vector<Point<D>> pts;
+  for (std::size_t id : set.input_ids()) pts.push_back(set.input_point(id));
+  return pts;
+}
+
+// The strongest test: equal to a from-scratch run, points bit for bit and operations (vertex, rank, colour).
+template <int D>
+void expect_equal_to_fresh_run(const WellSpacedSet<D>& set, const std::string& context) {
+  WellSpacedSet<D> fresh;
+  fresh.build(live_inputs(set));
+  ASSERT_EQ(sorted(set.output_points()), sorted(fresh.output_points())) << context;
+  ASSERT_EQ(set.engine().operation_signature(), fresh.engine().operation_signature()) << context;
+  ASSERT_EQ(set.engine().live_op_count(), fresh.engine().live_op_count()) << context;
+  ASSERT_EQ(set.engine().live_vertex_count(), fresh.engine().live_vertex_count()) << context;
+}
+
+// A random edit of the kinds the issue names.
+template <int D>
+std::string random_edit(WellSpacedSet<D>& set, std::mt19937_64& rng, UpdateReport<D>* report) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const auto ids = set.input_ids();
+  const std::size_t pick = ids[rng() % ids.size()];
+  auto near = [&](const Point<D>& p, double r) {
+    Point<D> q;
+    for (int i = 0; i < D; ++i) q[i] = std::clamp(p[i] + r * (u(rng) - 0.5), 0.0, 1.0);
+    return q;
+  };
+  switch (rng() % 7) {
+    case 0: {  // insert far away: anywhere
+      Point<D> p;
+      for (auto& x : p) x = u(rng);
+      set.add(p, report);
+      return "add anywhere";
+    }
+    case 1:  // insert right next to an existing point
+      set.add(near(set.input_point(pick), 1e-3), report);
+      return "add next to a point";
+    case 2:  // the lower-bound gadget: a point 1e-9 from another
+      set.add(near(set.input_point(pick), 2e-9), report);
+      return "add at 1e-9";
+    case 3:
+    case 4:
+      if (ids.size() > 3) {
+        set.remove(pick, report);
+        return "remove";
+      }
+      [[fallthrough]];
+    case 5:
+      set.move(pick, near(set.input_point(pick), 0.05), report);
+      return "move";
+    default: {  // remove the input point that caused the most Steiner points: the one nearest to another
+      std::size_t worst = ids[0];
+      double best = 1e300;
+      for (std::size_t a : ids)
+        for (std::size_t b : ids) {
+          if (a >= b) continue;
+          double d = 0;
+          for (int i = 0; i < D; ++i) d += std::pow(set.input_point(a)[i] - set.input_point(b)[i], 2);
+          if (d < best) best = d, worst = a;
+        }
+      if (ids.size() > 3) {
+        set.remove(worst, report);
+        return "remove the closest point";
+      }
+      set.move(pick, near(set.input_point(pick), 0.05), report);
+      return "move";
+    }
+  }
+}
+
+template <int D>
+void random_edits_equal_fresh_runs(std::vector<Point<D>> initial, int edits, std::uint64_t seed) {
+  WellSpacedSet<D> set;
+  set.build(initial);
+  std::mt19937_64 rng(seed);
+  for (int k = 0; k < edits; ++k) {
+    UpdateReport<D> report;
+    const auto before = sorted(set.output_points());
+    const std::string what = random_edit(set, rng, &report);
+    const std::string context = "edit " + std::to_string(k) + ": " + what;
+    expect_equal_to_fresh_run(set, context);
+    if (::testing::Test::HasFatalFailure()) return;
+    // The report is the net change of the Steiner points.
+    const auto after = sorted(set.output_points());
+    std::vector<Point<D>> gone, come;
+    std::set_difference(before.begin(), before.end(), after.begin(), after.end(), std::back_inserter(gone));
+    std::set_difference(after.begin(), after.end(), before.begin(), before.end(), std::back_inserter(come));
+    EXPECT_LE(report.steiner_removed.size(), gone.size()) << context;  // gone also holds removed inputs
+    EXPECT_LE(report.steiner_added.size(), come.size()) << context;
+    for (const auto& p : report.steiner_removed) EXPECT_TRUE(std::binary_search(gone.begin(), gone.end(), p)) << context;
+    for (const auto& p : report.steiner_added) EXPECT_TRUE(std::binary_search(come.begin(), come.end(), p)) << context;
+    if (k % 100 == 0) ASSERT_NO_THROW(set.check_valid()) << context;
+  }
+  ASSERT_NO_THROW(set.check_valid());
+  const auto inputs = live_inputs(set);
+  const auto report = verify_well_spaced<D>(set.output_points(), inputs, BoxTransform<D>{{}, 1.0}, std::sqrt(2.0));
+  EXPECT_TRUE(report.ok()) << report.violations << " violations";
+}
+
+// The full 1000-edit runs (2D: 146 s, 3D: longer) are `SHOREMESH_LONG_TESTS=1`; CI runs shorter sequences.
+int edits(int quick, int sanitizer, int full) {
+  if (std::getenv("SHOREMESH_LONG_TESTS")) return full;
+  return sanitizer_build() ? sanitizer : quick;
+}
+
+TEST(Dynamic, RandomEditsEqualFreshRuns2D) {
+  random_edits_equal_fresh_runs<2>(families::gaussian_clusters<2>(25, 3, 21), edits(300, 100, 1000), 1);
+}
+
+TEST(Dynamic, RandomEditsEqualFreshRuns3D) {
+  random_edits_equal_fresh_runs<3>(families::uniform<3>(6, 22), edits(40, 15, 1000), 2);
+}
+
+TEST(Dynamic, InsertNextToExistingPointAndGadget2D) {
+  auto pts = families::uniform<2>(200, 5);
+  WellSpacedSet<2> set;
+  set.build(pts);
+  UpdateReport<2> report;
+  const std::size_t id = set.add({pts[17][0] + 1e-9, pts[17][1]}, &report);
+  EXPECT_EQ(id, 200u);
+  // The gadget of section 8: growing rings of Steiner points around the new close pair, Omega(log Delta).
+  EXPECT_GT(report.steiner_added.size(), 20u);
+  expect_equal_to_fresh_run(set, "gadget");
+  set.remove(id, &report);
+  expect_equal_to_fresh_run(set, "gadget removed");
+  EXPECT_GT(report.steiner_removed.size(), 20u);
+}
+
+TEST(Dynamic, BatchEqualsFreshRun) {
+  auto pts = families::uniform<2>(300, 6);
+  WellSpacedSet<2> set;
+  set.build(pts);
+  std::vector<Edit<2>> edits{{Edit<2>::Kind::Remove, 3, {}},
+                             {Edit<2>::Kind::Add, 0, {0.5, 0.5}},
+                             {Edit<2>::Kind::Move, 10, {0.25, 0.75}},
+                             {Edit<2>::Kind::Add, 0, {0.5, 0.5000001}}};
+  UpdateReport<2> report;
+  const auto ids = set.apply(edits, &report);
+  EXPECT_EQ(ids, (std::vector<std::size_t>{300, 301}));
+  EXPECT_FALSE(set.has_input(3));
+  EXPECT_EQ(set.input_point(10), (Point<2>{0.25, 0.75}));
+  expect_equal_to_fresh_run(set, "batch");
+}
+
+TEST(Dynamic, MemoryIsReclaimed) {
+  WellSpacedSet<2> set;
+  set.build(families::uniform<2>(400, 7));
+  std::mt19937_64 rng(3);
+  for (int k = 0; k < 300; ++k) random_edit(set, rng, static_cast<UpdateReport<2>*>(nullptr));
+  WellSpacedSet<2> fresh;
+  fresh.build(live_inputs(set));
+  EXPECT_EQ(set.engine().live_op_count(), fresh.engine().live_op_count());
+  EXPECT_EQ(set.engine().live_vertex_count(), fresh.engine().live_vertex_count());
+  // Free slots are reused: the arrays stay within a small factor of a fresh run's.
+  EXPECT_LT(set.engine().op_count(), 2 * fresh.engine().op_count());
+  EXPECT_LT(set.engine().vertex_count(), 2 * fresh.engine().vertex_count());
+  EXPECT_LT(set.memory_bytes(), 3 * fresh.memory_bytes());
+  ASSERT_NO_THROW(set.check_valid());
+}
+
+TEST(Dynamic, BadEditsChangeNothing) {
+  WellSpacedSet<2> set;
+  set.build(families::uniform<2>(50, 8));
+  const auto before = set.output_points();
+  const Point<2> existing = set.input_point(4);
+  EXPECT_THROW(set.remove(999), InputError);
+  EXPECT_THROW(set.move(999, {0.5, 0.5}), InputError);
+  EXPECT_THROW(set.add(existing), InputError);
+  EXPECT_THROW(set.add({1.5, 0.5}), InputError);
+  EXPECT_THROW(set.add({std::nan(""), 0.5}), InputError);
+  EXPECT_THROW(set.add({existing[0] + 1e-13, existing[1]}), InputError);  // below the resolution
+  // A batch with one bad edit applies none of them.
+  std::vector<Edit<2>> edits{{Edit<2>::Kind::Add, 0, {0.5, 0.25}}, {Edit<2>::Kind::Remove, 77, {}}};
+  try {
+    set.apply(edits);
+    FAIL() << "bad batch accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("edit 2"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(set.output_points(), before);
+  ASSERT_NO_THROW(set.check_valid());
+  // Removing every point but the last works; the last is refused.
+  for (std::size_t id = 0; id < 49; ++id) set.remove(id);
+  EXPECT_THROW(set.remove(49), InputError);
+  EXPECT_EQ(set.output_points().size(), 1u);
+  ASSERT_NO_THROW(set.check_valid());
+  // Ids are never reused.
+  EXPECT_EQ(set.add({0.5, 0.5}), 50u);
+  expect_equal_to_fresh_run(set, "after removing all but one");
+}
+
+TEST(Dynamic, UserCoordinatesAndBoxRefusal) {
+  std::vector<Point<2>> pts;
+  for (const auto& p : families::uniform<2>(100, 9)) pts.push_back({1000 + 500 * p[0], -200 + 500 * p[1]});
+  DynamicWellSpaced<2> dyn(pts);
+  const auto box = dyn.box();
+  UpdateReport<2> report;
+  const std::size_t id = dyn.add({1250, 50}, &report);
+  dyn.move(0, {1100, 100}, &report);
+  EXPECT_THROW(dyn.add({box.origin[0] - 1, 50}), InputError);
+  // Equal to the static entry point on the final input and the same box, in user coordinates.
+  std::vector<Point<2>> final_input;
+  for (std::size_t k : dyn.input_ids()) final_input.push_back(dyn.input_point(k));
+  const StableResult<2> fresh = stable_well_spaced<2>(final_input, {}, box);
+  EXPECT_EQ(dyn.points(), fresh.points);
+  EXPECT_EQ(dyn.input_point(id), (Point<2>{1250, 50}));
+}
+
+// Work per update grows with log(spread), not with n: operations touched per unit change (remove a
+// random input point, then add a random point) stay bounded from n = 1e3 to 1e4 (1e5 in bench/).
+TEST(Dynamic, OperationsPerUpdateBoundedInN) {
+  std::vector<double> medians;
+  for (std::size_t n : {std::size_t(1000), std::size_t(sanitizer_build() ? 3000 : 10000)}) {
+    WellSpacedSet<2> set;
+    set.build(families::uniform<2>(n, 10));
+    std::mt19937_64 rng(4);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<std::size_t> touched;
+    for (int k = 0; k < 40; ++k) {
+      UpdateReport<2> a, b;
+      const auto ids = set.input_ids();
+      set.remove(ids[rng() % ids.size()], &a);
+      set.add({u(rng), u(rng)}, &b);
+      touched.push_back(a.operations_touched());
+      touched.push_back(b.operations_touched());
+    }
+    std::sort(touched.begin(), touched.end());
+    medians.push_back(double(touched[touched.size() / 2]));
+    ::testing::Test::RecordProperty("median_touched_n" + std::to_string(n), int(medians.back()));
+    ::testing::Test::RecordProperty("max_touched_n" + std::to_string(n), int(touched.back()));
+    EXPECT_LT(double(touched.back()), 0.5 * double(set.engine().live_op_count()));
+  }
+  EXPECT_LT(medians[1], 1.5 * medians[0]);
+}
+
+}  // namespace
+}  // namespace shoremesh
