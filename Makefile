@@ -23,7 +23,10 @@ build: deps configure
 demo: build
 	bash scripts/demo.sh $(BUILD)/tool/shoremesh $(DEMO_OUT)
 
-# Release tests, then the same suite under AddressSanitizer + UBSan (SHOREMESH_SKIP_ASAN=1 skips it).
+# Release tests (ctest, every test), then the library suites again under AddressSanitizer + UBSan, with
+# smaller sizes (SHOREMESH_SANITIZER_BUILD). SHOREMESH_SKIP_ASAN=1 skips that second stage.
+ASAN_TESTS := shoremesh_engine_tests shoremesh_io_tests shoremesh_mesh_tests
+
 test: test-release test-asan
 
 test-release: build
@@ -31,9 +34,11 @@ test-release: build
 
 test-asan: deps
 	@if [ -n "$$SHOREMESH_SKIP_ASAN" ]; then echo "sanitizer run skipped (SHOREMESH_SKIP_ASAN set)"; else \
-	  cmake -S . -B $(ASAN_BUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSHOREMESH_SANITIZE=ON -DSHOREMESH_BUILD_BENCH=OFF && \
-	  cmake --build $(ASAN_BUILD) -j $(JOBS) && \
-	  cd $(ASAN_BUILD) && SHOREMESH_SANITIZER_BUILD=1 ctest --output-on-failure -j $(JOBS); fi
+	  set -e; \
+	  cmake -S . -B $(ASAN_BUILD) $(CMAKE_GEN) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSHOREMESH_SANITIZE=ON -DSHOREMESH_BUILD_BENCH=OFF; \
+	  cmake --build $(ASAN_BUILD) -j $(JOBS) --target $(ASAN_TESTS); \
+	  for t in $(ASAN_TESTS); do echo "== $$t (ASan + UBSan)"; \
+	    SHOREMESH_SANITIZER_BUILD=1 ./$(ASAN_BUILD)/tests/$$t --gtest_brief=1 || exit 1; done; fi
 
 bench: build
 	bash bench/run.sh $(BUILD)
