@@ -144,10 +144,7 @@ std::optional<json> EditSession<D>::run(std::size_t line, const std::string& tex
       throw InputError("unknown edit '" + op + "' (add, remove, move, export, preview, preview-change, stats)");
     }
   } catch (const InputError& e) {
-    // The engine numbers the edits of a batch ("edit 1: ..."); a line is a batch of one.
-    std::string message = e.what();
-    if (message.rfind("edit 1: ", 0) == 0) message.erase(0, 8);
-    return json{{"line", line}, {"ok", false}, {"op", op}, {"error", message}};
+    return json{{"line", line}, {"ok", false}, {"op", op}, {"error", e.what()}};
   } catch (const ParameterError& e) {
     return json{{"line", line}, {"ok", false}, {"op", op}, {"error", e.what()}};
   }

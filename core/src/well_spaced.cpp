@@ -112,6 +112,7 @@ std::vector<std::size_t> WellSpacedSet<D>::apply(std::span<const Edit<D>> edits,
       if (e.kind == Edit<D>::Kind::Add) ++live, ++next_id;
       if (e.kind == Edit<D>::Kind::Remove) --live;
     } catch (const InputError& err) {
+      if (edits.size() == 1) throw;
       throw InputError("edit " + std::to_string(k + 1) + ": " + err.message());
     }
   }
@@ -293,6 +294,7 @@ std::vector<std::size_t> DynamicWellSpaced<D>::apply(std::span<const Edit<D>> ed
       try {
         unit[k].point = to_unit_checked(edits[k].point);
       } catch (const InputError& e) {
+        if (edits.size() == 1) throw;
         throw InputError("edit " + std::to_string(k + 1) + ": " + e.message());
       }
     }
