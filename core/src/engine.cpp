@@ -643,10 +643,7 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::apply(s
       mark_readers_at(p, leaf, kBeforeEverything, 0);
       // The input vertex of the leaf that now holds p has a new neighbourhood too.
       if (tree_.node(leaf).input_vertex != kNoVertex) redispatch_input(tree_.node(leaf).input_vertex);
-      kill_vertex(v);
-      if (stats) {
-        // An input removal is not a Steiner change; nothing to report for v itself.
-      }
+      kill_vertex(v);  // an input, not a Steiner change: the report does not list it
     }
   }
   propagate(stats);

@@ -202,36 +202,17 @@ const WellSpacedEngine<D>& WellSpacedSet<D>::engine() const {
   return *engine_;
 }
 
+// The static entry point is the dynamic set, built once: one place checks the input and maps the box.
 template <int D>
 StableResult<D> stable_well_spaced(std::span<const Point<D>> user_points, const Parameters<D>& parameters,
                                    std::optional<BoxTransform<D>> box) {
-  if (user_points.empty()) throw InputError("no input points");
-  for (std::size_t i = 0; i < user_points.size(); ++i)
-    for (int k = 0; k < D; ++k)
-      if (!std::isfinite(user_points[i][k]))
-        throw PointInputError("point " + std::to_string(i) + " has a coordinate that is not a finite number", {i});
+  const DynamicWellSpaced<D> dynamic(user_points, parameters, box);
   StableResult<D> result;
-  if (box) {
-    if (!(box->side > 0) || !std::isfinite(box->side)) throw InputError("the box side must be a positive number");
-    for (std::size_t i = 0; i < user_points.size(); ++i)
-      if (!box->contains(user_points[i]))
-        throw PointInputError("point " + std::to_string(i) + " lies outside the given box", {i});
-    result.box = *box;
-  } else {
-    result.box = BoxTransform<D>::fit(user_points);
-  }
-  std::vector<Point<D>> unit(user_points.size());
-  for (std::size_t i = 0; i < unit.size(); ++i) unit[i] = result.box.to_unit(user_points[i]);
-
-  WellSpacedSet<D> set(parameters);
-  set.build(unit);
-  // Input points come back exactly as the user gave them; only Steiner points are mapped back.
-  std::vector<Point<D>> out = set.output_points();
-  result.points.assign(user_points.begin(), user_points.end());
-  for (std::size_t i = user_points.size(); i < out.size(); ++i) result.points.push_back(result.box.to_user(out[i]));
+  result.box = dynamic.box();
+  result.points = dynamic.points();
   result.input_count = user_points.size();
-  result.counters = set.counters();
-  result.memory_bytes = set.memory_bytes();
+  result.counters = dynamic.set().counters();
+  result.memory_bytes = dynamic.set().memory_bytes();
   return result;
 }
 
@@ -239,25 +220,20 @@ template <int D>
 DynamicWellSpaced<D>::DynamicWellSpaced(std::span<const Point<D>> user_points, const Parameters<D>& parameters,
                                         std::optional<BoxTransform<D>> box)
     : set_(parameters) {
-  // The same checks and box as the static entry point, so the two agree exactly.
-  const StableResult<D> probe_box_only = [&] {
-    StableResult<D> r;
-    if (user_points.empty()) throw InputError("no input points");
+  if (user_points.empty()) throw InputError("no input points");
+  for (std::size_t i = 0; i < user_points.size(); ++i)
+    for (int k = 0; k < D; ++k)
+      if (!std::isfinite(user_points[i][k]))
+        throw PointInputError("point " + std::to_string(i) + " has a coordinate that is not a finite number", {i});
+  if (box) {
+    if (!(box->side > 0) || !std::isfinite(box->side)) throw InputError("the box side must be a positive number");
     for (std::size_t i = 0; i < user_points.size(); ++i)
-      for (int k = 0; k < D; ++k)
-        if (!std::isfinite(user_points[i][k]))
-          throw PointInputError("point " + std::to_string(i) + " has a coordinate that is not a finite number", {i});
-    r.box = box ? *box : BoxTransform<D>::fit(user_points);
-    return r;
-  }();
-  box_ = probe_box_only.box;
-  if (!(box_.side > 0) || !std::isfinite(box_.side)) throw InputError("the box side must be a positive number");
-  std::vector<Point<D>> unit(user_points.size());
-  for (std::size_t i = 0; i < unit.size(); ++i) {
-    if (!box_.contains(user_points[i]))
-      throw PointInputError("point " + std::to_string(i) + " lies outside the given box", {i});
-    unit[i] = box_.to_unit(user_points[i]);
+      if (!box->contains(user_points[i]))
+        throw PointInputError("point " + std::to_string(i) + " lies outside the given box", {i});
   }
+  box_ = box ? *box : BoxTransform<D>::fit(user_points);  // a fitted box holds every point
+  std::vector<Point<D>> unit(user_points.size());
+  for (std::size_t i = 0; i < unit.size(); ++i) unit[i] = box_.to_unit(user_points[i]);
   set_.build(unit);
   user_inputs_.assign(user_points.begin(), user_points.end());
 }
