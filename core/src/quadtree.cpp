@@ -157,20 +157,10 @@ void Quadtree<D>::covering_nodes(const Point<D>& lo_in, const Point<D>& hi_in, s
   Point<D> lo, hi;
   const int level = box_level(lo_in, hi_in, lo, hi);
   const Coords first = cell_of(lo, level), last = cell_of(hi, level);
-  Coords c = first;
-  for (;;) {
+  for_each_index_in_box<D>(first, last, [&](const Coords& c) {
     const NodeId n = deepest_containing(level, c);
     if (std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
-    int i = 0;
-    for (; i < D; ++i) {
-      if (c[i] < last[i]) {
-        ++c[i];
-        break;
-      }
-      c[i] = first[i];
-    }
-    if (i == D) break;
-  }
+  });
 }
 
 template <int D>
@@ -198,26 +188,17 @@ bool Quadtree<D>::cell_in_domain(int level, const std::array<std::int64_t, D>& c
 template <int D>
 template <class F>
 void Quadtree<D>::for_each_neighbour_cell(int level, const Coords& c, int reach, F&& f) const {
-  std::array<std::int64_t, D> off;
-  off.fill(-reach);
-  for (;;) {
-    std::array<std::int64_t, D> q;
-    for (int i = 0; i < D; ++i) q[i] = std::int64_t(c[i]) + off[i];
-    if (cell_in_domain(level, q)) {
-      Coords qc;
-      for (int i = 0; i < D; ++i) qc[i] = std::uint64_t(q[i]);
-      f(qc);
-    }
-    int i = 0;
-    for (; i < D; ++i) {
-      if (off[i] < reach) {
-        ++off[i];
-        break;
-      }
-      off[i] = -reach;
-    }
-    if (i == D) return;
+  std::array<std::int64_t, D> first, last;
+  for (int i = 0; i < D; ++i) {
+    first[i] = std::int64_t(c[i]) - reach;
+    last[i] = std::int64_t(c[i]) + reach;
   }
+  for_each_index_in_box<D>(first, last, [&](const std::array<std::int64_t, D>& q) {
+    if (!cell_in_domain(level, q)) return;
+    Coords qc;
+    for (int i = 0; i < D; ++i) qc[i] = std::uint64_t(q[i]);
+    f(qc);
+  });
 }
 
 template <int D>
@@ -245,29 +226,17 @@ bool Quadtree<D>::crowded_by(int level, const Coords& c, std::uint32_t own, Coun
   for_each_neighbour_cell(level, c, 1, [&](const Coords& q) {
     if (found || q == c || count(level, q) == 0) return;
     // Fine cells of q within one fine cell of c's block.
-    std::array<std::int64_t, D> lo, hi, r;
+    std::array<std::int64_t, D> lo, hi;
     for (int i = 0; i < D; ++i) {
       lo[i] = std::max(std::int64_t(c[i]) * s - 1, std::int64_t(q[i]) * s);
       hi[i] = std::min(std::int64_t(c[i]) * s + s, std::int64_t(q[i]) * s + s - 1);
-      r[i] = lo[i];
     }
-    for (;;) {
+    for_each_index_in_box<D>(lo, hi, [&](const std::array<std::int64_t, D>& r) {
+      if (found) return;
       Coords fc;
       for (int i = 0; i < D; ++i) fc[i] = std::uint64_t(r[i]);
-      if (count(fine, fc) > 0) {
-        found = true;
-        return;
-      }
-      int i = 0;
-      for (; i < D; ++i) {
-        if (r[i] < hi[i]) {
-          ++r[i];
-          break;
-        }
-        r[i] = lo[i];
-      }
-      if (i == D) return;
-    }
+      found = count(fine, fc) > 0;
+    });
   });
   return found;
 }
@@ -307,35 +276,24 @@ bool Quadtree<D>::required_split(NodeId n, std::span<const Point<D>> positions) 
   for (int k = 0; k < kChildren; ++k)
     if (!nodes_[nd.first_child + NodeId(k)].is_leaf()) return true;
   // Level+1 cells touching n from outside: within one cell of n's children's block.
-  Coords base;
-  for (int i = 0; i < D; ++i) base[i] = 2 * nd.coords[i];
   const int level = nd.level + 1;
-  std::array<std::int64_t, D> off;
-  off.fill(-1);
-  for (;;) {
-    bool outside = false;
-    std::array<std::int64_t, D> q;
-    for (int i = 0; i < D; ++i) {
-      q[i] = std::int64_t(base[i]) + off[i];
-      outside = outside || off[i] == -1 || off[i] == 2;
-    }
-    if (outside && cell_in_domain(level, q)) {
-      Coords qc;
-      for (int i = 0; i < D; ++i) qc[i] = std::uint64_t(q[i]);
-      const NodeId m = find(level, qc);
-      if (m != kNoNode && !nodes_[m].is_leaf()) return true;
-    }
-    int i = 0;
-    for (; i < D; ++i) {
-      if (off[i] < 2) {
-        ++off[i];
-        break;
-      }
-      off[i] = -1;
-    }
-    if (i == D) break;
+  std::array<std::int64_t, D> first, last;
+  for (int i = 0; i < D; ++i) {
+    first[i] = 2 * std::int64_t(nd.coords[i]) - 1;
+    last[i] = 2 * std::int64_t(nd.coords[i]) + 2;
   }
-  return false;
+  bool touched = false;
+  for_each_index_in_box<D>(first, last, [&](const std::array<std::int64_t, D>& q) {
+    if (touched || !cell_in_domain(level, q)) return;
+    bool outside = false;
+    for (int i = 0; i < D; ++i) outside = outside || q[i] == first[i] || q[i] == last[i];
+    if (!outside) return;
+    Coords qc;
+    for (int i = 0; i < D; ++i) qc[i] = std::uint64_t(q[i]);
+    const NodeId m = find(level, qc);
+    touched = m != kNoNode && !nodes_[m].is_leaf();
+  });
+  return touched;
 }
 
 // Makes every leaf in `worklist` (and every leaf this creates) balanced against its neighbours: for a

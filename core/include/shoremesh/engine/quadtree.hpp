@@ -25,6 +25,25 @@
 
 namespace shoremesh::engine {
 
+// Calls f(c) for every index c with first <= c <= last in each coordinate, the first axis fastest: the
+// cells of a box at one level.
+template <int D, class Index, class F>
+void for_each_index_in_box(const std::array<Index, D>& first, const std::array<Index, D>& last, F&& f) {
+  std::array<Index, D> c = first;
+  for (;;) {
+    f(c);
+    int i = 0;
+    for (; i < D; ++i) {
+      if (c[i] < last[i]) {
+        ++c[i];
+        break;
+      }
+      c[i] = first[i];
+    }
+    if (i == D) return;
+  }
+}
+
 template <int D>
 class Quadtree {
  public:
@@ -136,46 +155,33 @@ std::size_t Quadtree<D>::for_each_leaf_in_box(const Point<D>& lo_in, const Point
   const Coords first = cell_of(lo, level), last = cell_of(hi, level);
   std::size_t visited = 0;
   NodeId stack[kMaxLevel * kChildren + 8];
-  Coords c = first;
-  for (;;) {
+  for_each_index_in_box<D>(first, last, [&](const Coords& c) {
     // Only leaves are stamped: a later, larger box of the same session must still descend into an
     // internal node whose other children it has not seen.
-    NodeId start = deepest_containing(level, c);
-    {
-      int top = 0;
-      stack[top++] = start;
-      while (top > 0) {
-        NodeId n = stack[--top];
-        const Node& nd = nodes_[n];
-        if (nd.is_leaf()) {
-          if (stamp_[n] == query_stamp_) continue;
-          stamp_[n] = query_stamp_;
-          ++visited;
-          f(n);
-          continue;
+    int top = 0;
+    stack[top++] = deepest_containing(level, c);
+    while (top > 0) {
+      NodeId n = stack[--top];
+      const Node& nd = nodes_[n];
+      if (nd.is_leaf()) {
+        if (stamp_[n] == query_stamp_) continue;
+        stamp_[n] = query_stamp_;
+        ++visited;
+        f(n);
+        continue;
+      }
+      const double child_side = std::ldexp(1.0, -(nd.level + 1));
+      for (int k = 0; k < kChildren; ++k) {
+        const NodeId ch = nd.first_child + NodeId(k);
+        bool meets = true;
+        for (int i = 0; i < D && meets; ++i) {
+          const double clo = double(nodes_[ch].coords[i]) * child_side;
+          meets = clo <= hi[i] && clo + child_side >= lo[i];
         }
-        const double child_side = std::ldexp(1.0, -(nd.level + 1));
-        for (int k = 0; k < kChildren; ++k) {
-          const NodeId ch = nd.first_child + NodeId(k);
-          bool meets = true;
-          for (int i = 0; i < D && meets; ++i) {
-            const double clo = double(nodes_[ch].coords[i]) * child_side;
-            meets = clo <= hi[i] && clo + child_side >= lo[i];
-          }
-          if (meets) stack[top++] = ch;
-        }
+        if (meets) stack[top++] = ch;
       }
     }
-    int i = 0;
-    for (; i < D; ++i) {
-      if (c[i] < last[i]) {
-        ++c[i];
-        break;
-      }
-      c[i] = first[i];
-    }
-    if (i == D) break;
-  }
+  });
   return visited;
 }
 
