@@ -5,20 +5,11 @@
 #include <random>
 
 #include "shoremesh/engine/quadtree.hpp"
+#include "shoremesh/families.hpp"
 #include "shoremesh/error.hpp"
 
 namespace shoremesh::engine {
 namespace {
-
-template <int D>
-std::vector<Point<D>> random_points(std::size_t n, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::vector<Point<D>> pts(n);
-  for (auto& p : pts)
-    for (auto& x : p) x = u(rng);
-  return pts;
-}
 
 template <int D>
 Quadtree<D> fresh(const std::vector<Point<D>>& positions, const std::vector<VertexId>& live) {
@@ -31,7 +22,7 @@ Quadtree<D> fresh(const std::vector<Point<D>>& positions, const std::vector<Vert
 
 template <int D>
 void random_edits_match_fresh_build(std::uint64_t seed) {
-  auto positions = random_points<D>(400, seed);
+  auto positions = families::uniform<D>(400, seed);
   // Clustered points too, so that the tree gets deep and balance ripples.
   std::mt19937_64 rng(seed + 1);
   std::normal_distribution<double> g(0.0, 1e-4);
@@ -70,7 +61,7 @@ TEST(Quadtree, RandomEditsEqualFreshBuild2D) { random_edits_match_fresh_build<2>
 TEST(Quadtree, RandomEditsEqualFreshBuild3D) { random_edits_match_fresh_build<3>(11); }
 
 TEST(Quadtree, LeafSizeApproximatesNearestNeighbour) {
-  auto pts = random_points<2>(2000, 3);
+  auto pts = families::uniform<2>(2000, 3);
   std::vector<VertexId> ids(pts.size());
   for (VertexId i = 0; i < ids.size(); ++i) ids[i] = i;
   Quadtree<2> t;
