@@ -33,6 +33,8 @@ void run(const Options& opt) {
   double build_seconds = 0, build_ops = 0, unit_seconds = 0, unit_ops = 0;
   std::vector<double> latencies;
   std::size_t output = 0;
+  // Per clipped cell: leaves searched, candidate vertices looked at, half-spaces clipped (build, updates).
+  shoremesh::Counters build_work, update_work;
   for (std::size_t input = 0; input < opt.inputs; ++input) {
     const auto points = shoremesh::families::uniform<D>(opt.n, opt.seed + input);
     shoremesh::WellSpacedSet<D> set;
@@ -40,6 +42,11 @@ void run(const Options& opt) {
     set.build(points);
     build_seconds += seconds_since(t0);
     build_ops += double(set.counters().operations());
+    const shoremesh::Counters after_build = set.counters();
+    build_work.clipped_voronoi_calls += after_build.clipped_voronoi_calls;
+    build_work.leaves_visited += after_build.leaves_visited;
+    build_work.candidates += after_build.candidates;
+    build_work.clips += after_build.clips;
     output += set.input_count() + set.steiner_count();
     std::mt19937_64 rng(opt.seed * 7919 + input);
     std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -59,6 +66,11 @@ void run(const Options& opt) {
       unit_seconds += a + b;
       unit_ops += double(removed.operations_touched() + added.operations_touched());
     }
+    const shoremesh::Counters& end = set.counters();
+    update_work.clipped_voronoi_calls += end.clipped_voronoi_calls - after_build.clipped_voronoi_calls;
+    update_work.leaves_visited += end.leaves_visited - after_build.leaves_visited;
+    update_work.candidates += end.candidates - after_build.candidates;
+    update_work.clips += end.clips - after_build.clips;
   }
   std::sort(latencies.begin(), latencies.end());
   const double k = double(opt.inputs), changes = double(opt.inputs * opt.changes);
@@ -69,6 +81,14 @@ void run(const Options& opt) {
       D, opt.n, opt.inputs, opt.changes, double(output) / k, build_seconds / k, build_ops / k, unit_seconds / changes,
       unit_ops / changes, latencies[latencies.size() / 2], latencies[latencies.size() * 99 / 100],
       (build_ops / k) / (unit_ops / changes), (build_seconds / k) / (unit_seconds / changes));
+  auto per_cell = [](const char* what, const shoremesh::Counters& c) {
+    const double cells = double(std::max<std::uint64_t>(c.clipped_voronoi_calls, 1));
+    std::printf("  %s: cells=%llu leaves_per_cell=%.1f candidates_per_cell=%.1f clips_per_cell=%.1f\n", what,
+                (unsigned long long)c.clipped_voronoi_calls, double(c.leaves_visited) / cells,
+                double(c.candidates) / cells, double(c.clips) / cells);
+  };
+  per_cell("build", build_work);
+  per_cell("updates", update_work);
 }
 
 }  // namespace

@@ -350,6 +350,8 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
         // propagation (an input was just added there): it is not a neighbour.
         if (d2 == 0 && positions_[u] == p) continue;
         pool.push_back({d2, u});
+        ++counters_.candidates;
+        ++counters_.candidates;
         if (hood_.nearest != kNoVertex && d2 > best_d2 * (1 + 1e-12)) continue;
         if (hood_.nearest != kNoVertex && d2 >= best_d2 * (1 - 1e-12)) {
           // Nearly tied: decide exactly, then by coordinates, so the nearest neighbour is canonical.
@@ -414,6 +416,8 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   for (;;) {
     double reach2 = std::min(4 * cell_.max_vertex_distance2() * (1 + 1e-9), cap2);
     while (next < pool.size() && pool[next].d2 <= std::min(reach2, searched * searched)) {
+      ++counters_.clips;
+      ++counters_.clips;
       if (cell_.clip(pool[next].id, positions_[pool[next].id]))
         reach2 = std::min(4 * cell_.max_vertex_distance2() * (1 + 1e-9), cap2);
       ++next;
