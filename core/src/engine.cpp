@@ -151,16 +151,27 @@ void WellSpacedEngine<D>::mark_redo(OpId o) {
 }
 
 template <int D>
-void WellSpacedEngine<D>::mark_readers_at(const Point<D>& p, NodeId leaf, int rank, std::uint32_t color) {
+void WellSpacedEngine<D>::mark_readers_at(VertexId w, const Point<D>& p, NodeId leaf, VertexChange change, int rank,
+                                          std::uint32_t color) {
+  const bool inserted = change == VertexChange::Inserted;
+  const std::uint64_t bit = facet_bit(w);
   for (NodeId n = leaf; n != kNoNode; n = tree_.node(n).parent)
     for (OpId o : readers_[n]) {
       const Op& op = ops_[o];
       if (op.rank < rank || (op.rank == rank && op.color <= color)) continue;
+      if (!inserted && !(op.facet_mask & bit)) continue;
       const Point<D>& c = positions_[op.vertex];
       double d2 = 0;
       for (int i = 0; i < D; ++i) d2 += (p[i] - c[i]) * (p[i] - c[i]);
-      if (d2 <= op.depends2) mark_redo(o);
+      if (d2 <= (inserted ? op.inserted_depends2 : op.depends2)) mark_redo(o);
     }
+}
+
+template <int D>
+void WellSpacedEngine<D>::record_facets(OpId o) {
+  std::uint64_t mask = facet_bit(hood_.nearest);
+  for (VertexId w : neighbours_) mask |= facet_bit(w);
+  ops_[o].facet_mask = mask;
 }
 
 template <int D>
@@ -239,7 +250,7 @@ void WellSpacedEngine<D>::undo(OpId o) {
       mark_obsolete(d);
       if (!vertices_[w].alive) continue;
       tree_.erase_vertex(w, vertices_[w].leaf);
-      mark_readers_at(positions_[w], vertices_[w].leaf, rank, color);
+      mark_readers_at(w, positions_[w], vertices_[w].leaf, VertexChange::Removed, rank, color);
       kill_vertex(w);
       if (stats_) stats_->steiner_removed.push_back(positions_[w]);
     }
@@ -324,6 +335,7 @@ void WellSpacedEngine<D>::compact_pools() {
 template <int D>
 void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   ++counters_.clipped_voronoi_calls;
+  ops_[o].facet_mask = ~std::uint64_t(0);
   const Point<D> p = positions_[v];
   const int rank = ops_[o].rank;
   const std::uint32_t color = ops_[o].color;
@@ -350,7 +362,6 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
         // propagation (an input was just added there): it is not a neighbour.
         if (d2 == 0 && positions_[u] == p) continue;
         pool.push_back({d2, u});
-        ++counters_.candidates;
         ++counters_.candidates;
         if (hood_.nearest != kNoVertex && d2 > best_d2 * (1 + 1e-12)) continue;
         if (hood_.nearest != kNoVertex && d2 >= best_d2 * (1 - 1e-12)) {
@@ -388,7 +399,7 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   };
   if (hood_.nearest == kNoVertex) {
     record_reads(half);
-    ops_[o].depends2 = 4.0 * D;  // anything anywhere in the box gives it a neighbour
+    ops_[o].depends2 = ops_[o].inserted_depends2 = 4.0 * D;  // anything anywhere in the box gives it a neighbour
     return;
   }
 
@@ -417,7 +428,6 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
     double reach2 = std::min(4 * cell_.max_vertex_distance2() * (1 + 1e-9), cap2);
     while (next < pool.size() && pool[next].d2 <= std::min(reach2, searched * searched)) {
       ++counters_.clips;
-      ++counters_.clips;
       if (cell_.clip(pool[next].id, positions_[pool[next].id]))
         reach2 = std::min(4 * cell_.max_vertex_distance2() * (1 + 1e-9), cap2);
       ++next;
@@ -433,7 +443,7 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   // Only a vertex that could cut the cell or be nearer than NN can change what this operation decides:
   // one within 2 x the cell's reach (capped at 2 beta NN), or within NN. A little margin on the rounding.
   const double reach2 = std::min(4 * cell_.max_vertex_distance2(), cap2);
-  ops_[o].depends2 = std::max(reach2, best_d2) * (1 + 1e-6);
+  ops_[o].depends2 = ops_[o].inserted_depends2 = std::max(reach2, best_d2) * (1 + 1e-6);
 }
 
 template <int D>
@@ -477,6 +487,7 @@ void WellSpacedEngine<D>::dispatch(OpId o) {
     if (rw >= op_rank) request_fill(o, w, rw);
   }
   ops_[o].children_end = std::uint32_t(children_.size());
+  record_facets(o);
 }
 
 template <int D>
@@ -518,7 +529,7 @@ void WellSpacedEngine<D>::fill(OpId o) {
     vertices_[id].born_color = op_color;
     vertices_[id].leaf = tree_.insert_vertex(id, w, vertices_[v].leaf);
     ++counters_.steiner_points;
-    if (dynamic_) mark_readers_at(w, vertices_[id].leaf, op_rank, op_color);
+    if (dynamic_) mark_readers_at(id, w, vertices_[id].leaf, VertexChange::Inserted, op_rank, op_color);
     if (stats_) stats_->steiner_added.push_back(w);
     // Fact 1 puts w's rank above op's; the max only guards the table's rounding for a rho other than
     // sqrt(2) (for sqrt(2) the table is exact and it never applies).
@@ -531,12 +542,19 @@ void WellSpacedEngine<D>::fill(OpId o) {
     hood_.candidates.push_back({squared_distance(v, id), id});
   }
   ops_[o].children_end = std::uint32_t(children_.size());
+  // v was already well-spaced: a vertex inserted farther than NN(v) leaves NN(v) and the clipping cube
+  // as they are and can only shrink the cell, so v stays well-spaced and this fill does nothing again.
+  if (ops_[o].children_begin == ops_[o].children_end && hood_.nearest != kNoVertex) {
+    ops_[o].inserted_depends2 = squared_distance(v, hood_.nearest) * (1 + 1e-6);
+    cell_.bisector_neighbours(neighbours_);
+    record_facets(o);
+  }
   // Steiner vertices of the previous run not inserted again leave the output.
   for (OpId d : stash_) {
     const VertexId w = ops_[d].vertex;
     mark_obsolete(d);
     tree_.erase_vertex(w, vertices_[w].leaf);
-    mark_readers_at(positions_[w], vertices_[w].leaf, op_rank, op_color);
+    mark_readers_at(w, positions_[w], vertices_[w].leaf, VertexChange::Removed, op_rank, op_color);
     kill_vertex(w);
     if (stats_) stats_->steiner_removed.push_back(positions_[w]);
   }
@@ -634,7 +652,7 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::apply(s
       vertices_[v].leaf = tree_.locate(e.point);
       apply_tree_change(change);
       // The new vertex changes what every reader of its square saw.
-      mark_readers_at(e.point, vertices_[v].leaf, kBeforeEverything, 0);
+      mark_readers_at(v, e.point, vertices_[v].leaf, VertexChange::Inserted, kBeforeEverything, 0);
       if (vertices_[v].dispatch == kNoOp || ops_[vertices_[v].dispatch].vertex != v) redispatch_input(v);
       added.push_back(v);
     } else {
@@ -644,7 +662,7 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::apply(s
       --input_count_;
       apply_tree_change(change);
       const NodeId leaf = tree_.locate(p);
-      mark_readers_at(p, leaf, kBeforeEverything, 0);
+      mark_readers_at(v, p, leaf, VertexChange::Removed, kBeforeEverything, 0);
       // The input vertex of the leaf that now holds p has a new neighbourhood too.
       if (tree_.node(leaf).input_vertex != kNoVertex) redispatch_input(tree_.node(leaf).input_vertex);
       kill_vertex(v);  // an input, not a Steiner change: the report does not list it

@@ -66,7 +66,13 @@ class WellSpacedEngine {
     std::uint32_t children_begin = 0, children_end = 0;  // into children_
     std::uint32_t reads_begin = 0, reads_end = 0;        // into reads_
     double read_half = 0;              // it registered on the nodes covering this box around its vertex
-    double depends2 = 0;               // its result depends only on vertices within this squared distance
+    // Its result depends only on the vertices within these squared distances: removing one within
+    // depends2, or inserting one within inserted_depends2 (smaller for a fill that found its vertex
+    // well-spaced: a new vertex farther than NN only shrinks the cell, and it stays well-spaced).
+    double depends2 = 0;
+    double inserted_depends2 = 0;
+    // Removing a vertex matters only if it bounds the cell (see facet_bit); all ones: any vertex.
+    std::uint64_t facet_mask = ~std::uint64_t(0);
   };
 
   // One edit for apply(): add a point (id returned) or remove an input vertex.
@@ -134,9 +140,17 @@ class WellSpacedEngine {
   void mark_fresh(OpId o);
   void mark_obsolete(OpId o);
   void mark_redo(OpId o);
-  // Marks inconsistent every operation later than (rank, color) whose read box contains p (all of them
-  // when rank is the minimum int): the readers registered on p's leaf and its ancestors.
-  void mark_readers_at(const Point<D>& p, NodeId leaf, int rank, std::uint32_t color);
+  // Vertex w at p was inserted or removed at time (rank, color) (before everything when rank is the
+  // minimum int): marks inconsistent every later operation that depends on it, among the readers
+  // registered on p's leaf and its ancestors.
+  enum class VertexChange { Inserted, Removed };
+  void mark_readers_at(VertexId w, const Point<D>& p, NodeId leaf, VertexChange change, int rank,
+                       std::uint32_t color);
+  // Dispatches and fills that insert nothing decide from v's nearest neighbour and the set of vertices
+  // whose bisectors bound v's cell: removing any other vertex leaves the cell and the decision as they
+  // were. That set is kept as a 64-bit Bloom mask of vertex ids (false positives only cost a rerun).
+  static std::uint64_t facet_bit(VertexId w) { return std::uint64_t(1) << ((w * 0x9E3779B97F4A7C15ull) >> 58); }
+  void record_facets(OpId o);
   void mark_all_readers(NodeId n);
   void propagate(PropagationStats* stats);
   void undo(OpId o);
