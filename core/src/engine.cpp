@@ -84,7 +84,7 @@ void WellSpacedEngine<D>::build(std::span<const Point<D>> unit_points) {
   for (NodeId n = 0; n < tree_.node_capacity(); ++n) {
     const auto& nd = tree_.node(n);
     if (nd.level < 0 || !nd.is_leaf()) continue;
-    for (VertexId v : nd.vertices) vertices_[v].leaf = n;
+    for (const LeafVertex<D>& e : nd.vertices) vertices_[e.id].leaf = n;
   }
   readers_.assign(tree_.node_capacity(), {});
   // Input dispatches at the rank of QTApxNN(v) (a quarter of the side of its leaf): NN from below.
@@ -337,8 +337,8 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   ++counters_.clipped_voronoi_calls;
   ops_[o].facet_mask = ~std::uint64_t(0);
   const Point<D> p = positions_[v];
-  const int rank = ops_[o].rank;
-  const std::uint32_t color = ops_[o].color;
+  // Only vertices born before this operation's time exist for it (M_t).
+  const std::uint64_t now = time_key(ops_[o].rank, ops_[o].color);
   PredicateCounters& pc = cell_.counters();
   auto& pool = hood_.candidates;
   hood_.nearest = kNoVertex;
@@ -353,21 +353,21 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
       hi[i] = p[i] + half;
     }
     counters_.leaves_visited += tree_.for_each_leaf_in_box(lo, hi, [&](NodeId n) {
-      for (VertexId u : tree_.node(n).vertices) {
-        if (u == v) continue;
-        const Vertex& ux = vertices_[u];
-        if (ux.born_rank > rank || (ux.born_rank == rank && ux.born_color >= color)) continue;  // not yet
-        const double d2 = squared_distance(v, u);
+      for (const LeafVertex<D>& e : tree_.node(n).vertices) {
+        if (e.tag >= now || e.id == v) continue;
+        const VertexId u = e.id;
+        double d2 = 0;
+        for (int i = 0; i < D; ++i) d2 += (e.position[i] - p[i]) * (e.position[i] - p[i]);
         // A vertex exactly at v's place can only be a Steiner point about to be removed by the
         // propagation (an input was just added there): it is not a neighbour.
-        if (d2 == 0 && positions_[u] == p) continue;
-        pool.push_back({d2, u});
+        if (d2 == 0 && e.position == p) continue;
+        pool.push_back({d2, u, e.position});
         ++counters_.candidates;
         if (hood_.nearest != kNoVertex && d2 > best_d2 * (1 + 1e-12)) continue;
         if (hood_.nearest != kNoVertex && d2 >= best_d2 * (1 - 1e-12)) {
           // Nearly tied: decide exactly, then by coordinates, so the nearest neighbour is canonical.
-          const int c = compare_squared_distances<D>(pc, p, positions_[u], p, positions_[hood_.nearest]);
-          if (c > 0 || (c == 0 && !(positions_[u] < positions_[hood_.nearest]))) continue;
+          const int c = compare_squared_distances<D>(pc, p, e.position, p, positions_[hood_.nearest]);
+          if (c > 0 || (c == 0 && !(e.position < positions_[hood_.nearest]))) continue;
         }
         hood_.nearest = u;
         best_d2 = d2;
@@ -418,7 +418,7 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   // it, nor can one beyond 2 beta NN cut the beta-ball: the search grows only while a cut is possible.
   auto by_distance = [&](const Candidate& a, const Candidate& b) {
     if (a.d2 != b.d2) return a.d2 < b.d2;
-    return positions_[a.id] < positions_[b.id];
+    return a.position < b.position;
   };
   std::sort(pool.begin(), pool.end(), by_distance);
   const double cap2 = 4 * params_.beta_squared * best_d2 * (1 + 1e-9);
@@ -428,7 +428,7 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
     double reach2 = std::min(4 * cell_.max_vertex_distance2() * (1 + 1e-9), cap2);
     while (next < pool.size() && pool[next].d2 <= std::min(reach2, searched * searched)) {
       ++counters_.clips;
-      if (cell_.clip(pool[next].id, positions_[pool[next].id]))
+      if (cell_.clip(pool[next].id, pool[next].position))
         reach2 = std::min(4 * cell_.max_vertex_distance2() * (1 + 1e-9), cap2);
       ++next;
     }
@@ -520,14 +520,12 @@ void WellSpacedEngine<D>::fill(OpId o) {
       const VertexId id = ops_[d].vertex;
       children_.push_back(d);
       cell_.clip(id, w);
-      hood_.candidates.push_back({squared_distance(v, id), id});
+      hood_.candidates.push_back({squared_distance(v, id), id, w});
       continue;
     }
     const VertexId id = new_vertex(w);
     vertices_[id].creator = o;
-    vertices_[id].born_rank = op_rank;
-    vertices_[id].born_color = op_color;
-    vertices_[id].leaf = tree_.insert_vertex(id, w, vertices_[v].leaf);
+    vertices_[id].leaf = tree_.insert_vertex(id, w, time_key(op_rank, op_color), vertices_[v].leaf);
     ++counters_.steiner_points;
     if (dynamic_) mark_readers_at(id, w, vertices_[id].leaf, VertexChange::Inserted, op_rank, op_color);
     if (stats_) stats_->steiner_added.push_back(w);
@@ -539,7 +537,7 @@ void WellSpacedEngine<D>::fill(OpId o) {
     children_.push_back(d);
     mark_fresh(d);
     cell_.clip(id, w);
-    hood_.candidates.push_back({squared_distance(v, id), id});
+    hood_.candidates.push_back({squared_distance(v, id), id, w});
   }
   ops_[o].children_end = std::uint32_t(children_.size());
   // v was already well-spaced: a vertex inserted farther than NN(v) leaves NN(v) and the clipping cube
@@ -587,7 +585,7 @@ Point<D> WellSpacedEngine<D>::pick_steiner(VertexId v) {
     if (compare_squared_distance_scaled<D>(pc, w, p, params_.beta_squared, u, p) >= 0) continue;
     bool inside = true;
     for (const Candidate& c : hood_.candidates)
-      if (compare_squared_distances<D>(pc, w, p, w, positions_[c.id]) >= 0) {
+      if (compare_squared_distances<D>(pc, w, p, w, c.position) >= 0) {
         inside = false;
         break;
       }
@@ -624,7 +622,7 @@ void WellSpacedEngine<D>::apply_tree_change(const typename engine::Quadtree<D>::
     readers_[n].clear();
   }
   for (NodeId n : change.new_leaves) {
-    for (VertexId v : tree_.node(n).vertices) vertices_[v].leaf = n;
+    for (const LeafVertex<D>& e : tree_.node(n).vertices) vertices_[e.id].leaf = n;
     const VertexId input = tree_.node(n).input_vertex;
     if (input != kNoVertex) redispatch_input(input);
   }
@@ -722,7 +720,8 @@ void WellSpacedEngine<D>::check_valid() const {
     if (vx.is_input) ++inputs;
     if (vx.position != positions_[v]) fail("vertex position copy");
     const auto& list = tree_.node(vx.leaf).vertices;
-    if (!tree_.node(vx.leaf).is_leaf() || std::find(list.begin(), list.end(), v) == list.end())
+    if (!tree_.node(vx.leaf).is_leaf() ||
+        std::none_of(list.begin(), list.end(), [&](const LeafVertex<D>& e) { return e.id == v; }))
       fail("vertex " + std::to_string(v) + " not in its leaf");
     if (vx.dispatch == kNoOp || ops_[vx.dispatch].vertex != v || ops_[vx.dispatch].kind != OpKind::Dispatch)
       fail("vertex " + std::to_string(v) + " without its dispatch");

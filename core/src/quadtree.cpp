@@ -28,8 +28,9 @@ typename Quadtree<D>::Coords Quadtree<D>::cell_of(const Point<D>& p, int level) 
   Coords c;
   const std::uint64_t cells = std::uint64_t(1) << level;
   for (int i = 0; i < D; ++i) {
-    // ldexp is exact, floor is exact: the cell of a point is a deterministic function of its coordinates.
-    const double x = std::floor(std::ldexp(p[i], level));
+    // Scaling by 2^level and floor are exact: the cell of a point is a deterministic function of its
+    // coordinates.
+    const double x = std::floor(p[i] * power_of_two(level));
     c[i] = x <= 0 ? 0 : std::min(cells - 1, std::uint64_t(x));
   }
   return c;
@@ -69,7 +70,7 @@ NodeId Quadtree<D>::allocate_children() {
 
 // Turns leaf n into an internal node with 2^D leaf children and hands its vertices down.
 template <int D>
-void Quadtree<D>::split(NodeId n, std::span<const Point<D>> positions, std::vector<NodeId>* created) {
+void Quadtree<D>::split(NodeId n, std::vector<NodeId>* created) {
   if (nodes_[n].level >= kMaxLevel)
     throw PointInputError("input points closer than the engine's resolution (2^-40 of the box side)", {});
   const NodeId first = allocate_children();
@@ -83,14 +84,14 @@ void Quadtree<D>::split(NodeId n, std::span<const Point<D>> positions, std::vect
     map_.insert(make_cell_key<D>(ch.level, ch.coords), first + NodeId(k));
     if (created) created->push_back(first + NodeId(k));
   }
-  for (VertexId v : parent.vertices) {
-    const Coords c = cell_of(positions[v], parent.level + 1);
+  for (const LeafVertex<D>& e : parent.vertices) {
+    const Coords c = cell_of(e.position, parent.level + 1);
     int k = 0;
     for (int i = 0; i < D; ++i) k |= int(c[i] & 1u) << i;
     Node& ch = nodes_[first + NodeId(k)];
-    ch.vertices.push_back(v);
-    if (v == parent.input_vertex) {
-      ch.input_vertex = v;
+    ch.vertices.push_back(e);
+    if (e.id == parent.input_vertex) {
+      ch.input_vertex = e.id;
       ch.input_count = 1;
     }
   }
@@ -318,7 +319,7 @@ void Quadtree<D>::balance_around(std::vector<NodeId>& worklist, std::span<const 
         while (nodes_[n].level < level - 1) {
           created.clear();
           if (split_leaves) split_leaves->push_back(n);
-          split(n, positions, &created);
+          split(n, &created);
           for (NodeId ch : created) {
             by_level[nodes_[ch].level].push_back(ch);
             if (created_leaves) created_leaves->push_back(ch);
@@ -385,7 +386,7 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
       if (nd.input_count == 1) {
         const VertexId v = ids[keyed[t.begin].index];
         nd.input_vertex = v;
-        nd.vertices.push_back(v);
+        nd.vertices.push_back({inputs[keyed[t.begin].index], 0, v});
       }
       leaves.push_back(t.node);
       continue;
@@ -425,7 +426,7 @@ typename Quadtree<D>::Change Quadtree<D>::add_input(VertexId id, std::span<const
   const Point<D>& p = positions[id];
   NodeId leaf = locate(p);
   for (NodeId a = leaf; a != kNoNode; a = nodes_[a].parent) ++nodes_[a].input_count;
-  nodes_[leaf].vertices.push_back(id);
+  nodes_[leaf].vertices.push_back({p, 0, id});
   // The one input that may now share a leaf with `id`; every other leaf keeps at most one input.
   const VertexId neighbour = nodes_[leaf].input_vertex;
   if (neighbour == kNoVertex) nodes_[leaf].input_vertex = id;
@@ -448,15 +449,15 @@ typename Quadtree<D>::Change Quadtree<D>::add_input(VertexId id, std::span<const
     // The leaf of `id` may hold two inputs: hand both down (split itself knows only input_vertex).
     const VertexId own = nodes_[n].input_vertex;
     auto is_input = [&](VertexId v) { return v == id || v == neighbour || v == own; };
-    split(n, positions, &created);
+    split(n, &created);
     for (NodeId ch : created) {
       Node& c = nodes_[ch];
       c.input_count = 0;
       c.input_vertex = kNoVertex;
-      for (VertexId v : c.vertices)
-        if (is_input(v)) {
+      for (const LeafVertex<D>& e : c.vertices)
+        if (is_input(e.id)) {
           ++c.input_count;
-          c.input_vertex = v;
+          c.input_vertex = e.id;
         }
       change.new_leaves.push_back(ch);
       balance_work.push_back(ch);
@@ -484,7 +485,7 @@ typename Quadtree<D>::Change Quadtree<D>::remove_input(VertexId id, std::span<co
   const Point<D>& p = positions[id];
   const NodeId leaf = locate(p);
   Node& lf = nodes_[leaf];
-  auto it = std::find(lf.vertices.begin(), lf.vertices.end(), id);
+  auto it = std::find_if(lf.vertices.begin(), lf.vertices.end(), [&](const LeafVertex<D>& e) { return e.id == id; });
   if (it == lf.vertices.end() || lf.input_vertex != id)
     throw std::logic_error("quadtree remove_input: vertex is not an input of its leaf");
   lf.vertices.erase(it);
@@ -525,16 +526,16 @@ typename Quadtree<D>::Change Quadtree<D>::remove_input(VertexId id, std::span<co
 }
 
 template <int D>
-NodeId Quadtree<D>::insert_vertex(VertexId id, const Point<D>& p, NodeId hint) {
+NodeId Quadtree<D>::insert_vertex(VertexId id, const Point<D>& p, std::uint64_t tag, NodeId hint) {
   const NodeId leaf = locate(p, hint);
-  nodes_[leaf].vertices.push_back(id);
+  nodes_[leaf].vertices.push_back({p, tag, id});
   return leaf;
 }
 
 template <int D>
 void Quadtree<D>::erase_vertex(VertexId id, NodeId leaf) {
   auto& vs = nodes_[leaf].vertices;
-  auto it = std::find(vs.begin(), vs.end(), id);
+  auto it = std::find_if(vs.begin(), vs.end(), [&](const LeafVertex<D>& e) { return e.id == id; });
   if (it == vs.end()) throw std::logic_error("quadtree erase_vertex: vertex not in leaf");
   *it = vs.back();
   vs.pop_back();
@@ -553,7 +554,7 @@ template <int D>
 std::size_t Quadtree<D>::memory_bytes() const {
   std::size_t bytes = nodes_.capacity() * sizeof(Node) + map_.memory_bytes() + stamp_.capacity() * 4 +
                       free_blocks_.capacity() * sizeof(NodeId);
-  for (const Node& n : nodes_) bytes += n.vertices.capacity() * sizeof(VertexId);
+  for (const Node& n : nodes_) bytes += n.vertices.capacity() * sizeof(LeafVertex<D>);
   return bytes;
 }
 
@@ -569,9 +570,10 @@ void Quadtree<D>::check_valid(std::span<const Point<D>> positions) const {
     if (nd.is_leaf()) {
       ++leaves;
       std::uint32_t inputs = 0;
-      for (VertexId v : nd.vertices) {
-        if (cell_of(positions[v], nd.level) != nd.coords) fail("vertex outside its leaf");
-        if (v == nd.input_vertex) ++inputs;
+      for (const LeafVertex<D>& e : nd.vertices) {
+        if (e.position != positions[e.id]) fail("leaf's copy of a vertex position");
+        if (cell_of(e.position, nd.level) != nd.coords) fail("vertex outside its leaf");
+        if (e.id == nd.input_vertex) ++inputs;
       }
       if (inputs != nd.input_count || nd.input_count > 1) fail("leaf input count");
       if (crowded(n, positions)) fail("crowded leaf at level " + std::to_string(nd.level));

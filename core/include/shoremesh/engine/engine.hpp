@@ -36,11 +36,6 @@ class WellSpacedEngine {
     OpId first_fill = engine::kNoOp;   // its fills, linked by Op::next_fill (one per rank)
     bool is_input = false;
     bool alive = false;
-    // Its creator's time (inputs exist from the start). An operation at time t sees only the vertices
-    // created before t, the output M_t of the paper: during a propagation the tree still holds vertices
-    // of later operations from the previous run, which a from-scratch run would not have yet.
-    std::int32_t born_rank = std::numeric_limits<std::int32_t>::min();
-    std::uint32_t born_color = 0;
   };
 
   // Operation states during change propagation (paper, Figure 4).
@@ -126,6 +121,7 @@ class WellSpacedEngine {
   struct Candidate {
     double d2;  // squared distance to v, rounded (orders the clipping; decisions are exact)
     VertexId id;
+    Point<D> position;
   };
   struct Neighbourhood {
     VertexId nearest = engine::kNoVertex;
@@ -133,6 +129,13 @@ class WellSpacedEngine {
     std::vector<Candidate> candidates;
   };
 
+  // A time (rank, colour) as one integer in the same order. A vertex's tag in its leaf is its birth
+  // time: its creator's time, 0 for inputs (before everything). An operation at time t sees only the
+  // vertices born before t, the output M_t of the paper: during a propagation the tree still holds
+  // vertices of later operations from the previous run, which a from-scratch run would not have yet.
+  static std::uint64_t time_key(int rank, std::uint32_t color) {
+    return (std::uint64_t(std::uint32_t(rank) ^ 0x80000000u) << 32) | color;
+  }
   void reset();
   OpId new_op(OpKind kind, VertexId v, int rank, std::uint32_t color, OpId parent);
   // The agenda: operations keyed by time (rank, colour), executed in time order.

@@ -14,6 +14,7 @@
 // Cells are half-open [i 2^-L, (i+1) 2^-L) except that coordinate 1 belongs to the last cell.
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -24,6 +25,9 @@
 #include "shoremesh/point.hpp"
 
 namespace shoremesh::engine {
+
+// 2^e, exactly, for |e| < 1000 (a cell side; cheaper than std::ldexp in the neighbour search).
+inline double power_of_two(int e) { return std::bit_cast<double>(std::uint64_t(1023 + e) << 52); }
 
 // Calls f(c) for every index c with first <= c <= last in each coordinate, the first axis fastest: the
 // cells of a box at one level.
@@ -44,6 +48,16 @@ void for_each_index_in_box(const std::array<Index, D>& first, const std::array<I
   }
 }
 
+// A vertex as its leaf keeps it: the id, a copy of the position and a tag the owner gives it (the
+// engine: its birth time). The neighbour search reads all three from the leaf's own array instead of
+// reaching into the owner's per-vertex arrays at random.
+template <int D>
+struct LeafVertex {
+  Point<D> position{};
+  std::uint64_t tag = 0;
+  VertexId id = kNoVertex;
+};
+
 template <int D>
 class Quadtree {
  public:
@@ -58,7 +72,7 @@ class Quadtree {
     Coords coords{};                     // cell index at its level
     std::uint32_t input_count = 0;       // input points in the subtree
     VertexId input_vertex = kNoVertex;   // leaves: the input vertex inside, if any
-    std::vector<VertexId> vertices;      // leaves: every vertex inside (input and Steiner)
+    std::vector<LeafVertex<D>> vertices; // leaves: every vertex inside (input and Steiner)
     bool is_leaf() const { return first_child == kNoNode; }
   };
 
@@ -77,16 +91,16 @@ class Quadtree {
   Change add_input(VertexId id, std::span<const Point<D>> positions);
   Change remove_input(VertexId id, std::span<const Point<D>> positions);
 
-  // Steiner vertices: inserted into / removed from the leaf containing them.
-  NodeId insert_vertex(VertexId id, const Point<D>& p, NodeId hint = kNoNode);
+  // Steiner vertices: inserted into / removed from the leaf containing them. Inputs have tag 0.
+  NodeId insert_vertex(VertexId id, const Point<D>& p, std::uint64_t tag, NodeId hint = kNoNode);
   void erase_vertex(VertexId id, NodeId leaf);
 
   NodeId root() const { return 0; }
   const Node& node(NodeId n) const { return nodes_[n]; }
   std::size_t node_capacity() const { return nodes_.size(); }
-  double side(NodeId n) const { return std::ldexp(1.0, -nodes_[n].level); }
+  double side(NodeId n) const { return power_of_two(-nodes_[n].level); }
   // QTApxNN of the input vertex in leaf n: a lower bound on its nearest-neighbour distance.
-  double approximate_nn(NodeId n) const { return std::ldexp(1.0, -nodes_[n].level - kCrowdingMargin); }
+  double approximate_nn(NodeId n) const { return power_of_two(-nodes_[n].level - kCrowdingMargin); }
   Point<D> lower_corner(NodeId n) const;
 
   // The leaf containing p (hint: a leaf near p, to start from; optional).
@@ -118,7 +132,7 @@ class Quadtree {
  private:
   NodeId new_node(NodeId parent, int level, const Coords& coords);
   NodeId allocate_children();
-  void split(NodeId n, std::span<const Point<D>> positions, std::vector<NodeId>* created);
+  void split(NodeId n, std::vector<NodeId>* created);
   void merge(NodeId n, std::vector<NodeId>* removed);
   NodeId find(int level, const Coords& c) const { return map_.find(make_cell_key<D>(level, c)); }
   NodeId deepest_containing(int level, Coords c) const;
@@ -142,6 +156,7 @@ class Quadtree {
   std::vector<NodeId> free_blocks_;      // first ids of freed blocks of 2^D children
   mutable std::vector<std::uint32_t> stamp_;  // per node: query id that last reported it
   mutable std::uint32_t query_stamp_ = 0;
+  mutable std::vector<NodeId> found_;         // scratch of for_each_leaf_in_box
   CellMap map_;
   std::size_t leaf_count_ = 0;
 };
@@ -153,7 +168,7 @@ std::size_t Quadtree<D>::for_each_leaf_in_box(const Point<D>& lo_in, const Point
   const int level = box_level(lo_in, hi_in, lo, hi);
   if (stamp_.size() < nodes_.size()) stamp_.resize(nodes_.size(), 0u);
   const Coords first = cell_of(lo, level), last = cell_of(hi, level);
-  std::size_t visited = 0;
+  found_.clear();
   NodeId stack[kMaxLevel * kChildren + 8];
   for_each_index_in_box<D>(first, last, [&](const Coords& c) {
     // Only leaves are stamped: a later, larger box of the same session must still descend into an
@@ -166,11 +181,10 @@ std::size_t Quadtree<D>::for_each_leaf_in_box(const Point<D>& lo_in, const Point
       if (nd.is_leaf()) {
         if (stamp_[n] == query_stamp_) continue;
         stamp_[n] = query_stamp_;
-        ++visited;
-        f(n);
+        found_.push_back(n);
         continue;
       }
-      const double child_side = std::ldexp(1.0, -(nd.level + 1));
+      const double child_side = power_of_two(-(nd.level + 1));
       for (int k = 0; k < kChildren; ++k) {
         const NodeId ch = nd.first_child + NodeId(k);
         bool meets = true;
@@ -182,7 +196,11 @@ std::size_t Quadtree<D>::for_each_leaf_in_box(const Point<D>& lo_in, const Point
       }
     }
   });
-  return visited;
+  // The leaves' vertex arrays live apart on the heap: fetch them all at once rather than wait for
+  // each in turn.
+  for (NodeId n : found_) __builtin_prefetch(nodes_[n].vertices.data());
+  for (NodeId n : found_) f(n);
+  return found_.size();
 }
 
 }  // namespace shoremesh::engine
