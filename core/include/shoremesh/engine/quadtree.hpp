@@ -184,16 +184,17 @@ std::size_t Quadtree<D>::for_each_leaf_in_box(const Point<D>& lo_in, const Point
         found_.push_back(n);
         continue;
       }
+      // Which children meet the box, from the parent's cell alone: a child is read only if it does.
       const double child_side = power_of_two(-(nd.level + 1));
-      for (int k = 0; k < kChildren; ++k) {
-        const NodeId ch = nd.first_child + NodeId(k);
-        bool meets = true;
-        for (int i = 0; i < D && meets; ++i) {
-          const double clo = double(nodes_[ch].coords[i]) * child_side;
-          meets = clo <= hi[i] && clo + child_side >= lo[i];
-        }
-        if (meets) stack[top++] = ch;
+      int meets_low = 0, meets_high = 0;  // bit i: the lower / upper half along axis i meets the box
+      for (int i = 0; i < D; ++i) {
+        const double mid = double(2 * nd.coords[i] + 1) * child_side;
+        if (mid - child_side <= hi[i] && mid >= lo[i]) meets_low |= 1 << i;
+        if (mid <= hi[i] && mid + child_side >= lo[i]) meets_high |= 1 << i;
       }
+      for (int k = 0; k < kChildren; ++k)
+        if ((~k & meets_low & (kChildren - 1)) == (~k & (kChildren - 1)) && (k & meets_high) == k)
+          stack[top++] = nd.first_child + NodeId(k);
     }
   });
   // The leaves' vertex arrays live apart on the heap: fetch them all at once rather than wait for
