@@ -79,6 +79,11 @@ typename ConvexCell<D>::Vertex ConvexCell<D>::make_vertex(const std::array<std::
     b[k] = constraints_[planes[k]].b;
   }
   vtx.y = solve(n, b);
+  // Rounded upward (the caller holds a RoundingGuard): an upper bound.
+  for (int i = 0; i < D; ++i) {
+    const double m = std::max(std::abs(vtx.y[i].inf()), std::abs(vtx.y[i].sup()));
+    vtx.r2 += m * m;
+  }
   return vtx;
 }
 
@@ -167,8 +172,13 @@ bool ConvexCell<D>::clip_by(std::uint16_t plane) {
   const std::size_t m = verts_.size();
   signs_.resize(m);
   bool any_outside = false;
+  // A vertex nearer to v than half of |w - v| lies strictly inside the bisector's half-space
+  // (2 d.y <= 2 |d| |y| < |d|^2): no predicate needed. b encloses |d|^2 for a bisector; the axis
+  // planes of the initial box are never offered again.
+  const Constraint<D>& c = constraints_[plane];
+  const double inside_below = c.kind == Constraint<D>::Kind::Bisector ? 0.25 * c.b.inf() : 0.0;
   for (std::size_t i = 0; i < m; ++i) {
-    signs_[i] = std::int8_t(side(verts_[i], plane));
+    signs_[i] = verts_[i].r2 < inside_below ? std::int8_t(-1) : std::int8_t(side(verts_[i], plane));
     any_outside = any_outside || signs_[i] > 0;
   }
   if (!any_outside) return false;
@@ -202,14 +212,8 @@ bool ConvexCell<D>::clip_by(std::uint16_t plane) {
   } else {
     // New vertices on edges whose ends lie strictly on opposite sides; each such edge is shared by two
     // faces, whose planes with the new plane define the new vertex.
-    struct CutEdge {
-      std::uint32_t a, b;             // a < b
-      std::uint16_t faces[2];
-      int count;
-      std::uint32_t vertex;
-    };
-    std::vector<CutEdge> cuts;  // few: a cut of a convex cell crosses a handful of edges
-    cuts.reserve(16);
+    std::vector<CutEdge>& cuts = cuts_;  // few: a cut of a convex cell crosses a handful of edges
+    cuts.clear();
     const std::size_t nf = face_plane_.size();
     auto cut_of = [&](std::uint32_t a, std::uint32_t b) -> CutEdge& {
       const std::uint32_t lo = std::min(a, b), hi = std::max(a, b);
@@ -364,14 +368,7 @@ Point<D> ConvexCell<D>::farthest_vertex_offset() const {
 template <int D>
 double ConvexCell<D>::max_vertex_distance2() const {
   double best = 0;
-  for (const Vertex& vtx : verts_) {
-    double d2 = 0;
-    for (int i = 0; i < D; ++i) {
-      const double m = std::max(std::abs(vtx.y[i].inf()), std::abs(vtx.y[i].sup()));
-      d2 += m * m;
-    }
-    best = std::max(best, d2);
-  }
+  for (const Vertex& vtx : verts_) best = std::max(best, vtx.r2);
   return best;
 }
 

@@ -56,7 +56,15 @@ class ConvexCell {
   struct Vertex {
     std::array<std::uint16_t, D> planes{};  // the constraints that define it
     std::array<Interval, D> y{};            // its position relative to v, enclosed
+    double r2 = 0;                          // an upper bound on |y|^2
     std::int32_t exact = -1;                // index into exact_ once computed
+  };
+  // A cut edge of the 3D clip: the edge a-b (a < b), the two faces sharing it, its new vertex.
+  struct CutEdge {
+    std::uint32_t a, b;
+    std::uint16_t faces[2];
+    int count;
+    std::uint32_t vertex;
   };
   std::uint16_t add_constraint(const Constraint<D>& c);
   Vertex make_vertex(const std::array<std::uint16_t, D>& planes);
@@ -76,6 +84,7 @@ class ConvexCell {
   std::vector<std::uint32_t> face_begin_, next_face_begin_;
   std::vector<std::uint32_t> face_verts_, next_face_verts_;
   std::vector<std::uint32_t> scratch_a_, scratch_b_, scratch_c_;
+  std::vector<CutEdge> cuts_;
   PredicateCounters counters_;
 };
 
