@@ -5,7 +5,7 @@ JOBS       ?= $(shell nproc)
 CMAKE_GEN  := -G Ninja
 DEMO_OUT   ?= demo-output
 
-.PHONY: all deps configure build demo test test-release test-asan bench fuzz clean
+.PHONY: all deps configure build demo test test-release test-asan bench bench-dynamic fuzz clean
 
 all: build
 
@@ -42,6 +42,12 @@ test-asan: deps
 
 bench: build
 	bash bench/run.sh $(BUILD)
+
+# The dynamic benchmark and its plot (bench/dynamic_speedup.png) need Debian's python3-matplotlib.
+bench-dynamic: build
+	@/usr/bin/python3 -c 'import matplotlib' 2>/dev/null || { apt-get update -qq && \
+	  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq python3-matplotlib; }
+	/usr/bin/python3 bench/run_dynamic.py $(BUILD)
 
 fuzz: deps
 	bash scripts/fuzz.sh

@@ -3,9 +3,11 @@
 //
 //   bench_dynamic --dim 2|3 --n N --changes C --inputs K --seed S
 //
-// Prints one line: operation counts and wall times of the from-scratch run and of the updates (mean
-// per unit change, median and 99th percentile per single update), and the speedups in operations and
-// in time. Input generation is not timed.
+// Input k (0 <= k < K) is families::uniform(N, S + k). Prints one line of key=value fields: the
+// from-scratch run (operations, seconds), the unit changes (mean operations and seconds), the single
+// updates (median and 99th percentile latency, median and maximum operations touched), the speedups in
+// operations and in time, and the work per clipped cell during the build and the updates. Input
+// generation is not timed.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -28,13 +30,28 @@ struct Options {
   std::uint64_t seed = 1;
 };
 
+// Leaves searched, candidate vertices looked at and half-spaces clipped, summed over cells.
+struct CellWork {
+  double cells = 0, leaves = 0, candidates = 0, clips = 0;
+  void add(const shoremesh::Counters& after, const shoremesh::Counters& before) {
+    cells += double(after.clipped_voronoi_calls - before.clipped_voronoi_calls);
+    leaves += double(after.leaves_visited - before.leaves_visited);
+    candidates += double(after.candidates - before.candidates);
+    clips += double(after.clips - before.clips);
+  }
+};
+
+template <class T>
+T quantile(std::vector<T> v, double q) {
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, std::size_t(q * double(v.size())))];
+}
+
 template <int D>
 void run(const Options& opt) {
-  double build_seconds = 0, build_ops = 0, unit_seconds = 0, unit_ops = 0;
-  std::vector<double> latencies;
-  std::size_t output = 0;
-  // Per clipped cell: leaves searched, candidate vertices looked at, half-spaces clipped (build, updates).
-  shoremesh::Counters build_work, update_work;
+  double build_seconds = 0, build_ops = 0, unit_seconds = 0, unit_ops = 0, output = 0;
+  std::vector<double> latencies, update_ops;
+  CellWork build_work, update_work;
   for (std::size_t input = 0; input < opt.inputs; ++input) {
     const auto points = shoremesh::families::uniform<D>(opt.n, opt.seed + input);
     shoremesh::WellSpacedSet<D> set;
@@ -42,12 +59,9 @@ void run(const Options& opt) {
     set.build(points);
     build_seconds += seconds_since(t0);
     build_ops += double(set.counters().operations());
+    output += double(set.input_count() + set.steiner_count());
     const shoremesh::Counters after_build = set.counters();
-    build_work.clipped_voronoi_calls += after_build.clipped_voronoi_calls;
-    build_work.leaves_visited += after_build.leaves_visited;
-    build_work.candidates += after_build.candidates;
-    build_work.clips += after_build.clips;
-    output += set.input_count() + set.steiner_count();
+    build_work.add(after_build, shoremesh::Counters{});
     std::mt19937_64 rng(opt.seed * 7919 + input);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     for (std::size_t c = 0; c < opt.changes; ++c) {
@@ -63,50 +77,49 @@ void run(const Options& opt) {
       const double b = seconds_since(t2);
       latencies.push_back(a);
       latencies.push_back(b);
+      update_ops.push_back(double(removed.operations_touched()));
+      update_ops.push_back(double(added.operations_touched()));
       unit_seconds += a + b;
       unit_ops += double(removed.operations_touched() + added.operations_touched());
     }
-    const shoremesh::Counters& end = set.counters();
-    update_work.clipped_voronoi_calls += end.clipped_voronoi_calls - after_build.clipped_voronoi_calls;
-    update_work.leaves_visited += end.leaves_visited - after_build.leaves_visited;
-    update_work.candidates += end.candidates - after_build.candidates;
-    update_work.clips += end.clips - after_build.clips;
+    update_work.add(set.counters(), after_build);
   }
-  std::sort(latencies.begin(), latencies.end());
   const double k = double(opt.inputs), changes = double(opt.inputs * opt.changes);
+  const double updates = 2 * changes;
   std::printf(
       "dim=%d n=%zu inputs=%zu changes_per_input=%zu output_vertices=%.0f build_seconds=%.6f build_ops=%.0f "
       "unit_change_seconds=%.6g unit_change_ops=%.1f update_median_seconds=%.6g update_p99_seconds=%.6g "
-      "speedup_ops=%.1f speedup_time=%.1f\n",
-      D, opt.n, opt.inputs, opt.changes, double(output) / k, build_seconds / k, build_ops / k, unit_seconds / changes,
-      unit_ops / changes, latencies[latencies.size() / 2], latencies[latencies.size() * 99 / 100],
-      (build_ops / k) / (unit_ops / changes), (build_seconds / k) / (unit_seconds / changes));
-  auto per_cell = [](const char* what, const shoremesh::Counters& c) {
-    const double cells = double(std::max<std::uint64_t>(c.clipped_voronoi_calls, 1));
-    std::printf("  %s: cells=%llu leaves_per_cell=%.1f candidates_per_cell=%.1f clips_per_cell=%.1f\n", what,
-                (unsigned long long)c.clipped_voronoi_calls, double(c.leaves_visited) / cells,
-                double(c.candidates) / cells, double(c.clips) / cells);
-  };
-  per_cell("build", build_work);
-  per_cell("updates", update_work);
+      "update_median_ops=%.0f update_max_ops=%.0f speedup_ops=%.1f speedup_time=%.1f "
+      "build_leaves_per_cell=%.1f build_candidates_per_cell=%.1f build_clips_per_cell=%.1f "
+      "update_cells=%.1f update_leaves_per_cell=%.1f update_candidates_per_cell=%.1f update_clips_per_cell=%.1f\n",
+      D, opt.n, opt.inputs, opt.changes, output / k, build_seconds / k, build_ops / k, unit_seconds / changes,
+      unit_ops / changes, quantile(latencies, 0.5), quantile(latencies, 0.99), quantile(update_ops, 0.5),
+      quantile(update_ops, 1.0), (build_ops / k) / (unit_ops / changes), (build_seconds / k) / (unit_seconds / changes),
+      build_work.leaves / build_work.cells, build_work.candidates / build_work.cells, build_work.clips / build_work.cells,
+      update_work.cells / updates, update_work.leaves / update_work.cells, update_work.candidates / update_work.cells,
+      update_work.clips / update_work.cells);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   Options opt;
-  for (int i = 1; i + 1 < argc; i += 2) {
+  for (int i = 1; i < argc; i += 2) {
     const std::string key = argv[i];
-    const char* value = argv[i + 1];
-    if (key == "--dim") opt.dim = std::atoi(value);
-    else if (key == "--n") opt.n = std::size_t(std::atof(value));
-    else if (key == "--changes") opt.changes = std::size_t(std::atof(value));
-    else if (key == "--inputs") opt.inputs = std::size_t(std::atof(value));
-    else if (key == "--seed") opt.seed = std::uint64_t(std::atoll(value));
+    const char* value = i + 1 < argc ? argv[i + 1] : nullptr;
+    if (value && key == "--dim") opt.dim = std::atoi(value);
+    else if (value && key == "--n") opt.n = std::size_t(std::atof(value));
+    else if (value && key == "--changes") opt.changes = std::size_t(std::atof(value));
+    else if (value && key == "--inputs") opt.inputs = std::size_t(std::atof(value));
+    else if (value && key == "--seed") opt.seed = std::uint64_t(std::atoll(value));
     else {
       std::fprintf(stderr, "usage: bench_dynamic --dim 2|3 --n N --changes C --inputs K --seed S\n");
       return 2;
     }
+  }
+  if ((opt.dim != 2 && opt.dim != 3) || opt.n < 2 || opt.changes < 1 || opt.inputs < 1) {
+    std::fprintf(stderr, "bench_dynamic: need --dim 2 or 3, --n >= 2, --changes >= 1, --inputs >= 1\n");
+    return 2;
   }
   if (opt.dim == 3) run<3>(opt);
   else run<2>(opt);
