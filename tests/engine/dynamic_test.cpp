@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <random>
 
@@ -118,6 +119,10 @@ void random_edits_equal_fresh_runs(std::vector<Point<D>> initial, int edits, std
     for (const auto& p : report.steiner_removed) EXPECT_TRUE(std::binary_search(gone.begin(), gone.end(), p)) << context;
     for (const auto& p : report.steiner_added) EXPECT_TRUE(std::binary_search(come.begin(), come.end(), p)) << context;
     if (k % 100 == 0) ASSERT_NO_THROW(set.check_valid()) << context;
+    // Long runs take a while: say how far they are.
+    if (k % 100 == 99 && std::getenv("SHOREMESH_LONG_TESTS"))
+      std::fprintf(stderr, "%dD: %d of %d edits equal fresh runs (%zu inputs, %zu Steiner points)\n", D, k + 1, edits,
+                   set.input_count(), set.steiner_count());
   }
   ASSERT_NO_THROW(set.check_valid());
   const auto inputs = live_inputs(set);
