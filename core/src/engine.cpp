@@ -15,6 +15,13 @@ using namespace engine;
 
 namespace {
 constexpr int kBeforeEverything = std::numeric_limits<int>::min();
+
+// The float nearest above x: a dependency radius stored in half the space, never smaller.
+float at_least(double x) {
+  float f = float(x);
+  if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
 }
 
 template <int D>
@@ -90,7 +97,7 @@ void WellSpacedEngine<D>::build(std::span<const Point<D>> unit_points) {
   // Input dispatches at the rank of QTApxNN(v) (a quarter of the side of its leaf): NN from below.
   for (VertexId v = 0; v < input_count_; ++v) {
     const int rank = ranks_.rank_of_length(tree_.approximate_nn(vertices_[v].leaf));
-    const OpId o = new_op(OpKind::Dispatch, v, rank, 0, kNoOp);
+    const OpId o = new_op(OpKind::Dispatch, v, rank, 0);
     vertices_[v].dispatch = o;
     mark_fresh(o);
   }
@@ -100,14 +107,13 @@ void WellSpacedEngine<D>::build(std::span<const Point<D>> unit_points) {
 }
 
 template <int D>
-typename WellSpacedEngine<D>::OpId WellSpacedEngine<D>::new_op(OpKind kind, VertexId v, int rank, std::uint32_t color,
-                                                               OpId parent) {
+typename WellSpacedEngine<D>::OpId WellSpacedEngine<D>::new_op(OpKind kind, VertexId v, int rank,
+                                                               std::uint32_t color) {
   Op op;
   op.kind = kind;
   op.vertex = v;
   op.rank = rank;
   op.color = color;
-  op.parent = parent;
   if (!free_ops_.empty()) {
     const OpId o = free_ops_.back();
     free_ops_.pop_back();
@@ -389,7 +395,6 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
       hi[i] = p[i] + h;
     }
     tree_.covering_nodes(lo, hi, covering_);
-    ops_[o].read_half = h;
     ops_[o].reads_begin = std::uint32_t(reads_.size());
     for (NodeId n : covering_) {
       reads_.push_back(n);
@@ -399,7 +404,7 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   };
   if (hood_.nearest == kNoVertex) {
     record_reads(half);
-    ops_[o].depends2 = ops_[o].inserted_depends2 = 4.0 * D;  // anything anywhere in the box gives it a neighbour
+    ops_[o].depends2 = ops_[o].inserted_depends2 = at_least(4.0 * D);  // anything in the box gives it a neighbour
     return;
   }
 
@@ -443,11 +448,11 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   // Only a vertex that could cut the cell or be nearer than NN can change what this operation decides:
   // one within 2 x the cell's reach (capped at 2 beta NN), or within NN. A little margin on the rounding.
   const double reach2 = std::min(4 * cell_.max_vertex_distance2(), cap2);
-  ops_[o].depends2 = ops_[o].inserted_depends2 = std::max(reach2, best_d2) * (1 + 1e-6);
+  ops_[o].depends2 = ops_[o].inserted_depends2 = at_least(std::max(reach2, best_d2) * (1 + 1e-6));
 }
 
 template <int D>
-void WellSpacedEngine<D>::request_fill(OpId parent, VertexId w, int rank) {
+void WellSpacedEngine<D>::request_fill(VertexId w, int rank) {
   for (OpId f = vertices_[w].first_fill; f != kNoOp; f = ops_[f].next_fill)
     if (ops_[f].rank == rank && !(ops_[f].flags & kDead)) {
       ++ops_[f].requesters;
@@ -455,7 +460,7 @@ void WellSpacedEngine<D>::request_fill(OpId parent, VertexId w, int rank) {
       children_.push_back(f);
       return;
     }
-  const OpId f = new_op(OpKind::Fill, w, rank, ranks_.color(positions_[w], rank), parent);
+  const OpId f = new_op(OpKind::Fill, w, rank, ranks_.color(positions_[w], rank));
   ops_[f].requesters = 1;
   ops_[f].next_fill = vertices_[w].first_fill;
   vertices_[w].first_fill = f;
@@ -478,13 +483,13 @@ void WellSpacedEngine<D>::dispatch(OpId o) {
   // neighbours (bisector faces of the cell no farther than 2 beta NN(v): a superset, harmless, since a
   // fill at rank floor(log |vw|) finds w already well-spaced unless it truly is due).
   const int r = ranks_.rank_of(p, positions_[hood_.nearest], pc);
-  if (r >= op_rank) request_fill(o, v, r);
+  if (r >= op_rank) request_fill(v, r);
   const double limit2 = 4 * params_.beta_squared * squared_distance(v, hood_.nearest) * (1 + 1e-9);
   cell_.bisector_neighbours(neighbours_);
   for (VertexId w : neighbours_) {
     if (squared_distance(v, w) > limit2) continue;
     const int rw = ranks_.rank_of(p, positions_[w], pc);
-    if (rw >= op_rank) request_fill(o, w, rw);
+    if (rw >= op_rank) request_fill(w, rw);
   }
   ops_[o].children_end = std::uint32_t(children_.size());
   record_facets(o);
@@ -532,7 +537,7 @@ void WellSpacedEngine<D>::fill(OpId o) {
     // Fact 1 puts w's rank above op's; the max only guards the table's rounding for a rho other than
     // sqrt(2) (for sqrt(2) the table is exact and it never applies).
     const int rank = std::max(ranks_.rank_of(w, positions_[v], pc), op_rank + 1);
-    const OpId d = new_op(OpKind::Dispatch, id, rank, 0, o);
+    const OpId d = new_op(OpKind::Dispatch, id, rank, 0);
     vertices_[id].dispatch = d;
     children_.push_back(d);
     mark_fresh(d);
@@ -543,7 +548,7 @@ void WellSpacedEngine<D>::fill(OpId o) {
   // v was already well-spaced: a vertex inserted farther than NN(v) leaves NN(v) and the clipping cube
   // as they are and can only shrink the cell, so v stays well-spaced and this fill does nothing again.
   if (ops_[o].children_begin == ops_[o].children_end && hood_.nearest != kNoVertex) {
-    ops_[o].inserted_depends2 = squared_distance(v, hood_.nearest) * (1 + 1e-6);
+    ops_[o].inserted_depends2 = at_least(squared_distance(v, hood_.nearest) * (1 + 1e-6));
     cell_.bisector_neighbours(neighbours_);
     record_facets(o);
   }
@@ -632,7 +637,7 @@ template <int D>
 void WellSpacedEngine<D>::redispatch_input(VertexId v) {
   if (vertices_[v].dispatch != kNoOp) mark_obsolete(vertices_[v].dispatch);
   const int rank = ranks_.rank_of_length(tree_.approximate_nn(vertices_[v].leaf));
-  const OpId o = new_op(OpKind::Dispatch, v, rank, 0, kNoOp);
+  const OpId o = new_op(OpKind::Dispatch, v, rank, 0);
   vertices_[v].dispatch = o;
   mark_fresh(o);
 }

@@ -55,17 +55,16 @@ class WellSpacedEngine {
     std::uint32_t color = 0;           // 0 for dispatches
     OpKind kind = OpKind::Dispatch;
     std::uint8_t flags = 0;
-    OpId parent = engine::kNoOp;       // the operation that created it (none for input dispatches)
     OpId next_fill = engine::kNoOp;    // next fill acting on the same vertex
     std::uint32_t requesters = 0;      // fills: how many dispatches currently ask for it
     std::uint32_t children_begin = 0, children_end = 0;  // into children_
     std::uint32_t reads_begin = 0, reads_end = 0;        // into reads_
-    double read_half = 0;              // it registered on the nodes covering this box around its vertex
     // Its result depends only on the vertices within these squared distances: removing one within
     // depends2, or inserting one within inserted_depends2 (smaller for a fill that found its vertex
     // well-spaced: a new vertex farther than NN only shrinks the cell, and it stays well-spaced).
-    double depends2 = 0;
-    double inserted_depends2 = 0;
+    // Floats rounded up (see at_least): a radius only ever errs on the side of a rerun.
+    float depends2 = 0;
+    float inserted_depends2 = 0;
     // Removing a vertex matters only if it bounds the cell (see facet_bit); all ones: any vertex.
     std::uint64_t facet_mask = ~std::uint64_t(0);
   };
@@ -137,7 +136,7 @@ class WellSpacedEngine {
     return (std::uint64_t(std::uint32_t(rank) ^ 0x80000000u) << 32) | color;
   }
   void reset();
-  OpId new_op(OpKind kind, VertexId v, int rank, std::uint32_t color, OpId parent);
+  OpId new_op(OpKind kind, VertexId v, int rank, std::uint32_t color);
   // The agenda: operations keyed by time (rank, colour), executed in time order.
   void enqueue(OpId o);
   void mark_fresh(OpId o);
@@ -161,7 +160,7 @@ class WellSpacedEngine {
   void kill(OpId o);
   void dispatch(OpId o);
   void fill(OpId o);
-  void request_fill(OpId parent, VertexId w, int rank);
+  void request_fill(VertexId w, int rank);
   void redispatch_input(VertexId v);
   void apply_tree_change(const typename engine::Quadtree<D>::Change& change);
   // Finds v's nearest neighbour and the vertices that can cut its cell, registers op o's reads, and
