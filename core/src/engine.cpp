@@ -707,7 +707,7 @@ template <int D>
 std::size_t WellSpacedEngine<D>::memory_bytes() const {
   std::size_t bytes = vertices_.capacity() * sizeof(Vertex) + positions_.capacity() * sizeof(Point<D>) +
                       ops_.capacity() * sizeof(Op) + children_.capacity() * sizeof(OpId) +
-                      reads_.capacity() * sizeof(NodeId) + readers_.capacity() * sizeof(std::vector<OpId>) +
+                      reads_.capacity() * sizeof(NodeId) + readers_.size() * sizeof(std::vector<OpId>) +
                       (free_ops_.capacity() + free_vertices_.capacity()) * sizeof(std::uint32_t) +
                       tree_.memory_bytes();
   for (const auto& r : readers_) bytes += r.capacity() * sizeof(OpId);

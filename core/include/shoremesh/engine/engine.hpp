@@ -5,6 +5,7 @@
 // records for every operation its children (the fills a dispatch asked for, the dispatches of the Steiner
 // vertices a fill inserted) and for every leaf the operations that read it: what PropagateWS replays.
 #include <cstdint>
+#include <deque>
 #include <limits>
 #include <span>
 #include <tuple>
@@ -181,7 +182,9 @@ class WellSpacedEngine {
   std::vector<Op> ops_;
   std::vector<OpId> children_;
   std::vector<NodeId> reads_;
-  std::vector<std::vector<OpId>> readers_;  // per quadtree node: operations that read it
+  // Per quadtree node: the operations that read it. A deque, so that growing with the tree never moves
+  // the lists: a vector of them reallocating took ~13 ms of one update at n = 1e5.
+  std::deque<std::vector<OpId>> readers_;
   struct AgendaEntry {
     std::int32_t rank;
     std::uint32_t color;
