@@ -350,16 +350,18 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   hood_.nearest = kNoVertex;
   pool.clear();
   double best_d2 = 0;
-  tree_.begin_session();
   // Adds the vertices of the leaves of box [p - half, p + half] not searched yet, tracking the nearest.
+  // The boxes only grow, so the leaves searched so far are those that meet the previous box.
+  using Box = typename Quadtree<D>::Box;
+  Box seen = Box::empty();
   auto search = [&](double half) {
-    Point<D> lo, hi;
+    Box box;
     for (int i = 0; i < D; ++i) {
-      lo[i] = p[i] - half;
-      hi[i] = p[i] + half;
+      box.lo[i] = p[i] - half;
+      box.hi[i] = p[i] + half;
     }
-    counters_.leaves_visited += tree_.for_each_leaf_in_box(lo, hi, [&](NodeId n) {
-      for (const LeafVertex<D>& e : tree_.node(n).vertices) {
+    counters_.leaves_visited += tree_.for_each_occupied_leaf(box, seen, [&](NodeId, std::span<const LeafVertex<D>> leaf) {
+      for (const LeafVertex<D>& e : leaf) {
         if (e.tag >= now || e.id == v) continue;
         const VertexId u = e.id;
         double d2 = 0;
@@ -379,6 +381,7 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
         best_d2 = d2;
       }
     });
+    seen = box;
   };
   // Grow the box until it holds a vertex no farther than its half-side: no vertex outside is nearer.
   double half = tree_.side(vertices_[v].leaf);

@@ -48,6 +48,7 @@ template <int D>
 NodeId Quadtree<D>::new_node(NodeId parent, int level, const Coords& coords) {
   NodeId id = NodeId(nodes_.size());
   nodes_.emplace_back();
+  search_.emplace_back();
   Node& nd = nodes_.back();
   nd.parent = parent;
   nd.level = level;
@@ -65,6 +66,7 @@ NodeId Quadtree<D>::allocate_children() {
   }
   NodeId first = NodeId(nodes_.size());
   nodes_.resize(nodes_.size() + kChildren);
+  search_.resize(nodes_.size());
   return first;
 }
 
@@ -95,11 +97,16 @@ void Quadtree<D>::split(NodeId n, std::vector<NodeId>* created) {
       ch.input_count = 1;
     }
   }
+  parent.occupied = 0;
+  for (int k = 0; k < kChildren; ++k)
+    if (!nodes_[first + NodeId(k)].vertices.empty()) parent.occupied |= std::uint8_t(1u << k);
   parent.vertices.clear();
   parent.vertices.shrink_to_fit();
   parent.input_vertex = kNoVertex;
   parent.first_child = first;
   leaf_count_ += kChildren - 1;
+  sync_search(n);
+  for (int k = 0; k < kChildren; ++k) sync_search(first + NodeId(k));
 }
 
 // Turns internal node n, whose children are all leaves, back into a leaf holding their vertices.
@@ -118,8 +125,33 @@ void Quadtree<D>::merge(NodeId n, std::vector<NodeId>* removed) {
     if (removed) removed->push_back(first + NodeId(k));
   }
   parent.first_child = kNoNode;
+  parent.occupied = 0;  // a leaf: its own vertices say whether it is occupied, as before the merge
   free_blocks_.push_back(first);
   leaf_count_ -= kChildren - 1;
+  sync_search(n);
+  for (int k = 0; k < kChildren; ++k) sync_search(first + NodeId(k));
+}
+
+template <int D>
+void Quadtree<D>::sync_search(NodeId n) {
+  const Node& nd = nodes_[n];
+  SearchEntry& e = search_[n];
+  e.first_child = nd.first_child;
+  e.occupied_or_size = nd.is_leaf() ? std::uint32_t(nd.vertices.size()) : nd.occupied;
+  e.vertices = nd.is_leaf() ? nd.vertices.data() : nullptr;
+}
+
+template <int D>
+NodeId Quadtree<D>::deepest_containing(int level, Coords c, int& found_level) const {
+  for (;;) {
+    NodeId n = find(level, c);
+    if (n != kNoNode) {
+      found_level = level;
+      return n;
+    }
+    --level;
+    for (int i = 0; i < D; ++i) c[i] >>= 1;
+  }
 }
 
 template <int D>
@@ -145,10 +177,21 @@ int Quadtree<D>::box_level(const Point<D>& lo_in, const Point<D>& hi_in, Point<D
 }
 
 template <int D>
-void Quadtree<D>::begin_session() const {
-  if (++query_stamp_ == 0) {
-    std::fill(stamp_.begin(), stamp_.end(), 0u);
-    query_stamp_ = 1;
+void Quadtree<D>::mark_occupied(NodeId leaf) {
+  for (NodeId n = leaf, p = nodes_[n].parent; p != kNoNode; n = p, p = nodes_[p].parent) {
+    const bool was_occupied = nodes_[p].occupied != 0;
+    nodes_[p].occupied |= std::uint8_t(1u << (n - nodes_[p].first_child));
+    search_[p].occupied_or_size = nodes_[p].occupied;
+    if (was_occupied) return;  // its ancestors already know
+  }
+}
+
+template <int D>
+void Quadtree<D>::mark_vacated(NodeId leaf) {
+  for (NodeId n = leaf, p = nodes_[n].parent; p != kNoNode; n = p, p = nodes_[p].parent) {
+    nodes_[p].occupied &= std::uint8_t(~(1u << (n - nodes_[p].first_child)));
+    search_[p].occupied_or_size = nodes_[p].occupied;
+    if (nodes_[p].occupied != 0) return;  // still holds a vertex elsewhere
   }
 }
 
@@ -334,9 +377,9 @@ void Quadtree<D>::balance_around(std::vector<NodeId>& worklist, std::span<const 
 template <int D>
 void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const VertexId> ids) {
   nodes_.clear();
+  search_.clear();
   free_blocks_.clear();
   map_.clear();
-  stamp_.clear();
   leaf_count_ = 1;
   new_node(kNoNode, 0, Coords{});
   if (inputs.empty()) return;
@@ -418,6 +461,11 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
   positions_by_id.resize(std::size_t(max_id) + 1);
   for (std::size_t i = 0; i < inputs.size(); ++i) positions_by_id[ids[i]] = inputs[i];
   balance_around(leaves, positions_by_id, nullptr, nullptr);
+  // The occupied masks, bottom-up from the leaves that hold a vertex (split() set some on the way).
+  for (Node& nd : nodes_) nd.occupied = 0;
+  for (NodeId n = 0; n < nodes_.size(); ++n)
+    if (nodes_[n].level >= 0 && nodes_[n].is_leaf() && !nodes_[n].vertices.empty()) mark_occupied(n);
+  for (NodeId n = 0; n < nodes_.size(); ++n) sync_search(n);
 }
 
 template <int D>
@@ -427,6 +475,8 @@ typename Quadtree<D>::Change Quadtree<D>::add_input(VertexId id, std::span<const
   NodeId leaf = locate(p);
   for (NodeId a = leaf; a != kNoNode; a = nodes_[a].parent) ++nodes_[a].input_count;
   nodes_[leaf].vertices.push_back({p, 0, id});
+  sync_search(leaf);
+  if (nodes_[leaf].vertices.size() == 1) mark_occupied(leaf);
   // The one input that may now share a leaf with `id`; every other leaf keeps at most one input.
   const VertexId neighbour = nodes_[leaf].input_vertex;
   if (neighbour == kNoVertex) nodes_[leaf].input_vertex = id;
@@ -490,6 +540,8 @@ typename Quadtree<D>::Change Quadtree<D>::remove_input(VertexId id, std::span<co
     throw std::logic_error("quadtree remove_input: vertex is not an input of its leaf");
   lf.vertices.erase(it);
   lf.input_vertex = kNoVertex;
+  sync_search(leaf);
+  if (lf.vertices.empty()) mark_vacated(leaf);
   for (NodeId a = leaf; a != kNoNode; a = nodes_[a].parent) --nodes_[a].input_count;
 
   // Internal nodes whose block contained p may no longer be crowded; merging one can release its
@@ -529,6 +581,8 @@ template <int D>
 NodeId Quadtree<D>::insert_vertex(VertexId id, const Point<D>& p, std::uint64_t tag, NodeId hint) {
   const NodeId leaf = locate(p, hint);
   nodes_[leaf].vertices.push_back({p, tag, id});
+  sync_search(leaf);
+  if (nodes_[leaf].vertices.size() == 1) mark_occupied(leaf);
   return leaf;
 }
 
@@ -539,6 +593,8 @@ void Quadtree<D>::erase_vertex(VertexId id, NodeId leaf) {
   if (it == vs.end()) throw std::logic_error("quadtree erase_vertex: vertex not in leaf");
   *it = vs.back();
   vs.pop_back();
+  sync_search(leaf);
+  if (vs.empty()) mark_vacated(leaf);
 }
 
 template <int D>
@@ -552,7 +608,7 @@ std::vector<std::pair<int, typename Quadtree<D>::Coords>> Quadtree<D>::leaf_cell
 
 template <int D>
 std::size_t Quadtree<D>::memory_bytes() const {
-  std::size_t bytes = nodes_.capacity() * sizeof(Node) + map_.memory_bytes() + stamp_.capacity() * 4 +
+  std::size_t bytes = nodes_.capacity() * sizeof(Node) + search_.capacity() * sizeof(SearchEntry) + map_.memory_bytes() +
                       free_blocks_.capacity() * sizeof(NodeId);
   for (const Node& n : nodes_) bytes += n.vertices.capacity() * sizeof(LeafVertex<D>);
   return bytes;
@@ -576,6 +632,9 @@ void Quadtree<D>::check_valid(std::span<const Point<D>> positions) const {
         if (e.id == nd.input_vertex) ++inputs;
       }
       if (inputs != nd.input_count || nd.input_count > 1) fail("leaf input count");
+      if (search_[n].first_child != kNoNode || search_[n].occupied_or_size != nd.vertices.size() ||
+          search_[n].vertices != nd.vertices.data())
+        fail("search entry of leaf " + std::to_string(n));
       if (crowded(n, positions)) fail("crowded leaf at level " + std::to_string(nd.level));
       // Balance: touching leaves differ by at most one level.
       if (nd.level >= 2)
@@ -586,11 +645,16 @@ void Quadtree<D>::check_valid(std::span<const Point<D>> positions) const {
         });
     } else {
       std::uint32_t sum = 0;
+      std::uint8_t occupied = 0;
       for (int k = 0; k < kChildren; ++k) {
         const Node& ch = nodes_[nd.first_child + NodeId(k)];
         if (ch.parent != n || ch.level != nd.level + 1) fail("child links");
         sum += ch.input_count;
+        if (ch.is_leaf() ? !ch.vertices.empty() : ch.occupied != 0) occupied |= std::uint8_t(1u << k);
       }
+      if (occupied != nd.occupied) fail("occupied mask of node " + std::to_string(n));
+      if (search_[n].first_child != nd.first_child || search_[n].occupied_or_size != nd.occupied)
+        fail("search entry of internal node " + std::to_string(n));
       if (sum != nd.input_count) fail("subtree input count node " + std::to_string(n) + " level " + std::to_string(nd.level) + " count " + std::to_string(nd.input_count) + " sum " + std::to_string(sum));
       if (!nd.vertices.empty()) fail("internal node holds vertices");
       if (!required_split(n, positions)) fail("split not required (tree not minimal) at level " + std::to_string(nd.level));

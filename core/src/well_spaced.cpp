@@ -23,7 +23,11 @@ template <int D>
 void WellSpacedSet<D>::build(std::span<const Point<D>> unit_points) {
   engine_->build(unit_points);
   input_vertex_.resize(unit_points.size());
-  for (std::size_t i = 0; i < unit_points.size(); ++i) input_vertex_[i] = std::uint32_t(i);
+  input_id_.resize(unit_points.size());
+  for (std::size_t i = 0; i < unit_points.size(); ++i) {
+    input_vertex_[i] = std::uint32_t(i);
+    input_id_[i] = i;
+  }
 }
 
 template <int D>
@@ -64,17 +68,16 @@ void WellSpacedSet<D>::check_new_point(const Point<D>& p, std::span<const std::s
     if (q == p) throw InputError("the same point is added twice");
   const double resolution = 0x1p-36;  // inputs closer than this would need quadtree levels beyond 40
   const auto& tree = engine_->quadtree();
-  Point<D> lo, hi;
+  using Box = typename engine::Quadtree<D>::Box;
+  Box box;
   for (int i = 0; i < D; ++i) {
-    lo[i] = p[i] - resolution;
-    hi[i] = p[i] + resolution;
+    box.lo[i] = p[i] - resolution;
+    box.hi[i] = p[i] + resolution;
   }
-  tree.begin_session();
-  tree.for_each_leaf_in_box(lo, hi, [&](engine::NodeId n) {
+  tree.for_each_occupied_leaf(box, Box::empty(), [&](engine::NodeId n, auto) {
     const auto v = tree.node(n).input_vertex;
     if (v == engine::kNoVertex) return;
-    std::size_t id = 0;
-    while (id < input_vertex_.size() && input_vertex_[id] != v) ++id;
+    const std::size_t id = input_id_[v];
     if (std::find(removed_ids.begin(), removed_ids.end(), id) != removed_ids.end()) return;
     const auto& q = engine_->positions()[v];
     double d = 0;
@@ -127,12 +130,19 @@ std::vector<std::size_t> WellSpacedSet<D>::apply(std::span<const Edit<D>> edits,
   const auto vertices = engine_->apply(engine_edits, &stats);
   std::vector<std::size_t> new_ids;
   std::size_t k = 0;
+  auto bind = [&](std::size_t id, std::uint32_t v) {
+    if (input_id_.size() <= v) input_id_.resize(engine_->vertex_count());
+    input_id_[v] = id;
+  };
   for (const Edit<D>& e : edits) {
     if (e.kind == Edit<D>::Kind::Remove) input_vertex_[e.id] = engine::kNoVertex;
-    else if (e.kind == Edit<D>::Kind::Move) input_vertex_[e.id] = vertices[k++];
-    else {
+    else if (e.kind == Edit<D>::Kind::Move) {
+      input_vertex_[e.id] = vertices[k++];
+      bind(e.id, input_vertex_[e.id]);
+    } else {
       new_ids.push_back(input_vertex_.size());
       input_vertex_.push_back(vertices[k++]);
+      bind(new_ids.back(), input_vertex_.back());
     }
   }
   if (report) {

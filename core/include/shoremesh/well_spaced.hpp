@@ -86,6 +86,7 @@ class WellSpacedSet {
 
   std::unique_ptr<WellSpacedEngine<D>> engine_;
   std::vector<std::uint32_t> input_vertex_;  // by id: the engine's vertex, or none once removed
+  std::vector<std::size_t> input_id_;        // by engine vertex: its input id (valid for live inputs)
 };
 
 // StableWS on points in the user's coordinates: maps them into the unit box (the given box, or
