@@ -27,18 +27,29 @@ class CellMap {
   CellMap() { rehash(64); }
 
   NodeId find(CellKey key) const {
-    for (std::size_t i = slot_of(key);; i = (i + 1) & mask_) {
-      if (slots_[i].key == key) return slots_[i].node;
-      if (slots_[i].key == 0) return kNoNode;
+    const std::uint64_t h = hash(key);
+    RecentEntry& recent = recent_[h >> (64 - kRecentBits)];
+    if (recent.key == key && recent.generation == generation_) return recent.node;
+    NodeId node = kNoNode;
+    for (std::size_t i = std::size_t(h) & mask_;; i = (i + 1) & mask_) {
+      if (slots_[i].key == key) {
+        node = slots_[i].node;
+        break;
+      }
+      if (slots_[i].key == 0) break;
     }
+    recent = RecentEntry{key, node, generation_};
+    return node;
   }
 
   void insert(CellKey key, NodeId node) {
+    changed();
     if (2 * (size_ + 1) > slots_.size()) rehash(2 * slots_.size());
     place(key, node);
   }
 
   void erase(CellKey key) {
+    changed();
     std::size_t i = slot_of(key);
     while (slots_[i].key != key) {
       if (slots_[i].key == 0) return;
@@ -59,6 +70,7 @@ class CellMap {
   }
 
   void clear() {
+    changed();
     slots_.assign(64, Slot{});
     mask_ = 63;
     size_ = 0;
@@ -72,12 +84,20 @@ class CellMap {
     NodeId node = kNoNode;
   };
 
-  std::size_t slot_of(CellKey key) const {
+  static std::uint64_t hash(CellKey key) {
     std::uint64_t h = std::uint64_t(key) ^ (std::uint64_t(key >> 64) * 0x9E3779B97F4A7C15ull);
     h ^= h >> 31;
     h *= 0xBF58476D1CE4E5B9ull;
     h ^= h >> 29;
-    return std::size_t(h) & mask_;
+    return h;
+  }
+  std::size_t slot_of(CellKey key) const { return std::size_t(hash(key)) & mask_; }
+  // Every recent answer becomes stale (after 2^32 changes the generation wraps: forget them outright).
+  void changed() {
+    if (++generation_ == 0) {
+      recent_.fill(RecentEntry{});
+      generation_ = 1;
+    }
   }
   void place(CellKey key, NodeId node) {
     std::size_t i = slot_of(key);
@@ -97,6 +117,19 @@ class CellMap {
   std::vector<Slot> slots_;
   std::size_t mask_ = 0;
   std::size_t size_ = 0;
+  // The answers of recent look-ups (absent cells too), valid while the map is unchanged: one neighbour
+  // search looks up the same few cells several times as its box grows, and the operations of one
+  // update lie close together. With millions of cells the table is far larger than the caches, and a
+  // look-up there costs a cache and TLB miss. Direct-mapped by the top bits of the hash (the slot index
+  // uses the low ones). Mutable: find() stays const; the engine is single-threaded.
+  static constexpr int kRecentBits = 8;
+  struct RecentEntry {
+    CellKey key = 0;
+    NodeId node = kNoNode;
+    std::uint32_t generation = 0;
+  };
+  mutable std::array<RecentEntry, std::size_t(1) << kRecentBits> recent_{};
+  std::uint32_t generation_ = 1;  // bumped by every change; entries of older generations are stale
 };
 
 }  // namespace shoremesh::engine
