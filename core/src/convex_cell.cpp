@@ -42,17 +42,31 @@ std::array<NT, 2> solve(const std::array<std::array<NT, 2>, 2>& n, const std::ar
   return {(b[0] * n[1][1] - n[0][1] * b[1]) / det, (n[0][0] * b[1] - b[0] * n[1][0]) / det};
 }
 
+// The 2 x 2 minors of columns b, c that expand a determinant det(a, b, c) along a.
+template <class NT>
+std::array<NT, 3> minors(const std::array<NT, 3>& b, const std::array<NT, 3>& c) {
+  return {b[1] * c[2] - b[2] * c[1], b[0] * c[2] - b[2] * c[0], b[0] * c[1] - b[1] * c[0]};
+}
+
+template <class NT>
+NT expand(const std::array<NT, 3>& a, const std::array<NT, 3>& m) {
+  return a[0] * m[0] - a[1] * m[1] + a[2] * m[2];
+}
+
 template <class NT>
 NT det3(const std::array<NT, 3>& a, const std::array<NT, 3>& b, const std::array<NT, 3>& c) {
-  return a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+  return expand(a, minors(b, c));
 }
 
 template <class NT>
 std::array<NT, 3> solve(const std::array<std::array<NT, 3>, 3>& n, const std::array<NT, 3>& b) {
   // Columns of the system matrix are (n[0][j], n[1][j], n[2][j]).
   std::array<NT, 3> c0{n[0][0], n[1][0], n[2][0]}, c1{n[0][1], n[1][1], n[2][1]}, c2{n[0][2], n[1][2], n[2][2]};
-  const NT det = det3(c0, c1, c2);
-  return {det3(b, c1, c2) / det, det3(c0, b, c2) / det, det3(c0, c1, b) / det};
+  // det(c0, c1, c2) and det(b, c1, c2) share the minors of (c1, c2): computed once, the same operations
+  // in the same order, so the intervals are bit for bit those of two separate expansions.
+  const std::array<NT, 3> m12 = minors(c1, c2);
+  const NT det = expand(c0, m12);
+  return {expand(b, m12) / det, det3(c0, b, c2) / det, det3(c0, c1, b) / det};
 }
 
 double midpoint(const Interval& x) { return 0.5 * (x.inf() + x.sup()); }
@@ -123,6 +137,7 @@ void ConvexCell<D>::reset(const Point<D>& v, const Point<D>& lo, const Point<D>&
   constraints_.clear();
   exact_.clear();
   verts_.clear();
+  free_verts_.clear();
   using Kind = typename Constraint<D>::Kind;
   // Constraint 2*axis is x[axis] >= lo, 2*axis+1 is x[axis] <= hi.
   for (int a = 0; a < D; ++a) {
@@ -151,8 +166,10 @@ void ConvexCell<D>::reset(const Point<D>& v, const Point<D>& lo, const Point<D>&
     // Faces with their vertices counter-clockwise seen from outside.
     face_plane_ = {0, 1, 2, 3, 4, 5};
     face_verts_ = {0, 4, 6, 2, /**/ 1, 3, 7, 5, /**/ 0, 1, 5, 4, /**/ 2, 6, 7, 3, /**/ 0, 2, 3, 1, /**/ 4, 5, 7, 6};
-    face_begin_ = {0, 4, 8, 12, 16, 20, 24};
+    face_begin_ = {0, 4, 8, 12, 16, 20};
+    face_len_ = {4, 4, 4, 4, 4, 4};
   }
+  live_vertices_ = verts_.size();
 }
 
 template <int D>
@@ -167,6 +184,23 @@ bool ConvexCell<D>::clip(VertexId w, const Point<D>& wp) {
   return false;
 }
 
+// An upper bound on n.y - b (the caller holds a RoundingGuard, so each product's largest corner and the
+// sum are rounded upward): when it is negative, the vertex is strictly inside, which is what most vertices
+// are. The bound is the upper end of the interval side() computes, at a quarter of the cost.
+namespace {
+
+template <int D>
+double upper_side_bound(const Constraint<D>& c, const std::array<Interval, D>& y) {
+  double s = -c.b.inf();
+  for (int i = 0; i < D; ++i) {
+    const double n0 = c.n[i].inf(), n1 = c.n[i].sup(), y0 = y[i].inf(), y1 = y[i].sup();
+    s += std::max(std::max(n0 * y0, n0 * y1), std::max(n1 * y0, n1 * y1));
+  }
+  return s;
+}
+
+}  // namespace
+
 template <int D>
 bool ConvexCell<D>::clip_by(std::uint16_t plane) {
   const std::size_t m = verts_.size();
@@ -178,12 +212,31 @@ bool ConvexCell<D>::clip_by(std::uint16_t plane) {
   const Constraint<D>& c = constraints_[plane];
   const double inside_below = c.kind == Constraint<D>::Kind::Bisector ? 0.25 * c.b.inf() : 0.0;
   for (std::size_t i = 0; i < m; ++i) {
-    signs_[i] = verts_[i].r2 < inside_below ? std::int8_t(-1) : std::int8_t(side(verts_[i], plane));
+    Vertex& vtx = verts_[i];
+    if (!vtx.alive || vtx.r2 < inside_below) {
+      signs_[i] = -1;
+      continue;
+    }
+    if (upper_side_bound<D>(c, vtx.y) < 0) {
+      ++counters_.calls;  // the same decision side() would take from its interval
+      signs_[i] = -1;
+      continue;
+    }
+    signs_[i] = std::int8_t(side(vtx, plane));
     any_outside = any_outside || signs_[i] > 0;
   }
   if (!any_outside) return false;
+  if constexpr (D == 2)
+    clip_polygon(plane);
+  else
+    clip_polyhedron(plane);
+  return true;
+}
 
+template <int D>
+void ConvexCell<D>::clip_polygon(std::uint16_t plane) {
   if constexpr (D == 2) {
+    const std::size_t m = verts_.size();
     next_verts_.clear();
     next_edges_.clear();
     for (std::size_t i = 0; i < m; ++i) {
@@ -208,115 +261,167 @@ bool ConvexCell<D>::clip_by(std::uint16_t plane) {
     }
     verts_.swap(next_verts_);
     edges_.swap(next_edges_);
-    return true;
-  } else {
+    live_vertices_ = verts_.size();
+  }
+}
+
+template <int D>
+std::uint32_t ConvexCell<D>::new_vertex_slot() {
+  if (!free_verts_.empty()) {
+    const std::uint32_t slot = free_verts_.back();
+    free_verts_.pop_back();
+    return slot;
+  }
+  verts_.emplace_back();
+  return std::uint32_t(verts_.size() - 1);
+}
+
+template <int D>
+void ConvexCell<D>::compact_face_arena() {
+  arena_scratch_.clear();
+  for (std::size_t f = 0; f < face_plane_.size(); ++f) {
+    const std::uint32_t begin = face_begin_[f];
+    face_begin_[f] = std::uint32_t(arena_scratch_.size());
+    arena_scratch_.insert(arena_scratch_.end(), face_verts_.begin() + begin, face_verts_.begin() + begin + face_len_[f]);
+  }
+  face_verts_.swap(arena_scratch_);
+}
+
+// Only the faces with a vertex on or beyond the plane change; the others keep their cycles where they
+// are. signs_ holds the side of every vertex slot (dead slots -1).
+template <int D>
+void ConvexCell<D>::clip_polyhedron(std::uint16_t plane) {
+  if constexpr (D == 3) {
+    const std::size_t m = verts_.size();
+    const std::size_t nf = face_plane_.size();
     // New vertices on edges whose ends lie strictly on opposite sides; each such edge is shared by two
-    // faces, whose planes with the new plane define the new vertex.
+    // faces, whose planes (in face order, which is plane order) with the new plane define the vertex.
     std::vector<CutEdge>& cuts = cuts_;  // few: a cut of a convex cell crosses a handful of edges
     cuts.clear();
-    const std::size_t nf = face_plane_.size();
     auto cut_of = [&](std::uint32_t a, std::uint32_t b) -> CutEdge& {
       const std::uint32_t lo = std::min(a, b), hi = std::max(a, b);
-      for (CutEdge& c : cuts)
-        if (c.a == lo && c.b == hi) return c;
+      for (CutEdge& e : cuts)
+        if (e.a == lo && e.b == hi) return e;
       cuts.push_back(CutEdge{lo, hi, {0, 0}, 0, 0});
       return cuts.back();
     };
+    // face_cuts_ lists, face by face and edge by edge, which cut each touched face crosses: the rewrite
+    // below walks the same edges in the same order and takes them from it without a search.
+    touched_faces_.clear();
+    face_cuts_.clear();
+    bool on_plane_old = false;
     for (std::size_t f = 0; f < nf; ++f) {
-      const std::uint32_t begin = face_begin_[f], end = face_begin_[f + 1], len = end - begin;
+      const std::uint32_t* cycle = face_verts_.data() + face_begin_[f];
+      const std::uint32_t len = face_len_[f];
+      int most = -1;
+      for (std::uint32_t k = 0; k < len; ++k) most = std::max(most, int(signs_[cycle[k]]));
+      if (most < 0) continue;
+      touched_faces_.push_back(std::uint32_t(f));
       for (std::uint32_t k = 0; k < len; ++k) {
-        const std::uint32_t a = face_verts_[begin + k], b = face_verts_[begin + (k + 1) % len];
+        const std::uint32_t a = cycle[k], b = cycle[k + 1 == len ? 0 : k + 1];
+        on_plane_old = on_plane_old || signs_[a] == 0;
         if (signs_[a] * signs_[b] < 0) {
-          CutEdge& c = cut_of(a, b);
-          if (c.count < 2) c.faces[c.count] = face_plane_[f];
-          ++c.count;
+          CutEdge& e = cut_of(a, b);
+          if (e.count < 2) e.faces[e.count] = face_plane_[f];
+          ++e.count;
+          face_cuts_.push_back(std::uint32_t(&e - cuts.data()));
         }
       }
     }
-    // Renumber: kept old vertices first, then the new ones.
-    std::vector<std::uint32_t>& renumber = scratch_a_;
-    renumber.assign(m, 0xFFFFFFFFu);
-    next_verts_.clear();
-    for (std::size_t i = 0; i < m; ++i)
-      if (signs_[i] <= 0) {
-        renumber[i] = std::uint32_t(next_verts_.size());
-        next_verts_.push_back(verts_[i]);
-      }
-    std::vector<std::uint32_t>& on_plane_next = scratch_b_;  // new index -> next vertex on the new face
-    for (CutEdge& c : cuts) {
-      if (c.count != 2) throw std::logic_error("convex cell: a cut edge not shared by two faces");
-      c.vertex = std::uint32_t(next_verts_.size());
-      next_verts_.push_back(make_vertex({c.faces[0], c.faces[1], plane}));
+    // Slots freed by earlier clips only: this clip's outside vertices are still read below.
+    for (CutEdge& e : cuts) {
+      if (e.count != 2) throw std::logic_error("convex cell: a cut edge not shared by two faces");
+      const Vertex vtx = make_vertex({e.faces[0], e.faces[1], plane});
+      e.vertex = new_vertex_slot();
+      verts_[e.vertex] = vtx;
     }
-    const std::size_t nv = next_verts_.size();
-    on_plane_next.assign(nv, 0xFFFFFFFFu);
-    std::vector<std::uint32_t>& on_plane = scratch_c_;  // 1 if the new vertex lies on the new plane
-    on_plane.assign(nv, 0);
-    for (std::size_t i = 0; i < m; ++i)
-      if (signs_[i] == 0) on_plane[renumber[i]] = 1;
-    for (const CutEdge& c : cuts) on_plane[c.vertex] = 1;
+    signs_.resize(verts_.size());
+    for (const CutEdge& e : cuts) signs_[e.vertex] = 0;  // new vertices lie on the new plane
 
-    next_face_plane_.clear();
-    next_face_begin_.assign(1, 0);
-    next_face_verts_.clear();
-    for (std::size_t f = 0; f < nf; ++f) {
-      const std::uint32_t begin = face_begin_[f], end = face_begin_[f + 1], len = end - begin;
-      const std::size_t start = next_face_verts_.size();
+    // The touched faces' clipped cycles, and the edges of the new plane's face from them.
+    rim_.clear();
+    bool face_dropped = false;
+    std::size_t next_cut = 0;
+    for (std::uint32_t f : touched_faces_) {
+      const std::uint32_t begin = face_begin_[f], len = face_len_[f];
+      const std::uint32_t start = std::uint32_t(face_verts_.size());
       for (std::uint32_t k = 0; k < len; ++k) {
-        const std::uint32_t a = face_verts_[begin + k], b = face_verts_[begin + (k + 1) % len];
-        if (signs_[a] <= 0) next_face_verts_.push_back(renumber[a]);
-        if (signs_[a] * signs_[b] < 0) next_face_verts_.push_back(cut_of(a, b).vertex);
+        const std::uint32_t a = face_verts_[begin + k], b = face_verts_[begin + (k + 1 == len ? 0 : k + 1)];
+        if (signs_[a] <= 0) face_verts_.push_back(a);
+        if (signs_[a] * signs_[b] < 0) face_verts_.push_back(cuts[face_cuts_[next_cut++]].vertex);
       }
-      const std::size_t flen = next_face_verts_.size() - start;
+      const std::uint32_t flen = std::uint32_t(face_verts_.size()) - start;
       if (flen < 3) {  // the face was cut away, or only touches the new plane
-        next_face_verts_.resize(start);
+        face_verts_.resize(start);
+        face_len_[f] = 0;
+        face_dropped = true;
         continue;
       }
-      // The face's edge on the new plane, p -> q in this face, is q -> p in the new face.
-      for (std::size_t k = 0; k < flen; ++k) {
-        const std::uint32_t p = next_face_verts_[start + k], q = next_face_verts_[start + (k + 1) % flen];
-        if (on_plane[p] && on_plane[q]) on_plane_next[q] = p;
+      // The face's edge on the new plane, p -> q in this face, is q -> p in the new face (one per q).
+      for (std::uint32_t k = 0; k < flen; ++k) {
+        const std::uint32_t p = face_verts_[start + k], q = face_verts_[start + (k + 1 == flen ? 0 : k + 1)];
+        if (signs_[p] != 0 || signs_[q] != 0) continue;
+        auto same_to = std::find_if(rim_.begin(), rim_.end(), [&](const RimEdge& r) { return r.from == q; });
+        if (same_to != rim_.end())
+          same_to->to = p;
+        else
+          rim_.push_back(RimEdge{q, p});
       }
-      next_face_plane_.push_back(face_plane_[f]);
-      next_face_begin_.push_back(std::uint32_t(next_face_verts_.size()));
+      face_begin_[f] = start;
+      face_len_[f] = flen;
+    }
+    if (face_dropped) {
+      std::size_t kept = 0;
+      for (std::size_t f = 0; f < nf; ++f)
+        if (face_len_[f] != 0) {
+          face_plane_[kept] = face_plane_[f];
+          face_begin_[kept] = face_begin_[f];
+          face_len_[kept] = face_len_[f];
+          ++kept;
+        }
+      face_plane_.resize(kept);
+      face_begin_.resize(kept);
+      face_len_.resize(kept);
     }
     // The new face: follow the chain of on-plane edges.
-    std::uint32_t startv = 0xFFFFFFFFu;
-    std::size_t chain = 0;
-    for (std::uint32_t i = 0; i < nv; ++i)
-      if (on_plane_next[i] != 0xFFFFFFFFu) {
-        ++chain;
-        if (startv == 0xFFFFFFFFu) startv = i;
-      }
+    const std::size_t chain = rim_.size();
     if (chain < 3) throw std::logic_error("convex cell: the cut face has fewer than three edges");
+    const std::uint32_t start = std::uint32_t(face_verts_.size());
+    const std::uint32_t startv = rim_.front().from;
     std::size_t walked = 0;
     std::uint32_t cur = startv;
     do {
-      next_face_verts_.push_back(cur);
-      cur = on_plane_next[cur];
-      if (cur == 0xFFFFFFFFu || ++walked > chain) throw std::logic_error("convex cell: the cut face is not a cycle");
+      face_verts_.push_back(cur);
+      auto r = std::find_if(rim_.begin(), rim_.end(), [&](const RimEdge& e) { return e.from == cur; });
+      if (r == rim_.end() || ++walked > chain) throw std::logic_error("convex cell: the cut face is not a cycle");
+      cur = r->to;
     } while (cur != startv);
     if (walked != chain) throw std::logic_error("convex cell: the cut face has two cycles");
-    next_face_plane_.push_back(plane);
-    next_face_begin_.push_back(std::uint32_t(next_face_verts_.size()));
+    face_plane_.push_back(plane);
+    face_begin_.push_back(start);
+    face_len_.push_back(std::uint32_t(face_verts_.size()) - start);
 
-    // Drop old vertices no kept face uses (a sign-0 vertex whose faces all went away).
-    std::vector<std::uint32_t>& used = scratch_a_;
-    used.assign(nv, 0);
-    for (std::uint32_t x : next_face_verts_) used[x] = 1;
-    std::vector<std::uint32_t>& compact = scratch_b_;
-    compact.assign(nv, 0);
-    verts_.clear();
-    for (std::uint32_t i = 0; i < nv; ++i)
-      if (used[i]) {
-        compact[i] = std::uint32_t(verts_.size());
-        verts_.push_back(next_verts_[i]);
+    // Free the vertices cut away, and old vertices on the plane no kept face uses (their faces all went).
+    for (std::size_t i = 0; i < m; ++i)
+      if (signs_[i] > 0) {
+        verts_[i].alive = false;
+        free_verts_.push_back(std::uint32_t(i));
       }
-    for (std::uint32_t& x : next_face_verts_) x = compact[x];
-    face_plane_.swap(next_face_plane_);
-    face_begin_.swap(next_face_begin_);
-    face_verts_.swap(next_face_verts_);
-    return true;
+    if (on_plane_old) {
+      used_.assign(verts_.size(), 0);
+      for (std::size_t f = 0; f < face_plane_.size(); ++f)
+        for (std::uint32_t k = 0; k < face_len_[f]; ++k) used_[face_verts_[face_begin_[f] + k]] = 1;
+      for (std::size_t i = 0; i < m; ++i)
+        if (signs_[i] == 0 && !used_[i]) {
+          verts_[i].alive = false;
+          free_verts_.push_back(std::uint32_t(i));
+        }
+    }
+    live_vertices_ = verts_.size() - free_verts_.size();
+    // The arena holds every cycle a face ever had in this cell: compact it once it is mostly garbage.
+    std::size_t live_entries = 0;
+    for (std::uint32_t len : face_len_) live_entries += len;
+    if (face_verts_.size() > 4096 && face_verts_.size() > 4 * live_entries) compact_face_arena();
   }
 }
 
@@ -330,6 +435,7 @@ bool ConvexCell<D>::within_scaled_distance(double k, const Point<D>& u) {
   }
   r2i *= Interval(k);
   for (Vertex& vtx : verts_) {
+    if (!vtx.alive) continue;
     ++counters_.calls;
     Interval s = -r2i;
     for (int i = 0; i < D; ++i) s += CGAL::square(vtx.y[i]);
@@ -351,6 +457,7 @@ Point<D> ConvexCell<D>::farthest_vertex_offset() const {
   Point<D> best{};
   double best_d2 = -1;
   for (const Vertex& vtx : verts_) {
+    if (!vtx.alive) continue;
     Point<D> y;
     double d2 = 0;
     for (int i = 0; i < D; ++i) {
@@ -368,7 +475,8 @@ Point<D> ConvexCell<D>::farthest_vertex_offset() const {
 template <int D>
 double ConvexCell<D>::max_vertex_distance2() const {
   double best = 0;
-  for (const Vertex& vtx : verts_) best = std::max(best, vtx.r2);
+  for (const Vertex& vtx : verts_)
+    if (vtx.alive) best = std::max(best, vtx.r2);
   return best;
 }
 

@@ -48,7 +48,7 @@ class ConvexCell {
   // cannot cut the cell.
   double max_vertex_distance2() const;
   const Point<D>& site() const { return v_; }
-  std::size_t vertex_count() const { return verts_.size(); }
+  std::size_t vertex_count() const { return live_vertices_; }
   PredicateCounters& counters() { return counters_; }
   const PredicateCounters& counters() const { return counters_; }
 
@@ -58,33 +58,51 @@ class ConvexCell {
     std::array<Interval, D> y{};            // its position relative to v, enclosed
     double r2 = 0;                          // an upper bound on |y|^2
     std::int32_t exact = -1;                // index into exact_ once computed
+    bool alive = true;                      // 3D: a freed slot (cut away) waits in free_verts_
   };
-  // A cut edge of the 3D clip: the edge a-b (a < b), the two faces sharing it, its new vertex.
+  // A cut edge of the 3D clip: the edge a-b (a < b), the planes of the two faces sharing it (in face
+  // order), its new vertex.
   struct CutEdge {
     std::uint32_t a, b;
     std::uint16_t faces[2];
     int count;
     std::uint32_t vertex;
   };
+  // An edge p -> q of a clipped face lying on the new plane: the new face runs q -> p.
+  struct RimEdge {
+    std::uint32_t from, to;
+  };
   std::uint16_t add_constraint(const Constraint<D>& c);
   Vertex make_vertex(const std::array<std::uint16_t, D>& planes);
   const std::array<Exact, D>& exact_position(Vertex& vtx);
   int side(Vertex& vtx, std::uint16_t plane);  // sign of n.y - b: > 0 outside
   bool clip_by(std::uint16_t plane);
+  void clip_polygon(std::uint16_t plane);
+  void clip_polyhedron(std::uint16_t plane);
+  std::uint32_t new_vertex_slot();
+  void compact_face_arena();
 
   Point<D> v_{};
   std::vector<Constraint<D>> constraints_;
   std::vector<std::array<Exact, D>> exact_;
   std::vector<Vertex> verts_, next_verts_;
+  std::size_t live_vertices_ = 0;
   std::vector<std::int8_t> signs_;
   // 2D: edges_[i] is the constraint of the edge from vertex i to vertex i+1.
   std::vector<std::uint16_t> edges_, next_edges_;
-  // 3D: face f is face_plane_[f] with vertex cycle face_verts_[face_begin_[f] .. face_begin_[f+1]).
-  std::vector<std::uint16_t> face_plane_, next_face_plane_;
-  std::vector<std::uint32_t> face_begin_, next_face_begin_;
-  std::vector<std::uint32_t> face_verts_, next_face_verts_;
-  std::vector<std::uint32_t> scratch_a_, scratch_b_, scratch_c_;
+  // 3D: face f is face_plane_[f] with vertex cycle face_verts_[face_begin_[f] .. + face_len_[f]). Faces
+  // are in increasing plane order (each cut appends its plane, which is the newest constraint). A
+  // clipped face gets its new cycle appended to face_verts_, an arena that only grows during one cell
+  // (compacted when mostly garbage), so untouched faces are never copied. Vertex slots of cut-away
+  // vertices are reused (free_verts_): no renumbering.
+  std::vector<std::uint16_t> face_plane_;
+  std::vector<std::uint32_t> face_begin_, face_len_;
+  std::vector<std::uint32_t> face_verts_, arena_scratch_;
+  std::vector<std::uint32_t> free_verts_;
+  std::vector<std::uint32_t> touched_faces_, face_cuts_;
+  std::vector<std::uint8_t> used_;
   std::vector<CutEdge> cuts_;
+  std::vector<RimEdge> rim_;
   PredicateCounters counters_;
 };
 
