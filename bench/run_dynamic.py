@@ -98,8 +98,9 @@ def section(lines):
             f"{float(f['build_seconds']):.2f} | {fmt_time(f['unit_change_seconds'])} | {float(f['speedup_time']):,.0f} | "
             f"{fmt_time(f['update_median_seconds'])} | {fmt_time(f['update_p99_seconds'])} | "
             f"{f['update_median_ops']} | {f['update_max_ops']} |")
-    out += ["", "Work per clipped Voronoi cell (what one operation costs), from scratch and during the updates:", "",
-            "| dim | n | cells per update | leaves searched (build / updates) | candidate vertices | half-spaces clipped |",
+    out += ["", "Work per clipped Voronoi cell (what one operation costs), from scratch and during the updates "
+            "(leaves: those holding a vertex that the neighbour search read; empty ones are skipped unread):", "",
+            "| dim | n | cells per update | leaves read (build / updates) | candidate vertices | half-spaces clipped |",
             "|---|---|---|---|---|---|"]
     for f in rows:
         out.append(f"| {f['dim']} | {fmt_n(f['n'])} | {f['update_cells']} | {f['build_leaves_per_cell']} / "
