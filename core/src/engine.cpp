@@ -35,7 +35,6 @@ void WellSpacedEngine<D>::reset() {
   ops_.clear();
   children_.clear();
   reads_.clear();
-  read_slots_.clear();
   readers_.clear();
   agenda_.clear();
   free_ops_.clear();
@@ -163,15 +162,14 @@ void WellSpacedEngine<D>::mark_readers_at(VertexId w, const Point<D>& p, NodeId 
   const bool inserted = change == VertexChange::Inserted;
   const std::uint64_t bit = facet_bit(w);
   for (NodeId n = leaf; n != kNoNode; n = tree_.node(n).parent)
-    for (const Reader& r : readers_[n]) {
-      if (r.rank < rank) continue;
+    for (OpId o : readers_[n]) {
+      const Op& op = ops_[o];
+      if (op.rank < rank || (op.rank == rank && op.color <= color)) continue;
+      if (!inserted && !(op.facet_mask & bit)) continue;
+      const Point<D>& c = positions_[op.vertex];
       double d2 = 0;
-      for (int i = 0; i < D; ++i) d2 += (p[i] - r.center[i]) * (p[i] - r.center[i]);
-      if (d2 > r.depends2) continue;  // depends2 bounds inserted_depends2 too
-      const Op& op = ops_[r.op];
-      if (op.rank == rank && op.color <= color) continue;
-      if (inserted ? d2 > op.inserted_depends2 : !(op.facet_mask & bit)) continue;
-      mark_redo(r.op);
+      for (int i = 0; i < D; ++i) d2 += (p[i] - c[i]) * (p[i] - c[i]);
+      if (d2 <= (inserted ? op.inserted_depends2 : op.depends2)) mark_redo(o);
     }
 }
 
@@ -183,37 +181,8 @@ void WellSpacedEngine<D>::record_facets(OpId o) {
 }
 
 template <int D>
-void WellSpacedEngine<D>::register_reads(OpId o) {
-  Op& op = ops_[o];
-  op.reads_begin = std::uint32_t(reads_.size());
-  for (NodeId n : covering_) {
-    const auto k = std::uint32_t(reads_.size());
-    reads_.push_back(n);
-    read_slots_.push_back(std::uint32_t(readers_[n].size()));
-    readers_[n].push_back(Reader{positions_[op.vertex], o, k, op.depends2, op.rank});
-  }
-  op.reads_end = std::uint32_t(reads_.size());
-}
-
-template <int D>
-void WellSpacedEngine<D>::unregister_reads(OpId o) {
-  for (std::uint32_t k = ops_[o].reads_begin; k < ops_[o].reads_end; ++k) {
-    if (reads_[k] == kNoNode) continue;
-    auto& rs = readers_[reads_[k]];
-    const std::uint32_t slot = read_slots_[k];
-    rs[slot] = rs.back();
-    read_slots_[rs[slot].read] = slot;
-    rs.pop_back();
-  }
-}
-
-template <int D>
-void WellSpacedEngine<D>::release_readers(NodeId n) {
-  for (const Reader& r : readers_[n]) {
-    mark_redo(r.op);
-    reads_[r.read] = kNoNode;
-  }
-  readers_[n].clear();
+void WellSpacedEngine<D>::mark_all_readers(NodeId n) {
+  for (OpId o : readers_[n]) mark_redo(o);
 }
 
 // Processes the agenda in time order. At each time: fills nobody asks for any more become obsolete;
@@ -292,7 +261,14 @@ void WellSpacedEngine<D>::undo(OpId o) {
       if (stats_) stats_->steiner_removed.push_back(positions_[w]);
     }
   }
-  unregister_reads(o);
+  for (std::uint32_t k = ops_[o].reads_begin; k < ops_[o].reads_end; ++k) {
+    auto& rs = readers_[reads_[k]];
+    auto it = std::find(rs.begin(), rs.end(), o);
+    if (it != rs.end()) {
+      *it = rs.back();
+      rs.pop_back();
+    }
+  }
   Op& again = ops_[o];
   garbage_ += (again.children_end - again.children_begin) + (again.reads_end - again.reads_begin);
   if (!(again.flags & kStashed)) again.children_begin = again.children_end = 0;
@@ -335,9 +311,6 @@ void WellSpacedEngine<D>::execute(OpId o) {
   ops_[o].flags &= std::uint8_t(~(kFresh | kRedo));
   if (ops_[o].kind == OpKind::Dispatch) dispatch(o);
   else fill(o);
-  // Registered only now, with the dependency radius final (fill may narrow it). Nothing in between
-  // needed them: an operation's own insertions mark only later operations.
-  register_reads(o);
   ops_[o].flags |= kExecuted;
   if (stats_) ++stats_->executed;
 }
@@ -347,10 +320,8 @@ template <int D>
 void WellSpacedEngine<D>::compact_pools() {
   std::vector<OpId> children;
   std::vector<NodeId> reads;
-  std::vector<std::uint32_t> slots;
   children.reserve(children_.size() - std::min(garbage_, children_.size()));
   reads.reserve(reads_.size());
-  slots.reserve(reads_.size());
   for (Op& op : ops_) {
     if (op.flags & kDead) continue;
     const std::uint32_t cb = std::uint32_t(children.size());
@@ -359,16 +330,11 @@ void WellSpacedEngine<D>::compact_pools() {
     op.children_end = std::uint32_t(children.size());
     const std::uint32_t rb = std::uint32_t(reads.size());
     reads.insert(reads.end(), reads_.begin() + op.reads_begin, reads_.begin() + op.reads_end);
-    slots.insert(slots.end(), read_slots_.begin() + op.reads_begin, read_slots_.begin() + op.reads_end);
     op.reads_begin = rb;
     op.reads_end = std::uint32_t(reads.size());
   }
   children_ = std::move(children);
   reads_ = std::move(reads);
-  read_slots_ = std::move(slots);
-  // The reader entries point back at their registrations' new places.
-  for (std::uint32_t k = 0; k < reads_.size(); ++k)
-    if (reads_[k] != kNoNode) readers_[reads_[k]][read_slots_[k]].read = k;
   garbage_ = 0;
 }
 
@@ -425,16 +391,22 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
     if (half >= 2.0) break;  // the box covers [0,1]^D
     half *= 2;
   }
-  auto find_read_nodes = [&](double h) {
+  auto record_reads = [&](double h) {
     Point<D> lo, hi;
     for (int i = 0; i < D; ++i) {
       lo[i] = p[i] - h;
       hi[i] = p[i] + h;
     }
-    tree_.covering_nodes(lo, hi, covering_);  // registered by execute() once the operation has run
+    tree_.covering_nodes(lo, hi, covering_);
+    ops_[o].reads_begin = std::uint32_t(reads_.size());
+    for (NodeId n : covering_) {
+      reads_.push_back(n);
+      readers_[n].push_back(o);
+    }
+    ops_[o].reads_end = std::uint32_t(reads_.size());
   };
   if (hood_.nearest == kNoVertex) {
-    find_read_nodes(half);
+    record_reads(half);
     ops_[o].depends2 = ops_[o].inserted_depends2 = at_least(4.0 * D);  // anything in the box gives it a neighbour
     return;
   }
@@ -475,7 +447,7 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
     search(searched);
     if (pool.size() > old_size) std::sort(pool.begin() + long(next), pool.end(), by_distance);
   }
-  find_read_nodes(searched);
+  record_reads(searched);
   // Only a vertex that could cut the cell or be nearer than NN can change what this operation decides:
   // one within 2 x the cell's reach (capped at 2 beta NN), or within NN. A little margin on the rounding.
   const double reach2 = std::min(4 * cell_.max_vertex_distance2(), cap2);
@@ -653,7 +625,10 @@ typename WellSpacedEngine<D>::VertexId WellSpacedEngine<D>::new_vertex(const Poi
 template <int D>
 void WellSpacedEngine<D>::apply_tree_change(const typename engine::Quadtree<D>::Change& change) {
   if (readers_.size() < tree_.node_capacity()) readers_.resize(tree_.node_capacity());
-  for (NodeId n : change.removed_leaves) release_readers(n);
+  for (NodeId n : change.removed_leaves) {
+    mark_all_readers(n);
+    readers_[n].clear();
+  }
   for (NodeId n : change.new_leaves) {
     for (const LeafVertex<D>& e : tree_.node(n).vertices) vertices_[e.id].leaf = n;
     const VertexId input = tree_.node(n).input_vertex;
@@ -735,11 +710,10 @@ template <int D>
 std::size_t WellSpacedEngine<D>::memory_bytes() const {
   std::size_t bytes = vertices_.capacity() * sizeof(Vertex) + positions_.capacity() * sizeof(Point<D>) +
                       ops_.capacity() * sizeof(Op) + children_.capacity() * sizeof(OpId) +
-                      reads_.capacity() * (sizeof(NodeId) + sizeof(std::uint32_t)) +
-                      readers_.size() * sizeof(std::vector<Reader>) +
+                      reads_.capacity() * sizeof(NodeId) + readers_.size() * sizeof(std::vector<OpId>) +
                       (free_ops_.capacity() + free_vertices_.capacity()) * sizeof(std::uint32_t) +
                       tree_.memory_bytes();
-  for (const auto& r : readers_) bytes += r.capacity() * sizeof(Reader);
+  for (const auto& r : readers_) bytes += r.capacity() * sizeof(OpId);
   return bytes;
 }
 
@@ -777,21 +751,15 @@ void WellSpacedEngine<D>::check_valid() const {
              (vertices_[op.vertex].is_input ? " input" : " Steiner") + ") has deleted child " + std::to_string(c));
       if (ops_[c].rank < op.rank) fail("a child runs before its parent");
     }
-    for (std::uint32_t k = op.reads_begin; k < op.reads_end; ++k) {
-      if (reads_[k] == kNoNode) continue;  // the node went away (its readers were marked then)
-      const auto& rs = readers_[reads_[k]];
-      if (read_slots_[k] >= rs.size() || rs[read_slots_[k]].op != o || rs[read_slots_[k]].read != k)
-        fail("read edge without its reader entry");
-      const Reader& r = rs[read_slots_[k]];
-      if (r.rank != op.rank || r.depends2 != op.depends2 || r.center != positions_[op.vertex])
-        fail("reader entry out of date with its operation");
+    for (NodeId n : reads(o)) {
+      const auto& rs = readers_[n];
+      if (std::find(rs.begin(), rs.end(), o) == rs.end()) fail("read edge without reader entry");
     }
   }
   // Memory is reclaimed: no reader entry of a deleted operation survives.
-  for (NodeId n = 0; n < readers_.size(); ++n)
-    for (const Reader& r : readers_[n])
-      if ((ops_[r.op].flags & kDead) || r.read >= reads_.size() || reads_[r.read] != n)
-        fail("reader entry of a deleted operation");
+  for (const auto& rs : readers_)
+    for (OpId o : rs)
+      if (ops_[o].flags & kDead) fail("reader entry of a deleted operation");
 }
 
 template class WellSpacedEngine<2>;

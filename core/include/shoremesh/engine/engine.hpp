@@ -154,12 +154,7 @@ class WellSpacedEngine {
   // were. That set is kept as a 64-bit Bloom mask of vertex ids (false positives only cost a rerun).
   static std::uint64_t facet_bit(VertexId w) { return std::uint64_t(1) << ((w * 0x9E3779B97F4A7C15ull) >> 58); }
   void record_facets(OpId o);
-  // Registers the reads of operation o, which has just run, on the nodes compute_cell left in covering_;
-  // unregister_reads takes them back (O(1) each, through the back-references).
-  void register_reads(OpId o);
-  void unregister_reads(OpId o);
-  // Node n is gone: its readers are inconsistent and their registrations on it end.
-  void release_readers(NodeId n);
+  void mark_all_readers(NodeId n);
   void propagate(PropagationStats* stats);
   void undo(OpId o);
   void execute(OpId o);
@@ -169,9 +164,8 @@ class WellSpacedEngine {
   void request_fill(VertexId w, int rank);
   void redispatch_input(VertexId v);
   void apply_tree_change(const typename engine::Quadtree<D>::Change& change);
-  // Finds v's nearest neighbour and the vertices that can cut its cell, leaves in covering_ the nodes
-  // op o read (registered once it has run), and computes v's cell clipped to the box and to the cube
-  // of half-side beta NN(v).
+  // Finds v's nearest neighbour and the vertices that can cut its cell, registers op o's reads, and
+  // computes v's cell clipped to the box and to the cube of half-side beta NN(v).
   void compute_cell(OpId o, VertexId v);
   Point<D> pick_steiner(VertexId v);
   VertexId new_vertex(const Point<D>& p);
@@ -187,21 +181,10 @@ class WellSpacedEngine {
   std::size_t input_count_ = 0;
   std::vector<Op> ops_;
   std::vector<OpId> children_;
-  // An operation's registration on a node it read, kept in the node's reader list with what
-  // mark_readers_at filters on: a scan then reads one contiguous array (~400 entries per change) instead
-  // of every registered operation and its vertex at random.
-  struct Reader {
-    Point<D> center{};        // the operation's vertex
-    OpId op = engine::kNoOp;
-    std::uint32_t read = 0;   // this registration's index in reads_
-    float depends2 = 0;       // the operation's, when it registered
-    std::int32_t rank = 0;
-  };
-  std::vector<NodeId> reads_;              // per registration: the node (kNoNode once the node is gone)
-  std::vector<std::uint32_t> read_slots_;  // per registration: its index in readers_[node]
+  std::vector<NodeId> reads_;
   // Per quadtree node: the operations that read it. A deque, so that growing with the tree never moves
   // the lists: a vector of them reallocating took ~13 ms of one update at n = 1e5.
-  std::deque<std::vector<Reader>> readers_;
+  std::deque<std::vector<OpId>> readers_;
   struct AgendaEntry {
     std::int32_t rank;
     std::uint32_t color;
