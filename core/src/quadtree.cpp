@@ -97,16 +97,13 @@ void Quadtree<D>::split(NodeId n, std::vector<NodeId>* created) {
       ch.input_count = 1;
     }
   }
-  parent.occupied = 0;
-  for (int k = 0; k < kChildren; ++k)
-    if (!nodes_[first + NodeId(k)].vertices.empty()) parent.occupied |= std::uint8_t(1u << k);
   parent.vertices.clear();
   parent.vertices.shrink_to_fit();
   parent.input_vertex = kNoVertex;
   parent.first_child = first;
   leaf_count_ += kChildren - 1;
-  sync_search(n);
   for (int k = 0; k < kChildren; ++k) sync_search(first + NodeId(k));
+  sync_search(n);
 }
 
 // Turns internal node n, whose children are all leaves, back into a leaf holding their vertices.
@@ -125,7 +122,6 @@ void Quadtree<D>::merge(NodeId n, std::vector<NodeId>* removed) {
     if (removed) removed->push_back(first + NodeId(k));
   }
   parent.first_child = kNoNode;
-  parent.occupied = 0;  // a leaf: its own vertices say whether it is occupied, as before the merge
   free_blocks_.push_back(first);
   leaf_count_ -= kChildren - 1;
   sync_search(n);
@@ -137,8 +133,14 @@ void Quadtree<D>::sync_search(NodeId n) {
   const Node& nd = nodes_[n];
   SearchEntry& e = search_[n];
   e.first_child = nd.first_child;
-  e.occupied_or_size = nd.is_leaf() ? std::uint32_t(nd.vertices.size()) : nd.occupied;
   e.vertices = nd.is_leaf() ? nd.vertices.data() : nullptr;
+  if (nd.is_leaf()) {
+    e.occupied_or_size = std::uint32_t(nd.vertices.size());
+    return;
+  }
+  e.occupied_or_size = 0;
+  for (int k = 0; k < kChildren; ++k)
+    if (search_[nd.first_child + NodeId(k)].occupied_or_size != 0) e.occupied_or_size |= 1u << k;
 }
 
 template <int D>
@@ -156,12 +158,8 @@ NodeId Quadtree<D>::deepest_containing(int level, Coords c, int& found_level) co
 
 template <int D>
 NodeId Quadtree<D>::deepest_containing(int level, Coords c) const {
-  for (;;) {
-    NodeId n = find(level, c);
-    if (n != kNoNode) return n;
-    --level;
-    for (int i = 0; i < D; ++i) c[i] >>= 1;
-  }
+  int found_level = 0;
+  return deepest_containing(level, c, found_level);
 }
 
 template <int D>
@@ -179,9 +177,9 @@ int Quadtree<D>::box_level(const Point<D>& lo_in, const Point<D>& hi_in, Point<D
 template <int D>
 void Quadtree<D>::mark_occupied(NodeId leaf) {
   for (NodeId n = leaf, p = nodes_[n].parent; p != kNoNode; n = p, p = nodes_[p].parent) {
-    const bool was_occupied = nodes_[p].occupied != 0;
-    nodes_[p].occupied |= std::uint8_t(1u << (n - nodes_[p].first_child));
-    search_[p].occupied_or_size = nodes_[p].occupied;
+    std::uint32_t& mask = search_[p].occupied_or_size;
+    const bool was_occupied = mask != 0;
+    mask |= 1u << (n - nodes_[p].first_child);
     if (was_occupied) return;  // its ancestors already know
   }
 }
@@ -189,9 +187,9 @@ void Quadtree<D>::mark_occupied(NodeId leaf) {
 template <int D>
 void Quadtree<D>::mark_vacated(NodeId leaf) {
   for (NodeId n = leaf, p = nodes_[n].parent; p != kNoNode; n = p, p = nodes_[p].parent) {
-    nodes_[p].occupied &= std::uint8_t(~(1u << (n - nodes_[p].first_child)));
-    search_[p].occupied_or_size = nodes_[p].occupied;
-    if (nodes_[p].occupied != 0) return;  // still holds a vertex elsewhere
+    std::uint32_t& mask = search_[p].occupied_or_size;
+    mask &= ~(1u << (n - nodes_[p].first_child));
+    if (mask != 0) return;  // still holds a vertex elsewhere
   }
 }
 
@@ -461,11 +459,8 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
   positions_by_id.resize(std::size_t(max_id) + 1);
   for (std::size_t i = 0; i < inputs.size(); ++i) positions_by_id[ids[i]] = inputs[i];
   balance_around(leaves, positions_by_id, nullptr, nullptr);
-  // The occupied masks, bottom-up from the leaves that hold a vertex (split() set some on the way).
-  for (Node& nd : nodes_) nd.occupied = 0;
-  for (NodeId n = 0; n < nodes_.size(); ++n)
-    if (nodes_[n].level >= 0 && nodes_[n].is_leaf() && !nodes_[n].vertices.empty()) mark_occupied(n);
-  for (NodeId n = 0; n < nodes_.size(); ++n) sync_search(n);
+  // The search entries bottom-up: a fresh build appends children after their parent.
+  for (NodeId n = NodeId(nodes_.size()); n-- > 0;) sync_search(n);
 }
 
 template <int D>
@@ -645,15 +640,16 @@ void Quadtree<D>::check_valid(std::span<const Point<D>> positions) const {
         });
     } else {
       std::uint32_t sum = 0;
-      std::uint8_t occupied = 0;
+      std::uint32_t occupied = 0;
       for (int k = 0; k < kChildren; ++k) {
-        const Node& ch = nodes_[nd.first_child + NodeId(k)];
+        const NodeId c = nd.first_child + NodeId(k);
+        const Node& ch = nodes_[c];
         if (ch.parent != n || ch.level != nd.level + 1) fail("child links");
         sum += ch.input_count;
-        if (ch.is_leaf() ? !ch.vertices.empty() : ch.occupied != 0) occupied |= std::uint8_t(1u << k);
+        if (search_[c].occupied_or_size != 0) occupied |= 1u << k;
       }
-      if (occupied != nd.occupied) fail("occupied mask of node " + std::to_string(n));
-      if (search_[n].first_child != nd.first_child || search_[n].occupied_or_size != nd.occupied)
+      // Leaves' entries are checked against their vertices, so this checks every mask by induction.
+      if (search_[n].first_child != nd.first_child || search_[n].occupied_or_size != occupied)
         fail("search entry of internal node " + std::to_string(n));
       if (sum != nd.input_count) fail("subtree input count node " + std::to_string(n) + " level " + std::to_string(nd.level) + " count " + std::to_string(nd.input_count) + " sum " + std::to_string(sum));
       if (!nd.vertices.empty()) fail("internal node holds vertices");

@@ -91,9 +91,6 @@ class Quadtree {
     std::uint32_t input_count = 0;       // input points in the subtree
     VertexId input_vertex = kNoVertex;   // leaves: the input vertex inside, if any
     std::vector<LeafVertex<D>> vertices; // leaves: every vertex inside (input and Steiner)
-    // Internal nodes: bit k is set when child k's subtree holds a vertex. Searches skip empty subtrees
-    // without reading them (about half the leaves in 2D, two thirds in 3D, hold no vertex).
-    std::uint8_t occupied = 0;
     bool is_leaf() const { return first_child == kNoNode; }
   };
 
@@ -171,7 +168,7 @@ class Quadtree {
   NodeId deepest_containing(int level, Coords c) const;
   // The same, with the node's level (read from the cell map, not from the node).
   NodeId deepest_containing(int level, Coords c, int& found_level) const;
-  // Copies what searches read of node n into search_[n].
+  // Sets search_[n] from node n: for an internal node, from its children's entries (sync them first).
   void sync_search(NodeId n);
   // Clamps [lo_in, hi_in] to the unit box into [lo, hi]; returns the finest level whose cells are at
   // least as wide as it (the box meets at most 2^D cells of that level).
@@ -195,7 +192,9 @@ class Quadtree {
   // of 2^D full nodes, and a leaf's vertex array without reading the leaf.
   struct SearchEntry {
     NodeId first_child = kNoNode;             // kNoNode: a leaf
-    std::uint32_t occupied_or_size = 0;       // internal: Node::occupied; leaf: its number of vertices
+    // Internal: bit k set when child k's subtree holds a vertex (searches skip empty subtrees unread:
+    // about half the leaves in 2D, two thirds in 3D, hold none). Leaf: its number of vertices.
+    std::uint32_t occupied_or_size = 0;
     const LeafVertex<D>* vertices = nullptr;  // leaf: its vertex array
   };
   std::vector<SearchEntry> search_;
