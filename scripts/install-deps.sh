@@ -13,6 +13,7 @@ packages=(
   libpugixml-dev nlohmann-json3-dev                    # GPX (XML) and GeoJSON parsers
   libcli11-dev                                         # command line
   libtbb-dev
+  libjemalloc-dev                                      # the executables' allocator (huge pages)
   libgtest-dev libgmock-dev libbenchmark-dev           # tests and benchmarks
   python3-meshio python3-numpy gmsh                    # third-party readers of our exports (tests)
 )
