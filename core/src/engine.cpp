@@ -384,7 +384,10 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
     seen = box;
   };
   // Grow the box until it holds a vertex no farther than its half-side: no vertex outside is nearer.
-  double half = tree_.side(vertices_[v].leaf);
+  // The first box spans v's leaf and a leaf-side margin (NN(v) is about 1.15 leaf sides in uniform 2D
+  // inputs): a box of one leaf side mostly had to grow again, which cost 5 % more instructions per
+  // update in 2D and 3 % in 3D. The result does not depend on the first box, only the work does.
+  double half = 2 * tree_.side(vertices_[v].leaf);
   for (;;) {
     search(half);
     if (hood_.nearest != kNoVertex && best_d2 <= half * half * (1 - 1e-9)) break;
