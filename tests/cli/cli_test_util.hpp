@@ -72,15 +72,9 @@ inline RunResult shoremesh(const TempDir& dir, const std::string& args, const st
   return r;
 }
 
-// The bundled data: samples/ when it has the file, otherwise the shared data it was copied from.
-inline std::string data_file(const std::string& samples_rel, const std::string& shared_rel) {
-  const fs::path s = fs::path(SHOREMESH_SAMPLES_DIR) / samples_rel;
-  if (fs::exists(s)) return s.string();
-  return (fs::path(SHOREMESH_SHARED_DATA_DIR) / shared_rel).string();
-}
-inline std::string superior_mask() {
-  return data_file("superior/superior_watermask_h.png", "raster/superior_watermask_h.png");
-}
+// A data file shipped in samples/ (real third-party data with its license note).
+inline std::string data_file(const std::string& samples_rel) { return (fs::path(SHOREMESH_SAMPLES_DIR) / samples_rel).string(); }
+inline std::string superior_mask() { return data_file("superior/superior_watermask_h.png"); }
 
 // A reproducible 2D point file ("x,y" header, 4 decimals) of n points in [0, w] x [0, h].
 inline std::string random_points(std::size_t n, double w, double h, unsigned seed) {

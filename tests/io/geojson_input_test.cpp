@@ -18,7 +18,7 @@ double ring_area(const std::vector<Point2>& r) {
 
 // The Superior polygon (outer ring + 45 islands) as one GeoJSON Polygon, rings closed as RFC 7946 wants.
 std::string superior_geojson() {
-  const auto rf = read_ring_file(shared_data("coast/lake_superior_lonlat.csv"));
+  const auto rf = read_ring_file(samples("superior/lake_superior_lonlat.csv"));
   std::string s = R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"name":"Lake Superior"},)"
                   R"("geometry":{"type":"Polygon","coordinates":[)";
   char buf[64];

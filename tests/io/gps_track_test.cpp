@@ -12,7 +12,7 @@
 
 namespace {
 
-const std::string kCerknica = shared_data("gpx/cerknicko-jezero.gpx");
+const std::string kCerknica = samples("cerknica/cerknicko-jezero.gpx");
 
 double geodesic_distance(const LonLat& a, const LonLat& b) {
   double s12 = 0;

@@ -14,7 +14,7 @@
 
 namespace {
 
-const std::string kMask = shared_data("raster/superior_watermask_h.png");
+const std::string kMask = samples("superior/superior_watermask_h.png");
 
 double ring_length(const std::vector<Point2>& r) {
   double len = 0;
@@ -46,8 +46,8 @@ struct Truth {
 };
 
 Truth superior_truth() {
-  const auto rf = read_ring_file(shared_data("coast/lake_superior_lonlat.csv"));
-  const auto wld = parse_world_file_text(shoremesh::io::test::read_file(shared_data("raster/superior_watermask_h.wld")), "wld");
+  const auto rf = read_ring_file(samples("superior/lake_superior_lonlat.csv"));
+  const auto wld = parse_world_file_text(shoremesh::io::test::read_file(samples("superior/superior_watermask_h.wld")), "wld");
   Truth t;
   for (std::size_t r = 0; r < rf.rings.size(); ++r) {
     std::vector<Point2> px;
@@ -265,18 +265,18 @@ TEST(ImageTrace, SuperiorGeoreferencedProjectedAndBack) {
 }
 
 TEST(ImageTrace, GeoTiffTagsGiveTheSameGeoreferenceAsTheWorldFile) {
-  const auto g = read_geotiff_tags(shared_data("raster/superior_watermask_h.tif"));
+  const auto g = read_geotiff_tags(samples("superior/superior_watermask_h.tif"));
   ASSERT_TRUE(g.has_value());
-  const auto w = parse_world_file_text(shoremesh::io::test::read_file(shared_data("raster/superior_watermask_h.wld")), "w");
+  const auto w = parse_world_file_text(shoremesh::io::test::read_file(samples("superior/superior_watermask_h.wld")), "w");
   EXPECT_EQ(g->crs.kind, CoordinateSystem::Kind::Geographic);
   for (auto [a, b] : {std::pair{g->pixel_to_map.a, w.a}, {g->pixel_to_map.b, w.b}, {g->pixel_to_map.c, w.c},
                       {g->pixel_to_map.d, w.d}, {g->pixel_to_map.e, w.e}, {g->pixel_to_map.f, w.f}})
     EXPECT_NEAR(a, b, 1e-9);
   ImageTraceOptions opt;
   opt.min_area = 10;
-  // Alone in a directory (beside the shared .wld, the world file would be found first).
+  // Alone in a directory (beside the sample's .wld, the world file would be found first).
   shoremesh::io::test::ScratchDir dir;
-  const auto alone = dir.write("superior.tif", shoremesh::io::test::read_file(shared_data("raster/superior_watermask_h.tif")));
+  const auto alone = dir.write("superior.tif", shoremesh::io::test::read_file(samples("superior/superior_watermask_h.tif")));
   const auto tif = trace_image(alone, opt);
   const auto png = trace_image(kMask, opt);
   EXPECT_EQ(tif.georeference.source, Georeference::Source::GeoTiff);
@@ -432,7 +432,7 @@ TEST(ImageTrace, RealColourMapTracesItsWater) {
   opt.min_area = 50;
   opt.largest_water_only = true;
   opt.close_radius = 1;  // the grey international border (about 1 pixel) crosses the lake: close it
-  const auto img = trace_image(shared_data("raster/superior_map_gmt.png"), opt);
+  const auto img = trace_image(samples("superior/superior_map_gmt.png"), opt);
   EXPECT_EQ(img.input.units, Units::Pixels);
   ASSERT_FALSE(img.rings.empty());
   const double fraction = img.rings[0].area_pixels / (img.width * img.height);
@@ -477,7 +477,7 @@ TEST(ImageTrace, MalformedImagesGetClearErrors) {
 }
 
 TEST(Georeference, CoordinateSystemsFromPrjAndShortForms) {
-  const auto prj = parse_coordinate_system(shoremesh::io::test::read_file(shared_data("raster/superior_watermask_h.prj")));
+  const auto prj = parse_coordinate_system(shoremesh::io::test::read_file(samples("superior/superior_watermask_h.prj")));
   EXPECT_EQ(prj.kind, CoordinateSystem::Kind::Geographic);
   EXPECT_EQ(prj.name, "WGS 84");
   auto utm = parse_coordinate_system("EPSG:32716");
@@ -540,9 +540,9 @@ std::string convert_mask(const shoremesh::io::test::ScratchDir& dir, const std::
   out->write_image(OIIO::TypeDesc::FLOAT, pixels.data());
   out->close();
   dir.write(std::filesystem::path(name).stem().string() + world_ext,
-            shoremesh::io::test::read_file(shared_data("raster/superior_watermask_h.wld")));
+            shoremesh::io::test::read_file(samples("superior/superior_watermask_h.wld")));
   dir.write(std::filesystem::path(name).stem().string() + ".prj",
-            shoremesh::io::test::read_file(shared_data("raster/superior_watermask_h.prj")));
+            shoremesh::io::test::read_file(samples("superior/superior_watermask_h.prj")));
   return path;
 }
 

@@ -8,5 +8,4 @@ using namespace shoremesh;
 using namespace shoremesh::io;
 using shoremesh::io::test::expect_input_error;
 using shoremesh::io::test::samples;
-using shoremesh::io::test::shared_data;
 using ::testing::HasSubstr;

@@ -1,5 +1,6 @@
 #pragma once
-// Helpers for the io tests: a scratch directory for generated (often malformed) files, and data paths.
+// Helpers for the io tests: a scratch directory for generated (often malformed) files, and data paths
+// (the real third-party files the tests read are the ones shipped in samples/, with their licenses).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -14,7 +15,6 @@
 
 namespace shoremesh::io::test {
 
-inline std::string shared_data(const std::string& rel) { return std::string(SHOREMESH_SHARED_DATA_DIR) + "/" + rel; }
 inline std::string samples(const std::string& rel) { return std::string(SHOREMESH_SAMPLES_DIR) + "/" + rel; }
 
 inline std::string read_file(const std::string& path) {

@@ -6,7 +6,7 @@
 #include "io_test_names.hpp"
 
 TEST(PolyFile, DoubleHexRingsAndHoles) {
-  const auto p = read_poly_file(shared_data("pslg/double_hex.poly"));
+  const auto p = read_poly_file(samples("pslg/double_hex.poly"));
   EXPECT_EQ(p.points.size(), 96u);
   EXPECT_EQ(p.segments.size(), 96u);
   ASSERT_EQ(p.holes.size(), 2u);
@@ -20,11 +20,11 @@ TEST(PolyFile, DoubleHexRingsAndHoles) {
   EXPECT_EQ(set.points.size(), 96u);
   EXPECT_EQ(set.units, Units::MapUnits);
   for (const auto& note : set.notes) EXPECT_THAT(note, ::testing::Not(HasSubstr("inside water")));
-  EXPECT_EQ(describe_origin(set, 0), shared_data("pslg/double_hex.poly") + ":28, ring 1");
+  EXPECT_EQ(describe_origin(set, 0), samples("pslg/double_hex.poly") + ":28, ring 1");
 }
 
 TEST(PolyFile, FishAndRectangleSegmentsSampled) {
-  const auto p = read_poly_file(shared_data("pslg/fish-and-rectangle.poly"));
+  const auto p = read_poly_file(samples("pslg/fish-and-rectangle.poly"));
   EXPECT_EQ(p.points.size(), 31u);
   EXPECT_EQ(p.segments.size(), 44u);
   EXPECT_EQ(p.holes.size(), 3u);
@@ -52,7 +52,7 @@ TEST(PolyFile, SegmentsAreSampledAtTheSpacing) {
 }
 
 TEST(NodeFile, DotsHasHundredPoints) {
-  const auto p = read_node_file(shared_data("pslg/dots.node"));
+  const auto p = read_node_file(samples("pslg/dots.node"));
   EXPECT_EQ(p.points.size(), 100u);
   EXPECT_EQ(p.point_lines[0], 2u);
   const auto set = pslg_to_input(p);

@@ -1,6 +1,6 @@
 // Real data end to end: the GSHHG Lake Superior shore and its 45 islands (lon/lat), projected to metres,
 // sampled (ring vertices as input points, a jittered grid as Steiner-like points), meshed inside the water,
-// checked against the shoreline, exported to GeoJSON in lon/lat and previewed over the shared water mask.
+// checked against the shoreline, exported to GeoJSON in lon/lat and previewed over the sample water mask.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -48,7 +48,7 @@ std::vector<std::vector<Point2>> read_rings(const std::string& path) {
 }
 
 TEST(LakeSuperior, MeshesTheWaterExportsLonLatAndPreviews) {
-  const auto lonlat_rings = read_rings(mesh_test::shared_data("coast/lake_superior_lonlat.csv"));
+  const auto lonlat_rings = read_rings(mesh_test::samples("superior/lake_superior_lonlat.csv"));
   ASSERT_EQ(lonlat_rings.size(), 46u);
   const Equirectangular projection;
   Domain2 domain;
@@ -111,7 +111,7 @@ TEST(LakeSuperior, MeshesTheWaterExportsLonLatAndPreviews) {
   io::PreviewOptions o;
   o.width = 1200;
   o.point_radius = 1.2;
-  o.background = mesh_test::shared_data("raster/superior_watermask_h.png");
+  o.background = mesh_test::samples("superior/superior_watermask_h.png");
   const Point2 lo = projection.forward({-92.5, 46.2}), hi = projection.forward({-84.0, 49.2});
   o.background_extent = {lo[0], lo[1], hi[0], hi[1]};
   io::render_preview<2>(dir.path("superior.png"), view, o);

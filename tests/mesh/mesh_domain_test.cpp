@@ -83,7 +83,7 @@ TEST(MeshDomain, KeepsOnlyTheWaterBetweenShoreAndIsland) {
 // shoreline check must agree with a brute-force look at the element edges, and the PSLG's hole points
 // must be on land.
 TEST(MeshShoreline, DoubleHexAgreesWithEdgeSet) {
-  const Domain2 rings = mesh_test::rings_from_poly(mesh_test::shared_data("pslg/double_hex.poly"));
+  const Domain2 rings = mesh_test::rings_from_poly(mesh_test::samples("pslg/double_hex.poly"));
   ASSERT_EQ(rings.rings.size(), 3u);
   const WaterTest rings_water(rings);
   for (const Point2 hole : {Point2{0.25, 0.75}, Point2{0.6, 0.4}}) EXPECT_EQ(rings_water.classify(hole), WaterSide::Land);

@@ -163,6 +163,6 @@ inline std::vector<Point2> sample_domain(const Domain2& domain, double h, double
 
 // The io tests' scratch directory and data paths serve here too.
 using io::test::ScratchDir;
-using io::test::shared_data;
+using io::test::samples;
 
 }  // namespace shoremesh::mesh_test
