@@ -360,6 +360,7 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
       box.lo[i] = p[i] - half;
       box.hi[i] = p[i] + half;
     }
+    ++counters_.neighbour_searches;
     counters_.leaves_visited += tree_.for_each_occupied_leaf(box, seen, [&](NodeId, std::span<const LeafVertex<D>> leaf) {
       for (const LeafVertex<D>& e : leaf) {
         if (e.tag >= now || e.id == v) continue;

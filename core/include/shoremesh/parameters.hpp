@@ -38,6 +38,7 @@ struct Counters {
   std::uint64_t steiner_points = 0;
   std::uint64_t predicate_calls = 0;   // sign decisions made by the filtered predicates
   std::uint64_t exact_fallbacks = 0;   // of those, decided by exact rational arithmetic
+  std::uint64_t neighbour_searches = 0; // box queries to the tree (a cell's search grows in steps)
   std::uint64_t leaves_visited = 0;    // leaves holding a vertex that neighbour searches read
   std::uint64_t candidates = 0;        // vertices those searches looked at
   std::uint64_t clips = 0;             // half-spaces offered to the clipper
