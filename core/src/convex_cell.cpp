@@ -134,6 +134,7 @@ int ConvexCell<D>::side(Vertex& vtx, std::uint16_t plane) {
 template <int D>
 void ConvexCell<D>::reset(const Point<D>& v, const Point<D>& lo, const Point<D>& hi) {
   v_ = v;
+  vertex_on_plane_ = false;
   constraints_.clear();
   exact_.clear();
   verts_.clear();
@@ -223,6 +224,7 @@ bool ConvexCell<D>::clip_by(std::uint16_t plane) {
       continue;
     }
     signs_[i] = std::int8_t(side(vtx, plane));
+    vertex_on_plane_ = vertex_on_plane_ || signs_[i] == 0;
     any_outside = any_outside || signs_[i] > 0;
   }
   if (!any_outside) return false;
@@ -488,6 +490,33 @@ void ConvexCell<D>::bisector_neighbours(std::vector<VertexId>& out) const {
     if (constraints_[p].kind == Constraint<D>::Kind::Bisector) out.push_back(constraints_[p].other);
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+template <int D>
+void ConvexCell<D>::assign_geometry(const ConvexCell& other) {
+  v_ = other.v_;
+  constraints_ = other.constraints_;
+  exact_ = other.exact_;
+  verts_ = other.verts_;
+  live_vertices_ = other.live_vertices_;
+  vertex_on_plane_ = other.vertex_on_plane_;
+  edges_ = other.edges_;
+  face_plane_ = other.face_plane_;
+  face_begin_ = other.face_begin_;
+  face_len_ = other.face_len_;
+  face_verts_ = other.face_verts_;
+  free_verts_ = other.free_verts_;
+}
+
+template <int D>
+std::size_t ConvexCell<D>::memory_bytes() const {
+  return constraints_.capacity() * sizeof(Constraint<D>) + exact_.capacity() * sizeof(exact_[0]) +
+         (verts_.capacity() + next_verts_.capacity()) * sizeof(Vertex) + signs_.capacity() +
+         (edges_.capacity() + next_edges_.capacity() + face_plane_.capacity()) * sizeof(std::uint16_t) +
+         (face_begin_.capacity() + face_len_.capacity() + face_verts_.capacity() + arena_scratch_.capacity() +
+          free_verts_.capacity() + touched_faces_.capacity() + face_cuts_.capacity()) *
+             sizeof(std::uint32_t) +
+         used_.capacity() + cuts_.capacity() * sizeof(CutEdge) + rim_.capacity() * sizeof(RimEdge);
 }
 
 template class ConvexCell<2>;

@@ -46,6 +46,9 @@ void WellSpacedEngine<D>::reset() {
   input_count_ = 0;
   dynamic_ = false;
   garbage_ = 0;
+  caching_ = false;
+  cell_cache_live_ = 0;
+  cache_slot_.clear();
 }
 
 template <int D>
@@ -192,6 +195,8 @@ void WellSpacedEngine<D>::mark_all_readers(NodeId n) {
 template <int D>
 void WellSpacedEngine<D>::propagate(PropagationStats* stats) {
   stats_ = stats;
+  clear_cell_cache();  // empty unless an earlier propagation threw
+  caching_ = dynamic_;
   while (!agenda_.empty()) {
     const AgendaEntry now = agenda_.front();
     batch_.clear();
@@ -214,6 +219,8 @@ void WellSpacedEngine<D>::propagate(PropagationStats* stats) {
       else if (f & (kRedo | kFresh)) execute(o);
     }
   }
+  clear_cell_cache();
+  caching_ = false;
   counters_.predicate_calls += cell_.counters().calls;
   counters_.exact_fallbacks += cell_.counters().exact;
   cell_.counters() = PredicateCounters{};
@@ -283,6 +290,7 @@ template <int D>
 void WellSpacedEngine<D>::kill_vertex(VertexId v) {
   Vertex& vx = vertices_[v];
   vx.alive = false;
+  if (caching_) forget_cell(v);
   if (vx.dispatch != kNoOp) mark_obsolete(vx.dispatch);
   for (OpId f = vx.first_fill; f != kNoOp; f = ops_[f].next_fill) mark_obsolete(f);
   dead_vertices_.push_back(v);
@@ -340,11 +348,13 @@ void WellSpacedEngine<D>::compact_pools() {
 
 template <int D>
 void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
-  ++counters_.clipped_voronoi_calls;
   ops_[o].facet_mask = ~std::uint64_t(0);
   const Point<D> p = positions_[v];
   // Only vertices born before this operation's time exist for it (M_t).
   const std::uint64_t now = time_key(ops_[o].rank, ops_[o].color);
+  if (caching_ && reuse_cell(o, v, p, now)) return;
+  ++counters_.clipped_voronoi_calls;
+  unborn_.clear();
   PredicateCounters& pc = cell_.counters();
   auto& pool = hood_.candidates;
   hood_.nearest = kNoVertex;
@@ -363,7 +373,11 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
     ++counters_.neighbour_searches;
     counters_.leaves_visited += tree_.for_each_occupied_leaf(box, seen, [&](NodeId, std::span<const LeafVertex<D>> leaf) {
       for (const LeafVertex<D>& e : leaf) {
-        if (e.tag >= now || e.id == v) continue;
+        if (e.id == v) continue;
+        if (e.tag >= now) {
+          if (caching_) unborn_.push_back({e.position, e.tag});
+          continue;
+        }
         const VertexId u = e.id;
         double d2 = 0;
         for (int i = 0; i < D; ++i) d2 += (e.position[i] - p[i]) * (e.position[i] - p[i]);
@@ -395,22 +409,9 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
     if (half >= 2.0) break;  // the box covers [0,1]^D
     half *= 2;
   }
-  auto record_reads = [&](double h) {
-    Point<D> lo, hi;
-    for (int i = 0; i < D; ++i) {
-      lo[i] = p[i] - h;
-      hi[i] = p[i] + h;
-    }
-    tree_.covering_nodes(lo, hi, covering_);
-    ops_[o].reads_begin = std::uint32_t(reads_.size());
-    for (NodeId n : covering_) {
-      reads_.push_back(n);
-      readers_[n].push_back(o);
-    }
-    ops_[o].reads_end = std::uint32_t(reads_.size());
-  };
   if (hood_.nearest == kNoVertex) {
-    record_reads(half);
+    if (caching_) forget_cell(v);
+    record_reads(o, p, half);
     ops_[o].depends2 = ops_[o].inserted_depends2 = at_least(4.0 * D);  // anything in the box gives it a neighbour
     return;
   }
@@ -444,18 +445,38 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
         reach2 = std::min(4 * cell_.max_vertex_distance2() * (1 + 1e-9), cap2);
       ++next;
     }
-    if (reach2 <= searched * searched) break;
+    // The box searched ends up holding the whole dependency ball (depends2 below, with its margin),
+    // which the cell cache needs: it then knows every vertex, born or not, that could change the cell.
+    const double need2 = reach2 * (1 + 2e-6);
+    if (need2 <= searched * searched) break;
     // Grow gently: the vertices found next usually shrink the cell, and with it the reach.
-    searched = std::min(std::sqrt(reach2) * (1 + 1e-9), 1.5 * searched);
+    searched = std::min(std::sqrt(need2) * (1 + 1e-9), 1.5 * searched);
     const std::size_t old_size = pool.size();
     search(searched);
     if (pool.size() > old_size) std::sort(pool.begin() + long(next), pool.end(), by_distance);
   }
-  record_reads(searched);
+  record_reads(o, p, searched);
   // Only a vertex that could cut the cell or be nearer than NN can change what this operation decides:
   // one within 2 x the cell's reach (capped at 2 beta NN), or within NN. A little margin on the rounding.
   const double reach2 = std::min(4 * cell_.max_vertex_distance2(), cap2);
   ops_[o].depends2 = ops_[o].inserted_depends2 = at_least(std::max(reach2, best_d2) * (1 + 1e-6));
+  if (caching_) store_cell(o, v, p, searched);
+}
+
+template <int D>
+void WellSpacedEngine<D>::record_reads(OpId o, const Point<D>& p, double h) {
+  Point<D> lo, hi;
+  for (int i = 0; i < D; ++i) {
+    lo[i] = p[i] - h;
+    hi[i] = p[i] + h;
+  }
+  tree_.covering_nodes(lo, hi, covering_);
+  ops_[o].reads_begin = std::uint32_t(reads_.size());
+  for (NodeId n : covering_) {
+    reads_.push_back(n);
+    readers_[n].push_back(o);
+  }
+  ops_[o].reads_end = std::uint32_t(reads_.size());
 }
 
 template <int D>
@@ -540,6 +561,7 @@ void WellSpacedEngine<D>::fill(OpId o) {
     vertices_[id].leaf = tree_.insert_vertex(id, w, time_key(op_rank, op_color), vertices_[v].leaf);
     ++counters_.steiner_points;
     if (dynamic_) mark_readers_at(id, w, vertices_[id].leaf, VertexChange::Inserted, op_rank, op_color);
+    if (caching_) forget_cells_near(w);
     if (stats_) stats_->steiner_added.push_back(w);
     // Fact 1 puts w's rank above op's; the max only guards the table's rounding for a rho other than
     // sqrt(2) (for sqrt(2) the table is exact and it never applies).
@@ -718,6 +740,8 @@ std::size_t WellSpacedEngine<D>::memory_bytes() const {
                       (free_ops_.capacity() + free_vertices_.capacity()) * sizeof(std::uint32_t) +
                       tree_.memory_bytes();
   for (const auto& r : readers_) bytes += r.capacity() * sizeof(OpId);
+  bytes += cell_cache_.capacity() * sizeof(CachedCell) + cache_slot_.capacity() * sizeof(std::uint32_t);
+  for (const CachedCell& c : cell_cache_) bytes += c.candidates.capacity() * sizeof(Candidate) + c.cell.memory_bytes();
   return bytes;
 }
 

@@ -145,6 +145,36 @@ TEST(Dynamic, RandomEditsEqualFreshRuns3D) {
   random_edits_equal_fresh_runs<3>(families::uniform<3>(6, 22), edits(40, 15, 1000), 2);
 }
 
+// A propagation takes a vertex's cell from its cache when nothing that could change it was born since its
+// last computation (core/src/cell_cache.cpp). On uniform points about half the cells of an update come
+// from it; on grids (vertices on several bisectors at once) such cells are never cached. Either way every
+// edit still equals a fresh run.
+template <int D>
+void reused_cells_equal_fresh_runs(const std::vector<Point<D>>& initial, int edits, double min_reused_share) {
+  WellSpacedSet<D> set;
+  set.build(initial);
+  const Counters built = set.counters();
+  std::mt19937_64 rng(5);
+  for (int k = 0; k < edits; ++k) {
+    const std::string what = random_edit(set, rng, static_cast<UpdateReport<D>*>(nullptr));
+    expect_equal_to_fresh_run(set, "edit " + std::to_string(k) + ": " + what);
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+  const double computed = double(set.counters().clipped_voronoi_calls - built.clipped_voronoi_calls);
+  const double reused = double(set.counters().cells_reused - built.cells_reused);
+  EXPECT_GE(reused / (reused + computed), min_reused_share) << reused << " reused, " << computed << " computed";
+}
+
+TEST(Dynamic, ReusedCellsEqualFreshRuns2D) {
+  reused_cells_equal_fresh_runs<2>(families::uniform<2>(300, 31), 60, 0.3);
+  reused_cells_equal_fresh_runs<2>(families::grid<2>(14), 30, 0.0);
+}
+
+TEST(Dynamic, ReusedCellsEqualFreshRuns3D) {
+  reused_cells_equal_fresh_runs<3>(families::uniform<3>(30, 32), 6, 0.1);
+  reused_cells_equal_fresh_runs<3>(families::grid<3>(3), 4, 0.0);
+}
+
 TEST(Dynamic, InsertNextToExistingPointAndGadget2D) {
   auto pts = families::uniform<2>(200, 5);
   WellSpacedSet<2> set;

@@ -47,6 +47,14 @@ class ConvexCell {
   // An upper bound on max |c - v|^2 over the cell's vertices: a bisector farther than twice this from v
   // cannot cut the cell.
   double max_vertex_distance2() const;
+  // Whether some clip found a live vertex exactly on its plane (grids: co-circular, co-spherical
+  // points). Without that, every vertex of the cell lies on exactly D of its planes, so the cell is a
+  // function of its geometry alone, whatever other half-spaces that contain it were offered on the way.
+  bool had_vertex_on_plane() const { return vertex_on_plane_; }
+  // This cell becomes a copy of `other`'s cell (not of its scratch buffers, nor of its counters).
+  void assign_geometry(const ConvexCell& other);
+  // Heap bytes held by its buffers.
+  std::size_t memory_bytes() const;
   const Point<D>& site() const { return v_; }
   std::size_t vertex_count() const { return live_vertices_; }
   PredicateCounters& counters() { return counters_; }
@@ -87,6 +95,7 @@ class ConvexCell {
   std::vector<std::array<Exact, D>> exact_;
   std::vector<Vertex> verts_, next_verts_;
   std::size_t live_vertices_ = 0;
+  bool vertex_on_plane_ = false;
   std::vector<std::int8_t> signs_;
   // 2D: edges_[i] is the constraint of the edge from vertex i to vertex i+1.
   std::vector<std::uint16_t> edges_, next_edges_;

@@ -167,6 +167,14 @@ class WellSpacedEngine {
   // Finds v's nearest neighbour and the vertices that can cut its cell, registers op o's reads, and
   // computes v's cell clipped to the box and to the cube of half-side beta NN(v).
   void compute_cell(OpId o, VertexId v);
+  // Registers op o as a reader of the nodes covering the box of half-side h around p.
+  void record_reads(OpId o, const Point<D>& p, double h);
+  // The cell cache of one propagation (cell_cache.cpp has the argument why reuse equals recomputing).
+  bool reuse_cell(OpId o, VertexId v, const Point<D>& p, std::uint64_t now);
+  void store_cell(OpId o, VertexId v, const Point<D>& p, double searched);
+  void forget_cell(VertexId v);
+  void forget_cells_near(const Point<D>& w);
+  void clear_cell_cache();
   Point<D> pick_steiner(VertexId v);
   VertexId new_vertex(const Point<D>& p);
   void kill_vertex(VertexId v);
@@ -201,6 +209,35 @@ class WellSpacedEngine {
   // Scratch of the operation being executed (reused: no allocation per operation).
   engine::ConvexCell<D> cell_;
   Neighbourhood hood_;
+  // A vertex's cell is computed about three times per update (its dispatch and its fills at several
+  // times), and half of the time nothing that can change it was born in between: the cache keeps, for
+  // the length of one propagation, each vertex's last cell with what decides whether it still holds.
+  struct CachedCell {
+    VertexId vertex = engine::kNoVertex;
+    Point<D> position{};
+    bool valid = false;
+    // It holds at a later time t while t < valid_until (the birth of the first vertex already in the
+    // tree, but born after it was computed, within sqrt(depends2)) and no vertex was inserted within.
+    std::uint64_t valid_until = 0;
+    float depends2 = 0;
+    double searched = 0;  // half-side of the box whose nodes its operation read
+    VertexId nearest = engine::kNoVertex;
+    std::vector<Candidate> candidates;
+    engine::ConvexCell<D> cell;
+  };
+  static constexpr std::uint32_t kNoCacheSlot = ~std::uint32_t(0);
+  static constexpr std::size_t kMaxCachedCells = 1024;  // bounds its memory in large batches (a miss only recomputes)
+  // Entries kept (with their buffers) between propagations: a unit update uses about 30 in 2D, 180 in 3D.
+  static constexpr std::size_t kKeptCachedCells = 64;
+  bool caching_ = false;                  // during a propagation after the build
+  std::vector<CachedCell> cell_cache_;    // [0, cell_cache_live_) in use; the rest keeps its capacity
+  std::size_t cell_cache_live_ = 0;
+  std::vector<std::uint32_t> cache_slot_; // per vertex id: its entry, or kNoCacheSlot
+  struct Unborn {
+    Point<D> position;
+    std::uint64_t birth;
+  };
+  std::vector<Unborn> unborn_;            // scratch: vertices a search skipped as born at or after now
   std::vector<VertexId> neighbours_;
   std::vector<NodeId> covering_;
   std::vector<OpId> stash_;

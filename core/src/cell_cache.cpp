@@ -1,0 +1,111 @@
+// The cell cache of one propagation: a vertex's clipped cell, computed for one of its operations at
+// time t1, taken again for its next operation at t2 > t1 instead of searching and clipping anew.
+//
+// Why the reused cell equals the one a fresh computation at t2 (and so a from-scratch run) gives:
+//  - The vertices an operation at t sees are those born before t. When t1 runs, every operation before
+//    t1 has run, so the vertices born before t1 no longer change: what an operation at t2 sees is what
+//    t1 saw plus the vertices born in [t1, t2). Those are either already in the tree when t1 runs (their
+//    earliest birth within reach is valid_until) or inserted later by a fill (forget_cells_near).
+//  - A vertex w farther than sqrt(depends2) changes nothing: beyond 2 beta NN it is never offered to
+//    the clipper; otherwise |w - v| exceeds twice the distance of every cell vertex, so its half-space
+//    holds the whole cell strictly, and it is not nearer than NN. The cell at t2 is the same polygon.
+//  - The same polygon is the same cell bit for bit when no clip found a vertex exactly on its plane: each
+//    vertex then lies on exactly D of the planes, so it is rebuilt from the same D planes, met in the same
+//    order (candidates are clipped in a canonical order), whatever else was offered in between. Cells with
+//    a vertex on a plane (grids) are not cached.
+// The box whose nodes the operation reads is the one t1 searched: it covers the dependency ball, which is
+// all the reads must do.
+#include <algorithm>
+#include <limits>
+
+#include "shoremesh/engine/engine.hpp"
+
+namespace shoremesh {
+
+template <int D>
+bool WellSpacedEngine<D>::reuse_cell(OpId o, VertexId v, const Point<D>& p, std::uint64_t now) {
+  if (v >= cache_slot_.size() || cache_slot_[v] == kNoCacheSlot) return false;
+  const CachedCell& c = cell_cache_[cache_slot_[v]];
+  if (!c.valid || c.position != p || now >= c.valid_until) return false;
+  ++counters_.cells_reused;
+  cell_.assign_geometry(c.cell);
+  hood_.nearest = c.nearest;
+  hood_.candidates = c.candidates;
+  record_reads(o, p, c.searched);
+  ops_[o].depends2 = ops_[o].inserted_depends2 = c.depends2;
+  return true;
+}
+
+template <int D>
+void WellSpacedEngine<D>::store_cell(OpId o, VertexId v, const Point<D>& p, double searched) {
+  const float depends2 = ops_[o].depends2;
+  // The search must have seen every vertex within the dependency ball, born or not.
+  if (cell_.had_vertex_on_plane() || !(double(depends2) <= searched * searched)) {
+    forget_cell(v);
+    return;
+  }
+  if (cache_slot_.size() < vertices_.size()) cache_slot_.resize(vertices_.size(), kNoCacheSlot);
+  std::uint32_t slot = cache_slot_[v];
+  if (slot == kNoCacheSlot) {
+    if (cell_cache_live_ == kMaxCachedCells) return;
+    if (cell_cache_live_ == cell_cache_.size()) cell_cache_.emplace_back();
+    slot = std::uint32_t(cell_cache_live_++);
+    cache_slot_[v] = slot;
+  }
+  CachedCell& c = cell_cache_[slot];
+  c.vertex = v;
+  c.position = p;
+  c.valid = true;
+  c.valid_until = std::numeric_limits<std::uint64_t>::max();
+  for (const Unborn& u : unborn_) {
+    double d2 = 0;
+    for (int i = 0; i < D; ++i) d2 += (u.position[i] - p[i]) * (u.position[i] - p[i]);
+    if (d2 <= double(depends2)) c.valid_until = std::min(c.valid_until, u.birth);
+  }
+  c.depends2 = depends2;
+  c.searched = searched;
+  c.nearest = hood_.nearest;
+  c.candidates = hood_.candidates;
+  c.cell.assign_geometry(cell_);
+}
+
+template <int D>
+void WellSpacedEngine<D>::forget_cell(VertexId v) {
+  if (v < cache_slot_.size() && cache_slot_[v] != kNoCacheSlot) cell_cache_[cache_slot_[v]].valid = false;
+}
+
+// A vertex was just inserted at w: the cells it may change are stale.
+template <int D>
+void WellSpacedEngine<D>::forget_cells_near(const Point<D>& w) {
+  for (std::size_t k = 0; k < cell_cache_live_; ++k) {
+    CachedCell& c = cell_cache_[k];
+    if (!c.valid) continue;
+    double d2 = 0;
+    for (int i = 0; i < D; ++i) d2 += (w[i] - c.position[i]) * (w[i] - c.position[i]);
+    if (d2 <= double(c.depends2)) c.valid = false;
+  }
+}
+
+template <int D>
+void WellSpacedEngine<D>::clear_cell_cache() {
+  for (std::size_t k = 0; k < cell_cache_live_; ++k) cache_slot_[cell_cache_[k].vertex] = kNoCacheSlot;
+  cell_cache_live_ = 0;
+  // A large batch needed many entries: give their memory back.
+  if (cell_cache_.size() > kKeptCachedCells) {
+    cell_cache_.resize(kKeptCachedCells);
+    cell_cache_.shrink_to_fit();
+  }
+}
+
+template bool WellSpacedEngine<2>::reuse_cell(OpId, VertexId, const Point<2>&, std::uint64_t);
+template bool WellSpacedEngine<3>::reuse_cell(OpId, VertexId, const Point<3>&, std::uint64_t);
+template void WellSpacedEngine<2>::store_cell(OpId, VertexId, const Point<2>&, double);
+template void WellSpacedEngine<3>::store_cell(OpId, VertexId, const Point<3>&, double);
+template void WellSpacedEngine<2>::forget_cell(VertexId);
+template void WellSpacedEngine<3>::forget_cell(VertexId);
+template void WellSpacedEngine<2>::forget_cells_near(const Point<2>&);
+template void WellSpacedEngine<3>::forget_cells_near(const Point<3>&);
+template void WellSpacedEngine<2>::clear_cell_cache();
+template void WellSpacedEngine<3>::clear_cell_cache();
+
+}  // namespace shoremesh
