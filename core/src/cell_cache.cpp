@@ -22,10 +22,21 @@
 
 namespace shoremesh {
 
+// The slot of v: the one holding v, or the empty one where v would go.
+template <int D>
+typename WellSpacedEngine<D>::CacheSlot& WellSpacedEngine<D>::cache_slot(VertexId v) {
+  if (cache_table_.empty()) cache_table_.resize(std::size_t(1) << kCacheTableBits);
+  const std::size_t mask = cache_table_.size() - 1;
+  std::size_t k = std::size_t((v * 0x9E3779B1u) >> (32 - kCacheTableBits));
+  while (cache_table_[k].vertex != v && cache_table_[k].vertex != engine::kNoVertex) k = (k + 1) & mask;
+  return cache_table_[k];
+}
+
 template <int D>
 bool WellSpacedEngine<D>::reuse_cell(OpId o, VertexId v, const Point<D>& p, std::uint64_t now) {
-  if (v >= cache_slot_.size() || cache_slot_[v] == kNoCacheSlot) return false;
-  const CachedCell& c = cell_cache_[cache_slot_[v]];
+  const CacheSlot& slot = cache_slot(v);
+  if (slot.vertex != v) return false;
+  const CachedCell& c = cell_cache_[slot.entry];
   if (!c.valid || c.position != p || now >= c.valid_until) return false;
   ++counters_.cells_reused;
   cell_.assign_geometry(c.cell);
@@ -44,16 +55,14 @@ void WellSpacedEngine<D>::store_cell(OpId o, VertexId v, const Point<D>& p, doub
     forget_cell(v);
     return;
   }
-  if (cache_slot_.size() < vertices_.size()) cache_slot_.resize(vertices_.size(), kNoCacheSlot);
-  std::uint32_t slot = cache_slot_[v];
-  if (slot == kNoCacheSlot) {
+  CacheSlot& slot = cache_slot(v);
+  if (slot.vertex != v) {
     if (cell_cache_live_ == kMaxCachedCells) return;
     if (cell_cache_live_ == cell_cache_.size()) cell_cache_.emplace_back();
-    slot = std::uint32_t(cell_cache_live_++);
-    cache_slot_[v] = slot;
+    slot.vertex = v;
+    slot.entry = std::uint32_t(cell_cache_live_++);
   }
-  CachedCell& c = cell_cache_[slot];
-  c.vertex = v;
+  CachedCell& c = cell_cache_[slot.entry];
   c.position = p;
   c.valid = true;
   c.valid_until = std::numeric_limits<std::uint64_t>::max();
@@ -71,7 +80,9 @@ void WellSpacedEngine<D>::store_cell(OpId o, VertexId v, const Point<D>& p, doub
 
 template <int D>
 void WellSpacedEngine<D>::forget_cell(VertexId v) {
-  if (v < cache_slot_.size() && cache_slot_[v] != kNoCacheSlot) cell_cache_[cache_slot_[v]].valid = false;
+  if (cell_cache_live_ == 0) return;
+  const CacheSlot& slot = cache_slot(v);
+  if (slot.vertex == v) cell_cache_[slot.entry].valid = false;
 }
 
 // A vertex was just inserted at w: the cells it may change are stale.
@@ -88,7 +99,7 @@ void WellSpacedEngine<D>::forget_cells_near(const Point<D>& w) {
 
 template <int D>
 void WellSpacedEngine<D>::clear_cell_cache() {
-  for (std::size_t k = 0; k < cell_cache_live_; ++k) cache_slot_[cell_cache_[k].vertex] = kNoCacheSlot;
+  if (cell_cache_live_ != 0) std::fill(cache_table_.begin(), cache_table_.end(), CacheSlot{});
   cell_cache_live_ = 0;
   // A large batch needed many entries: give their memory back.
   if (cell_cache_.size() > kKeptCachedCells) {
@@ -105,6 +116,8 @@ template void WellSpacedEngine<2>::forget_cell(VertexId);
 template void WellSpacedEngine<3>::forget_cell(VertexId);
 template void WellSpacedEngine<2>::forget_cells_near(const Point<2>&);
 template void WellSpacedEngine<3>::forget_cells_near(const Point<3>&);
+template WellSpacedEngine<2>::CacheSlot& WellSpacedEngine<2>::cache_slot(VertexId);
+template WellSpacedEngine<3>::CacheSlot& WellSpacedEngine<3>::cache_slot(VertexId);
 template void WellSpacedEngine<2>::clear_cell_cache();
 template void WellSpacedEngine<3>::clear_cell_cache();
 

@@ -48,7 +48,7 @@ void WellSpacedEngine<D>::reset() {
   garbage_ = 0;
   caching_ = false;
   cell_cache_live_ = 0;
-  cache_slot_.clear();
+  cache_table_.clear();
 }
 
 template <int D>
@@ -740,7 +740,7 @@ std::size_t WellSpacedEngine<D>::memory_bytes() const {
                       (free_ops_.capacity() + free_vertices_.capacity()) * sizeof(std::uint32_t) +
                       tree_.memory_bytes();
   for (const auto& r : readers_) bytes += r.capacity() * sizeof(OpId);
-  bytes += cell_cache_.capacity() * sizeof(CachedCell) + cache_slot_.capacity() * sizeof(std::uint32_t);
+  bytes += cell_cache_.capacity() * sizeof(CachedCell) + cache_table_.capacity() * sizeof(CacheSlot);
   for (const CachedCell& c : cell_cache_) bytes += c.candidates.capacity() * sizeof(Candidate) + c.cell.memory_bytes();
   return bytes;
 }

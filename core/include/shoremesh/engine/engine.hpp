@@ -213,7 +213,6 @@ class WellSpacedEngine {
   // times), and half of the time nothing that can change it was born in between: the cache keeps, for
   // the length of one propagation, each vertex's last cell with what decides whether it still holds.
   struct CachedCell {
-    VertexId vertex = engine::kNoVertex;
     Point<D> position{};
     bool valid = false;
     // It holds at a later time t while t < valid_until (the birth of the first vertex already in the
@@ -230,9 +229,17 @@ class WellSpacedEngine {
   // Entries kept (with their buffers) between propagations: a unit update uses about 30 in 2D, 180 in 3D.
   static constexpr std::size_t kKeptCachedCells = 64;
   bool caching_ = false;                  // during a propagation after the build
-  std::vector<CachedCell> cell_cache_;    // [0, cell_cache_live_) in use; the rest keeps its capacity
+  std::vector<CachedCell> cell_cache_;    // [0, cell_cache_live_) in use; the rest keeps its buffers
   std::size_t cell_cache_live_ = 0;
-  std::vector<std::uint32_t> cache_slot_; // per vertex id: its entry, or kNoCacheSlot
+  // Vertex id -> entry, open addressing with linear probing (a table of a few thousand slots emptied after
+  // each propagation: an array over all vertex ids would cost O(n) to allocate and to grow).
+  struct CacheSlot {
+    VertexId vertex = engine::kNoVertex;
+    std::uint32_t entry = kNoCacheSlot;
+  };
+  static constexpr int kCacheTableBits = 11;  // 2048 slots: at most half full (kMaxCachedCells)
+  std::vector<CacheSlot> cache_table_;
+  CacheSlot& cache_slot(VertexId v);
   struct Unborn {
     Point<D> position;
     std::uint64_t birth;
