@@ -99,11 +99,16 @@ def section(lines):
             f"{fmt_time(f['update_median_seconds'])} | {fmt_time(f['update_p99_seconds'])} | "
             f"{f['update_median_ops']} | {f['update_max_ops']} |")
     out += ["", "Work per clipped Voronoi cell (what one operation costs), from scratch and during the updates "
-            "(leaves: those holding a vertex that the neighbour search read; empty ones are skipped unread):", "",
-            "| dim | n | cells per update | leaves read (build / updates) | candidate vertices | half-spaces clipped |",
-            "|---|---|---|---|---|---|"]
+            "(cells: computed, and taken again from the propagation's cell cache; searches: box queries to the "
+            "tree per computed cell; leaves: those holding a vertex that the neighbour search read; empty ones "
+            "are skipped unread):", "",
+            "| dim | n | cells per update: computed | reused | searches per cell (build / updates) | "
+            "leaves read (build / updates) | candidate vertices | half-spaces clipped |",
+            "|---|---|---|---|---|---|---|---|"]
     for f in rows:
-        out.append(f"| {f['dim']} | {fmt_n(f['n'])} | {f['update_cells']} | {f['build_leaves_per_cell']} / "
+        reused = f.get("update_cells_reused", "-")
+        searches = f"{f['build_searches_per_cell']} / {f['update_searches_per_cell']}" if "build_searches_per_cell" in f else "-"
+        out.append(f"| {f['dim']} | {fmt_n(f['n'])} | {f['update_cells']} | {reused} | {searches} | {f['build_leaves_per_cell']} / "
                    f"{f['update_leaves_per_cell']} | {f['build_candidates_per_cell']} / {f['update_candidates_per_cell']} | "
                    f"{f['build_clips_per_cell']} / {f['update_clips_per_cell']} |")
     out += ["", "Targets of the issue:", ""]
