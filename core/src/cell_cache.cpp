@@ -10,9 +10,11 @@
 //    the clipper; otherwise |w - v| exceeds twice the distance of every cell vertex, so its half-space
 //    holds the whole cell strictly, and it is not nearer than NN. The cell at t2 is the same polygon.
 //  - The same polygon is the same cell bit for bit when no clip found a vertex exactly on its plane: each
-//    vertex then lies on exactly D of the planes, so it is rebuilt from the same D planes, met in the same
-//    order (candidates are clipped in a canonical order), whatever else was offered in between. Cells with
-//    a vertex on a plane (grids) are not cached.
+//    vertex then lies on exactly D of the planes kept, so it is computed from the same D planes, met in
+//    the same order (candidates are clipped in a canonical order), whatever else was offered in between.
+//    In 2D a vertex is always the crossing of its two edges' lines; in 3D the argument is the same for
+//    simple vertices, and the 3D random-edit and grid tests check the result bit for bit. Cells with a
+//    vertex on a plane (grids) are not cached.
 // The box whose nodes the operation reads is the one t1 searched: it covers the dependency ball, which is
 // all the reads must do.
 #include <algorithm>
