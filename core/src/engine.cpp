@@ -433,13 +433,18 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
     if (a.d2 != b.d2) return a.d2 < b.d2;
     return a.position < b.position;
   };
-  std::sort(pool.begin(), pool.end(), by_distance);
   const double cap2 = 4 * params_.beta_squared * best_d2 * (1 + 1e-9);
   double searched = half;
   std::size_t next = 0;
   for (;;) {
     double reach2 = std::min(4 * cell_.max_vertex_distance2() * (1 + 1e-9), cap2);
-    while (next < pool.size() && pool[next].d2 <= std::min(reach2, searched * searched)) {
+    // Only the vertices within the reach and the box searched can cut the cell, and the cell only
+    // shrinks: sort just those (in 3D about a third of the candidates); the others wait unsorted.
+    const double bound2 = std::min(reach2, searched * searched);
+    const auto sorted = std::partition(pool.begin() + long(next), pool.end(), [&](const Candidate& c) { return c.d2 <= bound2; });
+    std::sort(pool.begin() + long(next), sorted, by_distance);
+    const std::size_t sorted_end = std::size_t(sorted - pool.begin());
+    while (next < sorted_end && pool[next].d2 <= std::min(reach2, searched * searched)) {
       ++counters_.clips;
       if (cell_.clip(pool[next].id, pool[next].position))
         reach2 = std::min(4 * cell_.max_vertex_distance2() * (1 + 1e-9), cap2);
@@ -451,9 +456,7 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
     if (need2 <= searched * searched) break;
     // Grow gently: the vertices found next usually shrink the cell, and with it the reach.
     searched = std::min(std::sqrt(need2) * (1 + 1e-9), 1.5 * searched);
-    const std::size_t old_size = pool.size();
     search(searched);
-    if (pool.size() > old_size) std::sort(pool.begin() + long(next), pool.end(), by_distance);
   }
   record_reads(o, p, searched);
   // Only a vertex that could cut the cell or be nearer than NN can change what this operation decides:
