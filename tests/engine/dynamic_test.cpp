@@ -162,7 +162,8 @@ void reused_cells_equal_fresh_runs(const std::vector<Point<D>>& initial, int edi
   }
   const double computed = double(set.counters().clipped_voronoi_calls - built.clipped_voronoi_calls);
   const double reused = double(set.counters().cells_reused - built.cells_reused);
-  EXPECT_GE(reused / (reused + computed), min_reused_share) << reused << " reused, " << computed << " computed";
+  if (min_reused_share > 0)  // none on grids: there most cells have a vertex on several bisectors
+    EXPECT_GE(reused / (reused + computed), min_reused_share) << reused << " reused, " << computed << " computed";
 }
 
 TEST(Dynamic, ReusedCellsEqualFreshRuns2D) {
