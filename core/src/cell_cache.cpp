@@ -39,7 +39,7 @@ bool WellSpacedEngine<D>::reuse_cell(OpId o, VertexId v, const Point<D>& p, std:
   const CacheSlot& slot = cache_slot(v);
   if (slot.vertex != v) return false;
   const CachedCell& c = cell_cache_[slot.entry];
-  if (!c.valid || c.position != p || now >= c.valid_until) return false;
+  if (c.position != p || now >= c.valid_until) return false;
   ++counters_.cells_reused;
   cell_.assign_geometry(c.cell);
   hood_.nearest = c.nearest;
@@ -66,13 +66,10 @@ void WellSpacedEngine<D>::store_cell(OpId o, VertexId v, const Point<D>& p, doub
   }
   CachedCell& c = cell_cache_[slot.entry];
   c.position = p;
-  c.valid = true;
   c.valid_until = std::numeric_limits<std::uint64_t>::max();
-  for (const Unborn& u : unborn_) {
-    double d2 = 0;
-    for (int i = 0; i < D; ++i) d2 += (u.position[i] - p[i]) * (u.position[i] - p[i]);
-    if (d2 <= double(depends2)) c.valid_until = std::min(c.valid_until, u.birth);
-  }
+  for (const Unborn& u : unborn_)
+    if (engine::squared_distance<double, D>(u.position, p) <= double(depends2))
+      c.valid_until = std::min(c.valid_until, u.birth);
   c.depends2 = depends2;
   c.searched = searched;
   c.nearest = hood_.nearest;
@@ -84,7 +81,7 @@ template <int D>
 void WellSpacedEngine<D>::forget_cell(VertexId v) {
   if (cell_cache_live_ == 0) return;
   const CacheSlot& slot = cache_slot(v);
-  if (slot.vertex == v) cell_cache_[slot.entry].valid = false;
+  if (slot.vertex == v) cell_cache_[slot.entry].valid_until = 0;
 }
 
 // A vertex was just inserted at w: the cells it may change are stale.
@@ -92,10 +89,8 @@ template <int D>
 void WellSpacedEngine<D>::forget_cells_near(const Point<D>& w) {
   for (std::size_t k = 0; k < cell_cache_live_; ++k) {
     CachedCell& c = cell_cache_[k];
-    if (!c.valid) continue;
-    double d2 = 0;
-    for (int i = 0; i < D; ++i) d2 += (w[i] - c.position[i]) * (w[i] - c.position[i]);
-    if (d2 <= double(c.depends2)) c.valid = false;
+    if (c.valid_until != 0 && engine::squared_distance<double, D>(w, c.position) <= double(c.depends2))
+      c.valid_until = 0;
   }
 }
 

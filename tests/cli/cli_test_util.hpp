@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "../io/io_test_util.hpp"
+
 namespace shoremesh::cli_test {
 
 namespace fs = std::filesystem;
@@ -72,9 +74,9 @@ inline RunResult shoremesh(const TempDir& dir, const std::string& args, const st
   return r;
 }
 
-// A data file shipped in samples/ (real third-party data with its license note).
-inline std::string data_file(const std::string& samples_rel) { return (fs::path(SHOREMESH_SAMPLES_DIR) / samples_rel).string(); }
-inline std::string superior_mask() { return data_file("superior/superior_watermask_h.png"); }
+// Data files shipped in samples/ (real third-party data with its license note).
+using io::test::samples;
+inline std::string superior_mask() { return samples("superior/superior_watermask_h.png"); }
 
 // A reproducible 2D point file ("x,y" header, 4 decimals) of n points in [0, w] x [0, h].
 inline std::string random_points(std::size_t n, double w, double h, unsigned seed) {

@@ -21,7 +21,7 @@ TEST(InfoCommand, ImageTrackAndPointSet) {
   EXPECT_THAT(image.out, ::testing::ContainsRegex("[0-9]+ rings \\([0-9]+ shore, [0-9]+ island"));
   EXPECT_THAT(image.out, ::testing::ContainsRegex("water area: .* = 8[0-9]{4}(\\.[0-9]+)? km\\^2"));
 
-  const RunResult gpx = shoremesh(dir, "info " + quote(data_file("cerknica/cerknicko-jezero.gpx")));
+  const RunResult gpx = shoremesh(dir, "info " + quote(samples("cerknica/cerknicko-jezero.gpx")));
   ASSERT_EQ(gpx.code, 0) << gpx.err;
   EXPECT_THAT(gpx.out, HasSubstr("GPX"));
   EXPECT_THAT(gpx.out, HasSubstr("UTM zone 33N"));

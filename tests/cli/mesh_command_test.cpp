@@ -143,7 +143,7 @@ TEST(MeshCommand, SuperiorImageToMeshPreviewAndGeoJson) {
 
 TEST(MeshCommand, ColourMapImageWithAUserBox) {
   TempDir dir;
-  const std::string map = quote(data_file("superior/superior_map_gmt.png"));
+  const std::string map = quote(samples("superior/superior_map_gmt.png"));
   const RunResult r = shoremesh(dir, "mesh " + map +
                                          " --water lightsteelblue --close-radius 1 --largest-water --map-box -92.5 46.2 "
                                          "-84 49.2 --crs lonlat --spacing 8000 -o map.ply");

@@ -214,9 +214,9 @@ class WellSpacedEngine {
   // the length of one propagation, each vertex's last cell with what decides whether it still holds.
   struct CachedCell {
     Point<D> position{};
-    bool valid = false;
-    // It holds at a later time t while t < valid_until (the birth of the first vertex already in the
-    // tree, but born after it was computed, within sqrt(depends2)) and no vertex was inserted within.
+    // It holds at a later time t while t < valid_until: the birth of the first vertex already in the
+    // tree, but born after it was computed, within sqrt(depends2). 0 once a vertex was inserted within
+    // (or its own vertex died): it holds no more.
     std::uint64_t valid_until = 0;
     float depends2 = 0;
     double searched = 0;  // half-side of the box whose nodes its operation read
