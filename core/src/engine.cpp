@@ -403,6 +403,13 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   // inputs): a box of one leaf side mostly had to grow again, which cost 5 % more instructions per
   // update in 2D and 3 % in 3D. The result does not depend on the first box, only the work does.
   double half = 2 * tree_.side(vertices_[v].leaf);
+  // An operation run again (inconsistent) mostly needs the box it needed last time: starting from its
+  // previous dependency radius saves most of the searches that grow the box step by step (2.4 -> 1.5
+  // per 2D cell). Bounded, so that a vertex alone before does not search the whole domain. (A fresh
+  // fill starting from the radius of its vertex's cell computed earlier in the propagation searched
+  // more leaves than it saved: that cell is stale because a vertex came near, so it shrank.)
+  const double previous2 = ops_[o].depends2;
+  if (previous2 > half * half && previous2 < 16 * half * half) half = std::sqrt(previous2) * (1 + 1e-6);
   for (;;) {
     search(half);
     if (hood_.nearest != kNoVertex && best_d2 <= half * half * (1 - 1e-9)) break;
