@@ -5,7 +5,7 @@
 //  - The vertices an operation at t sees are those born before t. When t1 runs, every operation before
 //    t1 has run, so the vertices born before t1 no longer change: what an operation at t2 sees is what
 //    t1 saw plus the vertices born in [t1, t2). Those are either already in the tree when t1 runs (their
-//    earliest birth within reach is valid_until) or inserted later by a fill (forget_cells_near).
+//    earliest birth within reach is valid_until) or inserted later by a fill (vertex_arrived).
 //  - A vertex w farther than sqrt(depends2) changes nothing: beyond 2 beta NN it is never offered to
 //    the clipper; otherwise |w - v| exceeds twice the distance of every cell vertex, so its half-space
 //    holds the whole cell strictly, and it is not nearer than NN. The cell at t2 is the same polygon.
@@ -17,6 +17,19 @@
 //    vertex on a plane (grids) are not cached.
 // The box whose nodes the operation reads is the one t1 searched: it covers the dependency ball, which is
 // all the reads must do.
+//
+// A stale entry still spares the search (compute_cell): it lists every vertex of the leaves that meet
+// its box, as they were at t1 (candidates: born before t1; unborn: born later) and as fills inserted
+// them since (arrived). At t2 those leaves hold exactly these, less the dead:
+//  - a vertex born before t1 never leaves during the propagation: only undoing its creator, at its
+//    birth, removes it (input edits happen before the propagation);
+//  - an unborn or arrived vertex may have left (undone since): it is dropped unless alive. Vertex ids
+//    are freed only when the propagation ends, so an id names one vertex throughout;
+//  - arrivals are recorded with the test the search itself uses for its `seen` box
+//    (Quadtree::leaf_meets_box): a larger box then searches just the leaves beyond, as for a cell
+//    that searched the first box itself, and no vertex comes twice.
+// The candidate set within any box the computation reaches is then the one a search finds, and the
+// cell, the nearest neighbour (canonical in the set) and every decision are the same.
 #include <algorithm>
 #include <limits>
 
@@ -44,9 +57,17 @@ bool WellSpacedEngine<D>::reuse_cell(OpId o, VertexId v, const Point<D>& p, std:
   cell_.assign_geometry(c.cell);
   hood_.nearest = c.nearest;
   hood_.candidates = c.candidates;
-  record_reads(o, p, c.searched);
+  register_reads(o, c.covering);
   ops_[o].depends2 = ops_[o].inserted_depends2 = c.depends2;
   return true;
+}
+
+template <int D>
+const typename WellSpacedEngine<D>::CachedCell* WellSpacedEngine<D>::cached_neighbourhood(VertexId v, const Point<D>& p) {
+  if (cell_cache_live_ == 0) return nullptr;
+  const CacheSlot& slot = cache_slot(v);
+  if (slot.vertex != v || cell_cache_[slot.entry].position != p) return nullptr;
+  return &cell_cache_[slot.entry];
 }
 
 template <int D>
@@ -67,13 +88,16 @@ void WellSpacedEngine<D>::store_cell(OpId o, VertexId v, const Point<D>& p, doub
   CachedCell& c = cell_cache_[slot.entry];
   c.position = p;
   c.valid_until = std::numeric_limits<std::uint64_t>::max();
-  for (const Unborn& u : unborn_)
+  for (const TimedVertex& u : unborn_)
     if (engine::squared_distance<double, D>(u.position, p) <= double(depends2))
       c.valid_until = std::min(c.valid_until, u.birth);
   c.depends2 = depends2;
-  c.searched = searched;
+  c.covering = covering_;  // record_reads(o, p, searched) just left them there
   c.nearest = hood_.nearest;
+  c.searched = searched;
   c.candidates = hood_.candidates;
+  c.unborn = unborn_;
+  c.arrived.clear();
   c.cell.assign_geometry(cell_);
 }
 
@@ -84,13 +108,15 @@ void WellSpacedEngine<D>::forget_cell(VertexId v) {
   if (slot.vertex == v) cell_cache_[slot.entry].valid_until = 0;
 }
 
-// A vertex was just inserted at w: the cells it may change are stale.
 template <int D>
-void WellSpacedEngine<D>::forget_cells_near(const Point<D>& w) {
+void WellSpacedEngine<D>::vertex_arrived(VertexId w, const Point<D>& q, std::uint64_t birth) {
+  const NodeId leaf = vertices_[w].leaf;
   for (std::size_t k = 0; k < cell_cache_live_; ++k) {
     CachedCell& c = cell_cache_[k];
-    if (c.valid_until != 0 && engine::squared_distance<double, D>(w, c.position) <= double(c.depends2))
+    if (c.valid_until != 0 && engine::squared_distance<double, D>(q, c.position) <= double(c.depends2))
       c.valid_until = 0;
+    // The leaves a search of that box reads: the same test, so the lists stay what a search finds.
+    if (tree_.leaf_meets_box(leaf, c.position, c.searched)) c.arrived.push_back({q, birth, w});
   }
 }
 
@@ -111,8 +137,10 @@ template void WellSpacedEngine<2>::store_cell(OpId, VertexId, const Point<2>&, d
 template void WellSpacedEngine<3>::store_cell(OpId, VertexId, const Point<3>&, double);
 template void WellSpacedEngine<2>::forget_cell(VertexId);
 template void WellSpacedEngine<3>::forget_cell(VertexId);
-template void WellSpacedEngine<2>::forget_cells_near(const Point<2>&);
-template void WellSpacedEngine<3>::forget_cells_near(const Point<3>&);
+template void WellSpacedEngine<2>::vertex_arrived(VertexId, const Point<2>&, std::uint64_t);
+template void WellSpacedEngine<3>::vertex_arrived(VertexId, const Point<3>&, std::uint64_t);
+template const WellSpacedEngine<2>::CachedCell* WellSpacedEngine<2>::cached_neighbourhood(VertexId, const Point<2>&);
+template const WellSpacedEngine<3>::CachedCell* WellSpacedEngine<3>::cached_neighbourhood(VertexId, const Point<3>&);
 template WellSpacedEngine<2>::CacheSlot& WellSpacedEngine<2>::cache_slot(VertexId);
 template WellSpacedEngine<3>::CacheSlot& WellSpacedEngine<3>::cache_slot(VertexId);
 template void WellSpacedEngine<2>::clear_cell_cache();

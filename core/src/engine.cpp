@@ -360,41 +360,50 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   hood_.nearest = kNoVertex;
   pool.clear();
   double best_d2 = 0;
-  // Adds the vertices of the leaves of box [p - half, p + half] not searched yet, tracking the nearest.
-  // The boxes only grow, so the leaves searched so far are those that meet the previous box.
+  // Takes vertex u at q (squared distance d2 from v) as a candidate, tracking the nearest.
+  auto offer = [&](VertexId u, const Point<D>& q, double d2) {
+    pool.push_back({d2, u, q});
+    ++counters_.candidates;
+    if (hood_.nearest != kNoVertex && d2 > best_d2 * (1 + 1e-12)) return;
+    if (hood_.nearest != kNoVertex && d2 >= best_d2 * (1 - 1e-12)) {
+      // Nearly tied: decide exactly, then by coordinates, so the nearest neighbour is canonical.
+      const int c = compare_squared_distances<D>(pc, p, q, p, positions_[hood_.nearest]);
+      if (c > 0 || (c == 0 && !(q < positions_[hood_.nearest]))) return;
+    }
+    hood_.nearest = u;
+    best_d2 = d2;
+  };
+  // A vertex of the tree other than v: a candidate if born before now, else remembered for the cache.
+  auto consider = [&](VertexId u, const Point<D>& q, std::uint64_t birth) {
+    if (birth >= now) {
+      if (caching_) unborn_.push_back({q, birth, u});
+      return;
+    }
+    double d2 = 0;
+    for (int i = 0; i < D; ++i) d2 += (q[i] - p[i]) * (q[i] - p[i]);
+    // A vertex exactly at v's place can only be a Steiner point about to be removed by the
+    // propagation (an input was just added there): it is not a neighbour.
+    if (d2 == 0 && q == p) return;
+    offer(u, q, d2);
+  };
+  // Adds the vertices of the leaves of box [p - half, p + half] not searched yet. The boxes only grow,
+  // so the leaves searched so far are those that meet the previous box.
   using Box = typename Quadtree<D>::Box;
   Box seen = Box::empty();
-  auto search = [&](double half) {
+  auto box_of = [&](double half) {
     Box box;
     for (int i = 0; i < D; ++i) {
       box.lo[i] = p[i] - half;
       box.hi[i] = p[i] + half;
     }
+    return box;
+  };
+  auto search = [&](double half) {
+    const Box box = box_of(half);
     ++counters_.neighbour_searches;
     counters_.leaves_visited += tree_.for_each_occupied_leaf(box, seen, [&](NodeId, std::span<const LeafVertex<D>> leaf) {
-      for (const LeafVertex<D>& e : leaf) {
-        if (e.id == v) continue;
-        if (e.tag >= now) {
-          if (caching_) unborn_.push_back({e.position, e.tag});
-          continue;
-        }
-        const VertexId u = e.id;
-        double d2 = 0;
-        for (int i = 0; i < D; ++i) d2 += (e.position[i] - p[i]) * (e.position[i] - p[i]);
-        // A vertex exactly at v's place can only be a Steiner point about to be removed by the
-        // propagation (an input was just added there): it is not a neighbour.
-        if (d2 == 0 && e.position == p) continue;
-        pool.push_back({d2, u, e.position});
-        ++counters_.candidates;
-        if (hood_.nearest != kNoVertex && d2 > best_d2 * (1 + 1e-12)) continue;
-        if (hood_.nearest != kNoVertex && d2 >= best_d2 * (1 - 1e-12)) {
-          // Nearly tied: decide exactly, then by coordinates, so the nearest neighbour is canonical.
-          const int c = compare_squared_distances<D>(pc, p, e.position, p, positions_[hood_.nearest]);
-          if (c > 0 || (c == 0 && !(e.position < positions_[hood_.nearest]))) continue;
-        }
-        hood_.nearest = u;
-        best_d2 = d2;
-      }
+      for (const LeafVertex<D>& e : leaf)
+        if (e.id != v) consider(e.id, e.position, e.tag);
     });
     seen = box;
   };
@@ -410,8 +419,23 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   // more leaves than it saved: that cell is stale because a vertex came near, so it shrank.)
   const double previous2 = ops_[o].depends2;
   if (previous2 > half * half && previous2 < 16 * half * half) half = std::sqrt(previous2) * (1 + 1e-6);
+  // v's cell was computed earlier in this propagation (its cache entry is stale, or reuse_cell took
+  // it): the entry lists what the leaves of its box held then and what arrived there since, which is
+  // what they hold now, as a search would find it (cell_cache.cpp). Only growing that box searches.
+  bool searched_already = false;
+  if (const CachedCell* earlier = caching_ ? cached_neighbourhood(v, p) : nullptr) {
+    for (const Candidate& c : earlier->candidates) offer(c.id, c.position, c.d2);
+    for (const auto* list : {&earlier->unborn, &earlier->arrived})
+      for (const TimedVertex& u : *list)
+        if (vertices_[u.id].alive) consider(u.id, u.position, u.birth);
+    half = earlier->searched;
+    seen = box_of(half);
+    searched_already = true;
+    ++counters_.neighbourhoods_reused;
+  }
   for (;;) {
-    search(half);
+    if (!searched_already) search(half);
+    searched_already = false;
     if (hood_.nearest != kNoVertex && best_d2 <= half * half * (1 - 1e-9)) break;
     if (half >= 2.0) break;  // the box covers [0,1]^D
     half *= 2;
@@ -481,8 +505,13 @@ void WellSpacedEngine<D>::record_reads(OpId o, const Point<D>& p, double h) {
     hi[i] = p[i] + h;
   }
   tree_.covering_nodes(lo, hi, covering_);
+  register_reads(o, covering_);
+}
+
+template <int D>
+void WellSpacedEngine<D>::register_reads(OpId o, std::span<const NodeId> nodes) {
   ops_[o].reads_begin = std::uint32_t(reads_.size());
-  for (NodeId n : covering_) {
+  for (NodeId n : nodes) {
     reads_.push_back(n);
     readers_[n].push_back(o);
   }
@@ -571,7 +600,7 @@ void WellSpacedEngine<D>::fill(OpId o) {
     vertices_[id].leaf = tree_.insert_vertex(id, w, time_key(op_rank, op_color), vertices_[v].leaf);
     ++counters_.steiner_points;
     if (dynamic_) mark_readers_at(id, w, vertices_[id].leaf, VertexChange::Inserted, op_rank, op_color);
-    if (caching_) forget_cells_near(w);
+    if (caching_) vertex_arrived(id, w, time_key(op_rank, op_color));
     if (stats_) stats_->steiner_added.push_back(w);
     // Fact 1 puts w's rank above op's; the max only guards the table's rounding for a rho other than
     // sqrt(2) (for sqrt(2) the table is exact and it never applies).
@@ -751,7 +780,9 @@ std::size_t WellSpacedEngine<D>::memory_bytes() const {
                       tree_.memory_bytes();
   for (const auto& r : readers_) bytes += r.capacity() * sizeof(OpId);
   bytes += cell_cache_.capacity() * sizeof(CachedCell) + cache_table_.capacity() * sizeof(CacheSlot);
-  for (const CachedCell& c : cell_cache_) bytes += c.candidates.capacity() * sizeof(Candidate) + c.cell.memory_bytes();
+  for (const CachedCell& c : cell_cache_)
+    bytes += c.candidates.capacity() * sizeof(Candidate) + c.covering.capacity() * sizeof(NodeId) +
+             (c.unborn.capacity() + c.arrived.capacity()) * sizeof(TimedVertex) + c.cell.memory_bytes();
   return bytes;
 }
 

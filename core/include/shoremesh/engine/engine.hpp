@@ -167,13 +167,19 @@ class WellSpacedEngine {
   // Finds v's nearest neighbour and the vertices that can cut its cell, registers op o's reads, and
   // computes v's cell clipped to the box and to the cube of half-side beta NN(v).
   void compute_cell(OpId o, VertexId v);
-  // Registers op o as a reader of the nodes covering the box of half-side h around p.
+  // Registers op o as a reader of the nodes covering the box of half-side h around p (left in covering_).
   void record_reads(OpId o, const Point<D>& p, double h);
+  void register_reads(OpId o, std::span<const NodeId> nodes);
   // The cell cache of one propagation (cell_cache.cpp has the argument why reuse equals recomputing).
   bool reuse_cell(OpId o, VertexId v, const Point<D>& p, std::uint64_t now);
+  struct CachedCell;
+  // v's entry, stale or not: what the leaves around v held when its cell was last computed.
+  const CachedCell* cached_neighbourhood(VertexId v, const Point<D>& p);
   void store_cell(OpId o, VertexId v, const Point<D>& p, double searched);
   void forget_cell(VertexId v);
-  void forget_cells_near(const Point<D>& w);
+  // A fill just inserted vertex w at q: the cells it may change are stale, and the entries whose box
+  // it entered list it.
+  void vertex_arrived(VertexId w, const Point<D>& q, std::uint64_t birth);
   void clear_cell_cache();
   Point<D> pick_steiner(VertexId v);
   VertexId new_vertex(const Point<D>& p);
@@ -212,6 +218,12 @@ class WellSpacedEngine {
   // A vertex's cell is computed about three times per update (its dispatch and its fills at several
   // times), and half of the time nothing that can change it was born in between: the cache keeps, for
   // the length of one propagation, each vertex's last cell with what decides whether it still holds.
+  // A vertex of the tree with its birth (the tag its leaf keeps).
+  struct TimedVertex {
+    Point<D> position;
+    std::uint64_t birth;
+    VertexId id;
+  };
   struct CachedCell {
     Point<D> position{};
     // It holds at a later time t while t < valid_until: the birth of the first vertex already in the
@@ -219,9 +231,16 @@ class WellSpacedEngine {
     // (or its own vertex died): it holds no more.
     std::uint64_t valid_until = 0;
     float depends2 = 0;
-    double searched = 0;  // half-side of the box whose nodes its operation read
+    // The nodes its operation read (covering the box it searched): the tree's shape does not change
+    // during a propagation (Steiner vertices only enter and leave leaves), so they stay the same.
+    std::vector<NodeId> covering;
     VertexId nearest = engine::kNoVertex;
+    // Every vertex of the leaves that meet the box [p - searched, p + searched]: those born before the
+    // cell's time (candidates), those born later (unborn), and those fills inserted there since
+    // (arrived). A vertex born before the cell's time never leaves during the propagation.
+    double searched = 0;
     std::vector<Candidate> candidates;
+    std::vector<TimedVertex> unborn, arrived;
     engine::ConvexCell<D> cell;
   };
   static constexpr std::uint32_t kNoCacheSlot = ~std::uint32_t(0);
@@ -240,11 +259,7 @@ class WellSpacedEngine {
   static constexpr int kCacheTableBits = 11;  // 2048 slots: at most half full (kMaxCachedCells)
   std::vector<CacheSlot> cache_table_;
   CacheSlot& cache_slot(VertexId v);
-  struct Unborn {
-    Point<D> position;
-    std::uint64_t birth;
-  };
-  std::vector<Unborn> unborn_;            // scratch: vertices a search skipped as born at or after now
+  std::vector<TimedVertex> unborn_;            // scratch: vertices a search skipped as born at or after now
   std::vector<VertexId> neighbours_;
   std::vector<NodeId> covering_;
   std::vector<OpId> stash_;

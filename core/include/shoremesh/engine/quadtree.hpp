@@ -140,6 +140,19 @@ class Quadtree {
   // new leaves, and no node entirely inside `seen` is read. Returns the number of leaves reported.
   template <class F>
   std::size_t for_each_occupied_leaf(const Box& box, const Box& seen, F&& f) const;
+  // Whether a search of the box [center - half, center + half] that already searched it counts `leaf`
+  // as seen (the test for_each_occupied_leaf applies to its `seen` box).
+  bool leaf_meets_box(NodeId leaf, const Point<D>& center, double half) const {
+    const Node& nd = nodes_[leaf];
+    const double scale = power_of_two(nd.level);
+    for (int i = 0; i < D; ++i) {
+      const auto c = std::int64_t(nd.coords[i]);
+      if (c < ceil_to_int(std::clamp(center[i] - half, -1.0, 2.0) * scale) - 1 ||
+          c > floor_to_int(std::clamp(center[i] + half, -1.0, 2.0) * scale))
+        return false;
+    }
+    return true;
+  }
   // Nodes whose union covers the box: the deepest existing node over each of the (at most 2^D) cells
   // of the finest level whose cells are at least as wide as the box. Operations register their reads
   // here: a few coarse nodes instead of every leaf they looked into.
@@ -258,7 +271,11 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
     __builtin_prefetch(search_[n].vertices);
   };
   Item stack[kMaxLevel * kChildren + 8];
-  const Coords first = cell_of(lo, level), last = cell_of(hi, level);
+  // From the first cell whose closed box meets the box: when lo lies exactly on a cell boundary, the
+  // cell below it touches the box too, and its leaves count as seen in the next, larger search.
+  Coords first = cell_of(lo, level);
+  const Coords last = cell_of(hi, level);
+  for (int i = 0; i < D; ++i) first[i] = std::uint64_t(std::max<std::int64_t>(0, ranges_at(level).meet_lo[i]));
   for_each_index_in_box<D>(first, last, [&](const Coords& cell) {
     std::array<std::int64_t, D> ci;
     for (int i = 0; i < D; ++i) ci[i] = std::int64_t(cell[i]);
