@@ -2,6 +2,7 @@
 // One predicates module. Every geometric decision is the sign of a polynomial in double coordinates,
 // written once as a generic lambda and evaluated first in interval arithmetic (CGAL::Interval_nt, a
 // filter that costs a few doubles) and, only when the interval contains zero, exactly in GMP rationals.
+// The distance comparisons try plain doubles with an error bound first (semi_static_sign).
 // Interval_nt<false> requires the FPU to round upwards: callers hold a RoundingGuard while deciding.
 #include <CGAL/Gmpq.h>
 #include <CGAL/Interval_nt.h>
@@ -51,10 +52,30 @@ NT squared_distance(const Point<D>& a, const Point<D>& b) {
   return s;
 }
 
+// A first, cheaper filter for the distance comparisons: the sign of p - q, where p and q >= 0 were
+// computed in doubles, each from at most D rounded differences of coordinates in [0, 1], their rounded
+// squares and sums, and at most one more rounded product by a constant. Whatever the rounding mode, each
+// operation errs by at most 2^-52 of its result, so the computed p - q is within (D + 5) 2^-52 (p + q)
+// of the true difference: a margin of 1e-14 (p + q) is over ten times that. Below 1e-200 the squares
+// may have lost precision to underflow, and the filter abstains.
+inline int semi_static_sign(double p, double q) {
+  const double sum = p + q;
+  if (!(sum > 1e-200)) return kUndecided;
+  const double s = p - q, margin = 1e-14 * sum;
+  if (s > margin) return 1;
+  if (s < -margin) return -1;
+  return kUndecided;
+}
+
 // sign(|a-b|^2 - |c-d|^2), exact.
 template <int D>
 int compare_squared_distances(PredicateCounters& counters, const Point<D>& a, const Point<D>& b, const Point<D>& c,
                               const Point<D>& d) {
+  const int fast = semi_static_sign(squared_distance<double, D>(a, b), squared_distance<double, D>(c, d));
+  if (fast != kUndecided) {
+    ++counters.calls;
+    return fast;
+  }
   return filtered_sign(counters, [&](auto zero) {
     using NT = decltype(zero);
     return squared_distance<NT, D>(a, b) - squared_distance<NT, D>(c, d);
@@ -65,6 +86,12 @@ int compare_squared_distances(PredicateCounters& counters, const Point<D>& a, co
 template <int D>
 int compare_squared_distance_scaled(PredicateCounters& counters, const Point<D>& a, const Point<D>& b, double k,
                                     const Point<D>& c, const Point<D>& d) {
+  const int fast = k >= 0 ? semi_static_sign(squared_distance<double, D>(a, b), k * squared_distance<double, D>(c, d))
+                          : kUndecided;
+  if (fast != kUndecided) {
+    ++counters.calls;
+    return fast;
+  }
   return filtered_sign(counters, [&](auto zero) {
     using NT = decltype(zero);
     return squared_distance<NT, D>(a, b) - NT(k) * squared_distance<NT, D>(c, d);
@@ -74,6 +101,11 @@ int compare_squared_distance_scaled(PredicateCounters& counters, const Point<D>&
 // sign(|a-b|^2 - t) for a double threshold t, exact.
 template <int D>
 int compare_squared_distance_to(PredicateCounters& counters, const Point<D>& a, const Point<D>& b, double t) {
+  const int fast = t >= 0 ? semi_static_sign(squared_distance<double, D>(a, b), t) : kUndecided;
+  if (fast != kUndecided) {
+    ++counters.calls;
+    return fast;
+  }
   return filtered_sign(counters, [&](auto zero) {
     using NT = decltype(zero);
     return squared_distance<NT, D>(a, b) - NT(t);
