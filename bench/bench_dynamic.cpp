@@ -33,11 +33,12 @@ struct Options {
 // Cells computed and taken from the cache; box searches, leaves searched, candidate vertices looked at
 // and half-spaces clipped, summed over the cells computed.
 struct CellWork {
-  double cells = 0, reused = 0, listed = 0, searches = 0, leaves = 0, candidates = 0, clips = 0;
+  double cells = 0, reused = 0, listed = 0, updated = 0, searches = 0, leaves = 0, candidates = 0, clips = 0;
   void add(const shoremesh::Counters& after, const shoremesh::Counters& before) {
     cells += double(after.clipped_voronoi_calls - before.clipped_voronoi_calls);
     reused += double(after.cells_reused - before.cells_reused);
     listed += double(after.neighbourhoods_reused - before.neighbourhoods_reused);
+    updated += double(after.cells_updated - before.cells_updated);
     searches += double(after.neighbour_searches - before.neighbour_searches);
     leaves += double(after.leaves_visited - before.leaves_visited);
     candidates += double(after.candidates - before.candidates);
@@ -99,14 +100,15 @@ void run(const Options& opt) {
       "unit_change_seconds=%.6g unit_change_ops=%.1f update_median_seconds=%.6g update_p99_seconds=%.6g "
       "update_median_ops=%.0f update_max_ops=%.0f speedup_ops=%.1f speedup_time=%.1f "
       "build_leaves_per_cell=%.1f build_candidates_per_cell=%.1f build_clips_per_cell=%.1f "
-      "update_cells=%.1f update_leaves_per_cell=%.1f update_candidates_per_cell=%.1f update_clips_per_cell=%.1f build_searches_per_cell=%.2f update_searches_per_cell=%.2f update_cells_reused=%.1f update_cells_from_lists=%.1f\n",
+      "update_cells=%.1f update_leaves_per_cell=%.1f update_candidates_per_cell=%.1f update_clips_per_cell=%.1f build_searches_per_cell=%.2f update_searches_per_cell=%.2f update_cells_reused=%.1f update_cells_from_lists=%.1f update_cells_updated=%.1f\n",
       D, opt.n, opt.inputs, opt.changes, output / k, build_seconds / k, build_ops / k, unit_seconds / changes,
       unit_ops / changes, quantile(latencies, 0.5), quantile(latencies, 0.99), quantile(update_ops, 0.5),
       quantile(update_ops, 1.0), (build_ops / k) / (unit_ops / changes), (build_seconds / k) / (unit_seconds / changes),
       build_work.leaves / build_work.cells, build_work.candidates / build_work.cells, build_work.clips / build_work.cells,
       update_work.cells / updates, update_work.leaves / update_work.cells, update_work.candidates / update_work.cells,
       update_work.clips / update_work.cells, build_work.searches / build_work.cells,
-      update_work.searches / update_work.cells, update_work.reused / updates, update_work.listed / updates);
+      update_work.searches / update_work.cells, update_work.reused / updates, update_work.listed / updates,
+      update_work.updated / updates);
 }
 
 }  // namespace

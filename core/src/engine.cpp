@@ -445,8 +445,11 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   // it): the entry lists what the leaves of its box held then and what arrived there since, which is
   // what they hold now, as a search would find it (cell_cache.cpp). Only growing that box searches.
   bool searched_already = false;
-  if (const CachedCell* earlier = caching_ ? cached_neighbourhood(v, p) : nullptr) {
+  const CachedCell* earlier = caching_ ? cached_neighbourhood(v, p) : nullptr;
+  std::size_t known = 0;  // pool[0, known): the candidates earlier->cell was computed from
+  if (earlier) {
     for (const Candidate& c : earlier->candidates) offer(c.id, c.position, c.d2);
+    known = pool.size();
     for (const auto* list : {&earlier->unborn, &earlier->arrived})
       for (const TimedVertex& u : *list)
         if (vertices_[u.id].alive) consider(u.id, u.position, u.birth);
@@ -478,7 +481,6 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
     cube_lo[i] = std::max(0.0, p[i] - s);
     cube_hi[i] = std::min(1.0, p[i] + s);
   }
-  cell_.reset(p, cube_lo, cube_hi);
   // Clip by the vertices in order of distance (ties by coordinates: a canonical order, so the rounded
   // cell does not depend on insertion history). A vertex farther than twice the cell's reach cannot cut
   // it, nor can one beyond 2 beta NN cut the beta-ball: the search grows only while a cut is possible.
@@ -489,6 +491,25 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   const double cap2 = 4 * params_.beta_squared * best_d2 * (1 + 1e-9);
   double searched = half;
   std::size_t next = 0;
+  // With the same nearest neighbour (so the same clipping box) the earlier cell only has to be cut by
+  // the vertices born since: none of the earlier candidates left, and the cut cell is the same polygon.
+  // Without a vertex on two lines at once (checked, as for caching) a polygon's vertices are each the
+  // crossing of its two edges' lines, computed from them in the same order (their order along the
+  // boundary), so it is the same cell bit for bit as clipping from scratch (cell_cache.cpp). Not in 3D:
+  // there a vertex solves its three planes in the order they were clipped, which this would change.
+  bool incremental = D == 2 && earlier != nullptr && hood_.nearest == earlier->nearest;
+  auto start_afresh = [&] {
+    incremental = false;
+    cell_.reset(p, cube_lo, cube_hi);
+    next = 0;
+  };
+  if (incremental) {
+    cell_.assign_geometry(earlier->cell);
+    next = known;
+    ++counters_.cells_updated;
+  } else {
+    start_afresh();
+  }
   for (;;) {
     double reach2 = std::min(4 * cell_.max_vertex_distance2() * (1 + 1e-9), cap2);
     // Only the vertices within the reach and the box searched can cut the cell, and the cell only
@@ -506,6 +527,13 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
     // The box searched ends up holding the whole dependency ball (depends2 below, with its margin),
     // which the cell cache needs: it then knows every vertex, born or not, that could change the cell.
     const double need2 = reach2 * (1 + 2e-6);
+    if (incremental && (need2 > searched * searched || cell_.had_vertex_on_plane())) {
+      // A cell that only shrank never needs a larger box (unless by rounding); a vertex on two lines
+      // may have met them in another order than from scratch. Either way: compute it afresh.
+      --counters_.cells_updated;
+      start_afresh();
+      continue;
+    }
     if (need2 <= searched * searched) break;
     // Grow gently: the vertices found next usually shrink the cell, and with it the reach.
     searched = std::min(std::sqrt(need2) * (1 + 1e-9), 1.5 * searched);

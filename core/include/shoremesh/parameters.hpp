@@ -37,6 +37,7 @@ struct Counters {
   std::uint64_t clipped_voronoi_calls = 0;  // cells computed (searched and clipped)
   std::uint64_t cells_reused = 0;          // cells a propagation took from its cache instead
   std::uint64_t neighbourhoods_reused = 0; // cells computed from the cache's vertex lists, not a search
+  std::uint64_t cells_updated = 0;         // of those, cut from the cached cell by the new vertices only
   std::uint64_t steiner_points = 0;
   std::uint64_t predicate_calls = 0;   // sign decisions made by the filtered predicates
   std::uint64_t exact_fallbacks = 0;   // of those, decided by exact rational arithmetic
