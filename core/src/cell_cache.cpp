@@ -31,15 +31,16 @@
 // The candidate set within any box the computation reaches is then the one a search finds, and the
 // cell, the nearest neighbour (canonical in the set) and every decision are the same.
 //
-// In 2D, when the nearest neighbour is the same, the stale entry's cell is cut by the new candidates only
+// When the nearest neighbour is the same, the stale entry's cell is cut by the new candidates only
 // (those born since, and arrivals), not rebuilt: the clipping box depends on NN alone, and no earlier
 // candidate left, so the cell at t2 is the earlier polygon intersected with the new half-spaces: the
 // same polygon. An earlier candidate that did not cut then lay beyond the reach of a cell that only
-// shrank since, so it cannot cut now. Then the argument above for cells without a vertex on two lines
-// makes it the same cell bit for bit: a 2D vertex is always solved from (incoming edge, outgoing edge),
-// whatever order the lines came in. Should a new cut meet a vertex exactly, or the reach outgrow the box
-// by rounding, the cell is computed afresh. (A 3D vertex solves its planes in the order they were
-// clipped, which the distance order fixes from scratch but an incremental cut would not.)
+// shrank since, so it cannot cut now. Then the argument above for cells without a vertex on D + 1
+// planes makes it the same cell bit for bit, provided each vertex is solved from its planes in the
+// same order: a 2D vertex always takes its incoming then its outgoing edge; a 3D vertex takes its
+// planes in distance order, which a from-scratch run numbers them in and the out-of-order cuts of
+// ConvexCell keep. Should a new cut meet a vertex exactly, or the reach outgrow the box by rounding,
+// the cell is computed afresh.
 #include <algorithm>
 #include <limits>
 

@@ -82,15 +82,31 @@ std::uint16_t ConvexCell<D>::add_constraint(const Constraint<D>& c) {
   return std::uint16_t(constraints_.size() - 1);
 }
 
+// The order clipping from scratch numbers planes in: the box's planes first, then bisectors by
+// distance, ties by position.
+template <int D>
+bool ConvexCell<D>::before_in_distance_order(std::uint16_t a, std::uint16_t b) const {
+  const Constraint<D>& ca = constraints_[a];
+  const Constraint<D>& cb = constraints_[b];
+  const bool bisector_a = ca.kind == Constraint<D>::Kind::Bisector, bisector_b = cb.kind == Constraint<D>::Kind::Bisector;
+  if (bisector_a != bisector_b) return bisector_b;
+  if (!bisector_a) return a < b;
+  if (ca.order_d2 != cb.order_d2) return ca.order_d2 < cb.order_d2;
+  return ca.other_point < cb.other_point;
+}
+
 template <int D>
 typename ConvexCell<D>::Vertex ConvexCell<D>::make_vertex(const std::array<std::uint16_t, D>& planes) {
   Vertex vtx;
   vtx.planes = planes;
+  if (D == 3 && out_of_order_)
+    std::sort(vtx.planes.begin(), vtx.planes.end(),
+              [&](std::uint16_t a, std::uint16_t b) { return before_in_distance_order(a, b); });
   std::array<std::array<Interval, D>, D> n;
   std::array<Interval, D> b;
   for (int k = 0; k < D; ++k) {
-    n[k] = constraints_[planes[k]].n;
-    b[k] = constraints_[planes[k]].b;
+    n[k] = constraints_[vtx.planes[k]].n;
+    b[k] = constraints_[vtx.planes[k]].b;
   }
   vtx.y = solve(n, b);
   // Rounded upward (the caller holds a RoundingGuard): an upper bound.
@@ -135,6 +151,7 @@ template <int D>
 void ConvexCell<D>::reset(const Point<D>& v, const Point<D>& lo, const Point<D>& hi) {
   v_ = v;
   vertex_on_plane_ = false;
+  out_of_order_ = false;
   constraints_.clear();
   exact_.clear();
   verts_.clear();
@@ -174,11 +191,54 @@ void ConvexCell<D>::reset(const Point<D>& v, const Point<D>& lo, const Point<D>&
 }
 
 template <int D>
-bool ConvexCell<D>::clip(VertexId w, const Point<D>& wp) {
+void ConvexCell<D>::begin_out_of_order_cuts() {
+  out_of_order_ = true;
+}
+
+template <int D>
+void ConvexCell<D>::end_out_of_order_cuts() {
+  out_of_order_ = false;
+  if constexpr (D == 3) {
+    const std::size_t m = constraints_.size();
+    std::vector<std::uint16_t> order(m);
+    for (std::size_t k = 0; k < m; ++k) order[k] = std::uint16_t(k);
+    std::sort(order.begin(), order.end(), [&](std::uint16_t a, std::uint16_t b) { return before_in_distance_order(a, b); });
+    std::vector<std::uint16_t> renamed(m);
+    std::vector<Constraint<D>> sorted(m);
+    for (std::size_t k = 0; k < m; ++k) {
+      renamed[order[k]] = std::uint16_t(k);
+      sorted[k] = constraints_[order[k]];
+    }
+    constraints_.swap(sorted);
+    // The renaming keeps the distance order, in which every vertex already lists its planes.
+    for (Vertex& vtx : verts_)
+      for (std::uint16_t& plane : vtx.planes) plane = renamed[plane];
+    // Faces back in increasing plane order (clip_polyhedron takes a cut edge's faces in that order).
+    std::vector<std::size_t> faces(face_plane_.size());
+    for (std::size_t f = 0; f < faces.size(); ++f) faces[f] = f;
+    std::sort(faces.begin(), faces.end(), [&](std::size_t a, std::size_t b) {
+      return renamed[face_plane_[a]] < renamed[face_plane_[b]];
+    });
+    std::vector<std::uint16_t> plane(faces.size());
+    std::vector<std::uint32_t> begin(faces.size()), len(faces.size());
+    for (std::size_t k = 0; k < faces.size(); ++k) {
+      plane[k] = renamed[face_plane_[faces[k]]];
+      begin[k] = face_begin_[faces[k]];
+      len[k] = face_len_[faces[k]];
+    }
+    face_plane_.swap(plane);
+    face_begin_.swap(begin);
+    face_len_.swap(len);
+  }
+}
+
+template <int D>
+bool ConvexCell<D>::clip(VertexId w, const Point<D>& wp, double d2) {
   Constraint<D> c;
   c.kind = Constraint<D>::Kind::Bisector;
   c.other = w;
   c.other_point = wp;
+  c.order_d2 = d2;
   const std::uint16_t plane = add_constraint(c);
   if (clip_by(plane)) return true;
   constraints_.pop_back();  // did not cut: forget it (it bounds nothing)

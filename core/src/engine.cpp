@@ -493,11 +493,10 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   std::size_t next = 0;
   // With the same nearest neighbour (so the same clipping box) the earlier cell only has to be cut by
   // the vertices born since: none of the earlier candidates left, and the cut cell is the same polygon.
-  // Without a vertex on two lines at once (checked, as for caching) a polygon's vertices are each the
-  // crossing of its two edges' lines, computed from them in the same order (their order along the
-  // boundary), so it is the same cell bit for bit as clipping from scratch (cell_cache.cpp). Not in 3D:
-  // there a vertex solves its three planes in the order they were clipped, which this would change.
-  bool incremental = D == 2 && earlier != nullptr && hood_.nearest == earlier->nearest;
+  // Without a vertex on D + 1 planes at once (checked, as for caching) each vertex of it is solved from
+  // the same D planes in the same order as from scratch (ConvexCell::begin_out_of_order_cuts), so it
+  // is the same cell bit for bit (cell_cache.cpp).
+  bool incremental = earlier != nullptr && hood_.nearest == earlier->nearest;
   auto start_afresh = [&] {
     incremental = false;
     cell_.reset(p, cube_lo, cube_hi);
@@ -505,6 +504,7 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   };
   if (incremental) {
     cell_.assign_geometry(earlier->cell);
+    cell_.begin_out_of_order_cuts();
     next = known;
     ++counters_.cells_updated;
   } else {
@@ -520,7 +520,7 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
     const std::size_t sorted_end = std::size_t(sorted - pool.begin());
     while (next < sorted_end && pool[next].d2 <= std::min(reach2, searched * searched)) {
       ++counters_.clips;
-      if (cell_.clip(pool[next].id, pool[next].position))
+      if (cell_.clip(pool[next].id, pool[next].position, pool[next].d2))
         reach2 = std::min(4 * cell_.max_vertex_distance2() * (1 + 1e-9), cap2);
       ++next;
     }
@@ -534,7 +534,10 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
       start_afresh();
       continue;
     }
-    if (need2 <= searched * searched) break;
+    if (need2 <= searched * searched) {
+      if (incremental) cell_.end_out_of_order_cuts();
+      break;
+    }
     // Grow gently: the vertices found next usually shrink the cell, and with it the reach.
     searched = std::min(std::sqrt(need2) * (1 + 1e-9), 1.5 * searched);
     search(searched);
@@ -641,7 +644,7 @@ void WellSpacedEngine<D>::fill(OpId o) {
       stash_.pop_back();
       const VertexId id = ops_[d].vertex;
       children_.push_back(d);
-      cell_.clip(id, w);
+      cell_.clip(id, w, squared_distance(v, id));
       hood_.candidates.push_back({squared_distance(v, id), id, w});
       continue;
     }
@@ -659,7 +662,7 @@ void WellSpacedEngine<D>::fill(OpId o) {
     vertices_[id].dispatch = d;
     children_.push_back(d);
     mark_fresh(d);
-    cell_.clip(id, w);
+    cell_.clip(id, w, squared_distance(v, id));
     hood_.candidates.push_back({squared_distance(v, id), id, w});
   }
   ops_[o].children_end = std::uint32_t(children_.size());

@@ -2,6 +2,9 @@
 // with the diagonal neighbours' bisectors passing exactly through its corners and adding nothing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <vector>
+
 #include "shoremesh/engine/convex_cell.hpp"
 
 namespace shoremesh::engine {
@@ -15,7 +18,7 @@ TEST(ConvexCell, GridPointCellIsASquare2D) {
   VertexId id = 0;
   for (int dx = -1; dx <= 1; ++dx)
     for (int dy = -1; dy <= 1; ++dy)
-      if (dx || dy) cell.clip(id++, {0.5 + 0.125 * dx, 0.5 + 0.125 * dy});
+      if (dx || dy) cell.clip(id++, {0.5 + 0.125 * dx, 0.5 + 0.125 * dy}, 0.015625 * (dx * dx + dy * dy));
   EXPECT_EQ(cell.vertex_count(), 4u);
   std::vector<VertexId> nb;
   cell.bisector_neighbours(nb);
@@ -35,7 +38,8 @@ TEST(ConvexCell, GridPointCellIsACube3D) {
   for (int dx = -1; dx <= 1; ++dx)
     for (int dy = -1; dy <= 1; ++dy)
       for (int dz = -1; dz <= 1; ++dz)
-        if (dx || dy || dz) cell.clip(id++, {0.5 + 0.125 * dx, 0.5 + 0.125 * dy, 0.5 + 0.125 * dz});
+        if (dx || dy || dz)
+          cell.clip(id++, {0.5 + 0.125 * dx, 0.5 + 0.125 * dy, 0.5 + 0.125 * dz}, 0.015625 * (dx * dx + dy * dy + dz * dz));
   EXPECT_EQ(cell.vertex_count(), 8u);
   std::vector<VertexId> nb;
   cell.bisector_neighbours(nb);
@@ -58,7 +62,7 @@ TEST(ConvexCell, RandomCellVerticesAreEquidistantFromTheirSites3D) {
   for (VertexId id = 0; id < 60; ++id) {
     Point<3> w{0.2 + 0.6 * rnd(), 0.2 + 0.6 * rnd(), 0.2 + 0.6 * rnd()};
     sites.push_back(w);
-    cell.clip(id, w);
+    cell.clip(id, w, squared_distance<double, 3>(w, v));
   }
   // The farthest vertex c of the cell: no site is nearer to c than v (up to rounding of c).
   Point<3> y = cell.farthest_vertex_offset();
@@ -68,6 +72,77 @@ TEST(ConvexCell, RandomCellVerticesAreEquidistantFromTheirSites3D) {
   };
   for (const auto& w : sites) EXPECT_GE(d2(c, w), d2(c, v) * (1 - 1e-9));
   EXPECT_GE(cell.vertex_count(), 4u);
+}
+
+// A cell cut by some sites in distance order, then by the others in any order between
+// begin_out_of_order_cuts and end_out_of_order_cuts, is the cell all sites cut in distance order give,
+// bit for bit: how the engine brings a cached cell up to date with the vertices born since.
+template <int D>
+void out_of_order_cuts_equal_distance_order(std::uint64_t seed) {
+  RoundingGuard guard;
+  std::uint64_t x = seed;
+  auto rnd = [&] {
+    x = x * 6364136223846793005ull + 1442695040888963407ull;
+    return double(x >> 11) * 0x1p-53;
+  };
+  Point<D> v, lo, hi;
+  for (int i = 0; i < D; ++i) {
+    v[i] = 0.5;
+    lo[i] = 0.3;
+    hi[i] = 0.7;
+  }
+  struct Site {
+    double d2;
+    Point<D> p;
+    VertexId id;
+  };
+  std::vector<Site> sites;
+  for (VertexId id = 0; id < 80; ++id) {
+    Point<D> w;
+    for (int i = 0; i < D; ++i) w[i] = 0.3 + 0.4 * rnd();
+    sites.push_back({squared_distance<double, D>(w, v), w, id});
+  }
+  std::vector<Site> later;  // every third site comes "later", in random order
+  std::vector<Site> first;
+  for (const Site& s : sites) (s.id % 3 == 0 ? later : first).push_back(s);
+  auto by_distance = [](const Site& a, const Site& b) { return a.d2 != b.d2 ? a.d2 < b.d2 : a.p < b.p; };
+  std::sort(sites.begin(), sites.end(), by_distance);
+  std::sort(first.begin(), first.end(), by_distance);
+
+  ConvexCell<D> fresh, updated;
+  fresh.reset(v, lo, hi);
+  for (const Site& s : sites) fresh.clip(s.id, s.p, s.d2);
+  updated.reset(v, lo, hi);
+  for (const Site& s : first) updated.clip(s.id, s.p, s.d2);
+  updated.begin_out_of_order_cuts();
+  for (const Site& s : later) updated.clip(s.id, s.p, s.d2);
+  updated.end_out_of_order_cuts();
+
+  ASSERT_FALSE(fresh.had_vertex_on_plane());
+  EXPECT_EQ(updated.vertex_count(), fresh.vertex_count());
+  EXPECT_EQ(updated.max_vertex_distance2(), fresh.max_vertex_distance2());
+  EXPECT_EQ(updated.farthest_vertex_offset(), fresh.farthest_vertex_offset());
+  std::vector<VertexId> a, b;
+  updated.bisector_neighbours(a);
+  fresh.bisector_neighbours(b);
+  EXPECT_EQ(a, b);
+  // Cut further in distance order afterwards (a fill's Steiner points), both stay the same.
+  const Point<D> extra = sites.front().p;
+  Point<D> w;
+  for (int i = 0; i < D; ++i) w[i] = 0.5 * (v[i] + extra[i]) + 0.01;
+  updated.clip(1000, w, squared_distance<double, D>(w, v));
+  fresh.clip(1000, w, squared_distance<double, D>(w, v));
+  EXPECT_EQ(updated.vertex_count(), fresh.vertex_count());
+  EXPECT_EQ(updated.farthest_vertex_offset(), fresh.farthest_vertex_offset());
+  EXPECT_EQ(updated.max_vertex_distance2(), fresh.max_vertex_distance2());
+}
+
+TEST(ConvexCell, OutOfOrderCutsEqualDistanceOrder2D) {
+  for (std::uint64_t seed : {1, 2, 3, 4, 5}) out_of_order_cuts_equal_distance_order<2>(seed);
+}
+
+TEST(ConvexCell, OutOfOrderCutsEqualDistanceOrder3D) {
+  for (std::uint64_t seed : {1, 2, 3, 4, 5}) out_of_order_cuts_equal_distance_order<3>(seed);
 }
 
 }  // namespace

@@ -24,6 +24,7 @@ struct Constraint {
   double value = 0;
   VertexId other = kNoVertex;  // Bisector: the vertex whose bisector with v this is
   Point<D> other_point{};
+  double order_d2 = 0;         // Bisector: |other - v|^2 as the engine orders its candidates
   std::array<Interval, D> n{};
   Interval b{};
 };
@@ -33,8 +34,17 @@ class ConvexCell {
  public:
   // The box [lo, hi] around v (v inside it). Call under a RoundingGuard, like every other member.
   void reset(const Point<D>& v, const Point<D>& lo, const Point<D>& hi);
-  // Cuts by the bisector of v and w. Returns whether any part of the cell was cut away.
-  bool clip(VertexId w, const Point<D>& wp);
+  // Cuts by the bisector of v and w (d2: |w - v|^2 as the caller orders its candidates, ties by
+  // position). Returns whether any part of the cell was cut away.
+  bool clip(VertexId w, const Point<D>& wp, double d2);
+  // Cuts between these two calls may come out of distance order (a cached cell cut by vertices born
+  // since). In 3D a vertex solves its three planes in plane order, and planes are numbered in the
+  // order they cut, which from scratch is distance order: meanwhile new vertices order their planes
+  // by distance instead, and the second call numbers all planes by distance. The cell is then what
+  // cutting in distance order gives, bit for bit (when no cut met a vertex on its plane). No-ops in 2D,
+  // where a vertex solves its incoming then its outgoing edge, whatever order they came in.
+  void begin_out_of_order_cuts();
+  void end_out_of_order_cuts();
 
   // Whether every vertex c of the cell has |c - v|^2 <= k |u - v|^2 (exact): v is rho-well-spaced with
   // k = rho^2 and u its nearest neighbour.
@@ -81,6 +91,7 @@ class ConvexCell {
     std::uint32_t from, to;
   };
   std::uint16_t add_constraint(const Constraint<D>& c);
+  bool before_in_distance_order(std::uint16_t a, std::uint16_t b) const;
   Vertex make_vertex(const std::array<std::uint16_t, D>& planes);
   const std::array<Exact, D>& exact_position(Vertex& vtx);
   int side(Vertex& vtx, std::uint16_t plane);  // sign of n.y - b: > 0 outside
@@ -96,6 +107,7 @@ class ConvexCell {
   std::vector<Vertex> verts_, next_verts_;
   std::size_t live_vertices_ = 0;
   bool vertex_on_plane_ = false;
+  bool out_of_order_ = false;  // between begin_ and end_out_of_order_cuts
   std::vector<std::int8_t> signs_;
   // 2D: edges_[i] is the constraint of the edge from vertex i to vertex i+1.
   std::vector<std::uint16_t> edges_, next_edges_;
