@@ -34,8 +34,8 @@
 // When the nearest neighbour is the same, the stale entry's cell is cut by the new candidates only
 // (those born since, and arrivals), not rebuilt: the clipping box depends on NN alone, and no earlier
 // candidate left, so the cell at t2 is the earlier polygon intersected with the new half-spaces: the
-// same polygon. An earlier candidate that did not cut then lay beyond the reach of a cell that only
-// shrank since, so it cannot cut now. Then the argument above for cells without a vertex on D + 1
+// same polygon. An earlier candidate that did not cut then (its half-space held the cell, or it lay
+// beyond the cell's reach) cannot cut the cell now, which only shrank since. Then the argument above for cells without a vertex on D + 1
 // planes makes it the same cell bit for bit, provided each vertex is solved from its planes in the
 // same order: a 2D vertex always takes its incoming then its outgoing edge; a 3D vertex takes its
 // planes in distance order, which a from-scratch run numbers them in and the out-of-order cuts of
