@@ -67,16 +67,20 @@ inline int semi_static_sign(double p, double q) {
   return kUndecided;
 }
 
+// The same, after the semi-static stage: its sign when it decided, else the filtered one.
+template <class F>
+int filtered_sign(PredicateCounters& counters, int semi_static, F&& f) {
+  if (semi_static == kUndecided) return filtered_sign(counters, f);
+  ++counters.calls;
+  return semi_static;
+}
+
 // sign(|a-b|^2 - |c-d|^2), exact.
 template <int D>
 int compare_squared_distances(PredicateCounters& counters, const Point<D>& a, const Point<D>& b, const Point<D>& c,
                               const Point<D>& d) {
   const int fast = semi_static_sign(squared_distance<double, D>(a, b), squared_distance<double, D>(c, d));
-  if (fast != kUndecided) {
-    ++counters.calls;
-    return fast;
-  }
-  return filtered_sign(counters, [&](auto zero) {
+  return filtered_sign(counters, fast, [&](auto zero) {
     using NT = decltype(zero);
     return squared_distance<NT, D>(a, b) - squared_distance<NT, D>(c, d);
   });
@@ -88,11 +92,7 @@ int compare_squared_distance_scaled(PredicateCounters& counters, const Point<D>&
                                     const Point<D>& c, const Point<D>& d) {
   const int fast = k >= 0 ? semi_static_sign(squared_distance<double, D>(a, b), k * squared_distance<double, D>(c, d))
                           : kUndecided;
-  if (fast != kUndecided) {
-    ++counters.calls;
-    return fast;
-  }
-  return filtered_sign(counters, [&](auto zero) {
+  return filtered_sign(counters, fast, [&](auto zero) {
     using NT = decltype(zero);
     return squared_distance<NT, D>(a, b) - NT(k) * squared_distance<NT, D>(c, d);
   });
@@ -102,11 +102,7 @@ int compare_squared_distance_scaled(PredicateCounters& counters, const Point<D>&
 template <int D>
 int compare_squared_distance_to(PredicateCounters& counters, const Point<D>& a, const Point<D>& b, double t) {
   const int fast = t >= 0 ? semi_static_sign(squared_distance<double, D>(a, b), t) : kUndecided;
-  if (fast != kUndecided) {
-    ++counters.calls;
-    return fast;
-  }
-  return filtered_sign(counters, [&](auto zero) {
+  return filtered_sign(counters, fast, [&](auto zero) {
     using NT = decltype(zero);
     return squared_distance<NT, D>(a, b) - NT(t);
   });
