@@ -18,6 +18,8 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "shoremesh/engine/cell_map.hpp"
@@ -146,10 +148,9 @@ class Quadtree {
     const Node& nd = nodes_[leaf];
     const double scale = power_of_two(nd.level);
     for (int i = 0; i < D; ++i) {
+      const auto [first, last] = meeting_cells(center[i] - half, center[i] + half, scale);
       const auto c = std::int64_t(nd.coords[i]);
-      if (c < ceil_to_int(std::clamp(center[i] - half, -1.0, 2.0) * scale) - 1 ||
-          c > floor_to_int(std::clamp(center[i] + half, -1.0, 2.0) * scale))
-        return false;
+      if (c < first || c > last) return false;
     }
     return true;
   }
@@ -168,6 +169,13 @@ class Quadtree {
   void check_valid(std::span<const Point<D>> positions) const;
 
   static Coords cell_of(const Point<D>& p, int level);
+  // Along one axis, at the level of cells 1 / scale wide: the indices j whose closed cell
+  // [j, j + 1] / scale meets [lo, hi]. Scaling by a power of two, floor and ceil are exact, so this equals
+  // the test on the boxes. The interval may be empty (lo > hi) or reach outside the unit box: it is
+  // clamped first.
+  static std::pair<std::int64_t, std::int64_t> meeting_cells(double lo, double hi, double scale) {
+    return {ceil_to_int(std::clamp(lo, -1.0, 2.0) * scale) - 1, floor_to_int(std::clamp(hi, -1.0, 2.0) * scale)};
+  }
 
  private:
   NodeId new_node(NodeId parent, int level, const Coords& coords);
@@ -235,12 +243,8 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
     Ranges& r = ranges[std::size_t(l)];
     const double scale = power_of_two(l);
     for (int i = 0; i < D; ++i) {
-      r.meet_lo[i] = ceil_to_int(lo[i] * scale) - 1;
-      r.meet_hi[i] = floor_to_int(hi[i] * scale);
-      // `seen` may be empty (lo > hi) or reach outside the unit box: clamp before converting.
-      const double slo = std::clamp(seen.lo[i], -1.0, 2.0) * scale, shi = std::clamp(seen.hi[i], -1.0, 2.0) * scale;
-      r.seen_lo[i] = ceil_to_int(slo) - 1;
-      r.seen_hi[i] = floor_to_int(shi);
+      std::tie(r.meet_lo[i], r.meet_hi[i]) = meeting_cells(lo[i], hi[i], scale);
+      std::tie(r.seen_lo[i], r.seen_hi[i]) = meeting_cells(seen.lo[i], seen.hi[i], scale);
       r.in_lo[i] = r.seen_lo[i] + 1;
       r.in_hi[i] = r.seen_hi[i] - 1;
     }
@@ -273,9 +277,9 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
   Item stack[kMaxLevel * kChildren + 8];
   // From the first cell whose closed box meets the box: when lo lies exactly on a cell boundary, the
   // cell below it touches the box too, and its leaves count as seen in the next, larger search.
-  Coords first = cell_of(lo, level);
-  const Coords last = cell_of(hi, level);
+  Coords first;
   for (int i = 0; i < D; ++i) first[i] = std::uint64_t(std::max<std::int64_t>(0, ranges_at(level).meet_lo[i]));
+  const Coords last = cell_of(hi, level);
   for_each_index_in_box<D>(first, last, [&](const Coords& cell) {
     std::array<std::int64_t, D> ci;
     for (int i = 0; i < D; ++i) ci[i] = std::int64_t(cell[i]);
