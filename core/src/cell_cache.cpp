@@ -35,9 +35,9 @@
 // (those born since, and arrivals), not rebuilt: the clipping box depends on NN alone, and no earlier
 // candidate left, so the cell at t2 is the earlier polygon intersected with the new half-spaces: the
 // same polygon. An earlier candidate that did not cut then (its half-space held the cell, or it lay
-// beyond the cell's reach) cannot cut the cell now, which only shrank since. Then the argument above for cells without a vertex on D + 1
-// planes makes it the same cell bit for bit, provided each vertex is solved from its planes in the
-// same order: a 2D vertex always takes its incoming then its outgoing edge; a 3D vertex takes its
+// beyond the cell's reach) cannot cut the cell now, which only shrank since. Then the argument above
+// for cells without a vertex on D + 1 planes makes it the same cell bit for bit, provided each vertex
+// is solved from its planes in the same order: a 2D vertex always takes its incoming then its outgoing edge; a 3D vertex takes its
 // planes in distance order, which a from-scratch run numbers them in and the out-of-order cuts of
 // ConvexCell keep. Should a new cut meet a vertex exactly, or the reach outgrow the box by rounding,
 // the cell is computed afresh.
@@ -59,11 +59,8 @@ typename WellSpacedEngine<D>::CacheSlot& WellSpacedEngine<D>::cache_slot(VertexI
 }
 
 template <int D>
-bool WellSpacedEngine<D>::reuse_cell(OpId o, VertexId v, const Point<D>& p, std::uint64_t now) {
-  const CacheSlot& slot = cache_slot(v);
-  if (slot.vertex != v) return false;
-  const CachedCell& c = cell_cache_[slot.entry];
-  if (c.position != p || now >= c.valid_until) return false;
+bool WellSpacedEngine<D>::reuse_cell(OpId o, const CachedCell& c, std::uint64_t now) {
+  if (now >= c.valid_until) return false;
   ++counters_.cells_reused;
   cell_.assign_geometry(c.cell);
   hood_.nearest = c.nearest;
@@ -142,8 +139,8 @@ void WellSpacedEngine<D>::clear_cell_cache() {
   }
 }
 
-template bool WellSpacedEngine<2>::reuse_cell(OpId, VertexId, const Point<2>&, std::uint64_t);
-template bool WellSpacedEngine<3>::reuse_cell(OpId, VertexId, const Point<3>&, std::uint64_t);
+template bool WellSpacedEngine<2>::reuse_cell(OpId, const CachedCell&, std::uint64_t);
+template bool WellSpacedEngine<3>::reuse_cell(OpId, const CachedCell&, std::uint64_t);
 template void WellSpacedEngine<2>::store_cell(OpId, VertexId, const Point<2>&, double);
 template void WellSpacedEngine<3>::store_cell(OpId, VertexId, const Point<3>&, double);
 template void WellSpacedEngine<2>::forget_cell(VertexId);

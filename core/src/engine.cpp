@@ -374,7 +374,10 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   const Point<D> p = positions_[v];
   // Only vertices born before this operation's time exist for it (M_t).
   const std::uint64_t now = time_key(ops_[o].rank, ops_[o].color);
-  if (caching_ && reuse_cell(o, v, p, now)) return;
+  // v's cell computed earlier in this propagation, if any: taken as it is when it still holds, else
+  // the vertices its entry lists spare the search (below).
+  const CachedCell* earlier = caching_ ? cached_neighbourhood(v, p) : nullptr;
+  if (earlier && reuse_cell(o, *earlier, now)) return;
   ++counters_.clipped_voronoi_calls;
   unborn_.clear();
   PredicateCounters& pc = cell_.counters();
@@ -441,11 +444,9 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   // more leaves than it saved: that cell is stale because a vertex came near, so it shrank.)
   const double previous2 = ops_[o].depends2;
   if (previous2 > half * half && previous2 < 16 * half * half) half = std::sqrt(previous2) * (1 + 1e-6);
-  // v's cell was computed earlier in this propagation (its cache entry is stale, or reuse_cell took
-  // it): the entry lists what the leaves of its box held then and what arrived there since, which is
-  // what they hold now, as a search would find it (cell_cache.cpp). Only growing that box searches.
-  bool searched_already = false;
-  const CachedCell* earlier = caching_ ? cached_neighbourhood(v, p) : nullptr;
+  // With a stale entry (its cell computed earlier in this propagation): it lists what the leaves of
+  // its box held then and what arrived there since, which is what they hold now, as a search would
+  // find it (cell_cache.cpp). Only growing that box searches.
   std::size_t known = 0;  // pool[0, known): the candidates earlier->cell was computed from
   if (earlier) {
     for (const Candidate& c : earlier->candidates) offer(c.id, c.position, c.d2);
@@ -455,15 +456,13 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
         if (vertices_[u.id].alive) consider(u.id, u.position, u.birth);
     half = earlier->searched;
     seen = box_of(half);
-    searched_already = true;
     ++counters_.neighbourhoods_reused;
+  } else {
+    search(half);
   }
-  for (;;) {
-    if (!searched_already) search(half);
-    searched_already = false;
-    if (hood_.nearest != kNoVertex && best_d2 <= half * half * (1 - 1e-9)) break;
-    if (half >= 2.0) break;  // the box covers [0,1]^D
-    half *= 2;
+  while (!(hood_.nearest != kNoVertex && best_d2 <= half * half * (1 - 1e-9)) && half < 2.0) {
+    half *= 2;  // until the box covers [0,1]^D
+    search(half);
   }
   if (hood_.nearest == kNoVertex) {
     if (caching_) forget_cell(v);
@@ -528,8 +527,8 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
     // which the cell cache needs: it then knows every vertex, born or not, that could change the cell.
     const double need2 = reach2 * (1 + 2e-6);
     if (incremental && (need2 > searched * searched || cell_.had_vertex_on_plane())) {
-      // A cell that only shrank never needs a larger box (unless by rounding); a vertex on two lines
-      // may have met them in another order than from scratch. Either way: compute it afresh.
+      // A cell that only shrank never needs a larger box (unless by rounding); a vertex on D + 1
+      // planes may have met them in another order than from scratch. Either way: compute it afresh.
       --counters_.cells_updated;
       start_afresh();
       continue;
@@ -644,8 +643,9 @@ void WellSpacedEngine<D>::fill(OpId o) {
       stash_.pop_back();
       const VertexId id = ops_[d].vertex;
       children_.push_back(d);
-      cell_.clip(id, w, squared_distance(v, id));
-      hood_.candidates.push_back({squared_distance(v, id), id, w});
+      const double d2 = squared_distance(v, id);
+      cell_.clip(id, w, d2);
+      hood_.candidates.push_back({d2, id, w});
       continue;
     }
     const VertexId id = new_vertex(w);
@@ -662,8 +662,9 @@ void WellSpacedEngine<D>::fill(OpId o) {
     vertices_[id].dispatch = d;
     children_.push_back(d);
     mark_fresh(d);
-    cell_.clip(id, w, squared_distance(v, id));
-    hood_.candidates.push_back({squared_distance(v, id), id, w});
+    const double d2 = squared_distance(v, id);
+    cell_.clip(id, w, d2);
+    hood_.candidates.push_back({d2, id, w});
   }
   ops_[o].children_end = std::uint32_t(children_.size());
   // v was already well-spaced: a vertex inserted farther than NN(v) leaves NN(v) and the clipping cube

@@ -171,10 +171,11 @@ class WellSpacedEngine {
   void record_reads(OpId o, const Point<D>& p, double h);
   void register_reads(OpId o, std::span<const NodeId> nodes);
   // The cell cache of one propagation (cell_cache.cpp has the argument why reuse equals recomputing).
-  bool reuse_cell(OpId o, VertexId v, const Point<D>& p, std::uint64_t now);
   struct CachedCell;
-  // v's entry, stale or not: what the leaves around v held when its cell was last computed.
+  // v's entry, stale or not: its last cell, and what the leaves around v held when it was computed.
   const CachedCell* cached_neighbourhood(VertexId v, const Point<D>& p);
+  // Takes v's cell from its entry c for op o at time now, if the entry still holds then.
+  bool reuse_cell(OpId o, const CachedCell& c, std::uint64_t now);
   void store_cell(OpId o, VertexId v, const Point<D>& p, double searched);
   void forget_cell(VertexId v);
   // A fill just inserted vertex w at q: the cells it may change are stale, and the entries whose box
@@ -259,7 +260,7 @@ class WellSpacedEngine {
   static constexpr int kCacheTableBits = 11;  // 2048 slots: at most half full (kMaxCachedCells)
   std::vector<CacheSlot> cache_table_;
   CacheSlot& cache_slot(VertexId v);
-  std::vector<TimedVertex> unborn_;            // scratch: vertices a search skipped as born at or after now
+  std::vector<TimedVertex> unborn_;       // scratch: vertices a search skipped as born at or after now
   std::vector<VertexId> neighbours_;
   std::vector<NodeId> covering_;
   std::vector<OpId> stash_;
