@@ -185,12 +185,12 @@ template <int D>
 void WellSpacedEngine<D>::mark_readers_at(VertexId w, const Point<D>& p, NodeId leaf, VertexChange change, int rank,
                                           std::uint32_t color) {
   const bool inserted = change == VertexChange::Inserted;
-  const std::uint64_t bit = facet_bit(w);
+  const auto bits = engine::FacetFilter<D>::of(w);
   for (NodeId n = leaf; n != kNoNode; n = tree_.node(n).parent)
     for (OpId o : readers_[n]) {
       const Op& op = ops_[o];
       if (op.rank < rank || (op.rank == rank && op.color <= color)) continue;
-      if (!inserted && !(op.facet_mask & bit)) continue;
+      if (!inserted && !op.facets.may_hold(bits)) continue;
       const Point<D>& c = positions_[op.vertex];
       double d2 = 0;
       for (int i = 0; i < D; ++i) d2 += (p[i] - c[i]) * (p[i] - c[i]);
@@ -200,9 +200,9 @@ void WellSpacedEngine<D>::mark_readers_at(VertexId w, const Point<D>& p, NodeId 
 
 template <int D>
 void WellSpacedEngine<D>::record_facets(OpId o) {
-  std::uint64_t mask = facet_bit(hood_.nearest);
-  for (VertexId w : neighbours_) mask |= facet_bit(w);
-  ops_[o].facet_mask = mask;
+  auto facets = engine::FacetFilter<D>::of(hood_.nearest);
+  for (VertexId w : neighbours_) facets.add(engine::FacetFilter<D>::of(w));
+  ops_[o].facets = facets;
 }
 
 template <int D>
@@ -370,7 +370,7 @@ void WellSpacedEngine<D>::compact_pools() {
 
 template <int D>
 void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
-  ops_[o].facet_mask = ~std::uint64_t(0);
+  ops_[o].facets = engine::FacetFilter<D>::everything();
   const Point<D> p = positions_[v];
   // Only vertices born before this operation's time exist for it (M_t).
   const std::uint64_t now = time_key(ops_[o].rank, ops_[o].color);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "shoremesh/engine/convex_cell.hpp"
+#include "shoremesh/engine/facet_filter.hpp"
 #include "shoremesh/engine/ids.hpp"
 #include "shoremesh/engine/quadtree.hpp"
 #include "shoremesh/engine/rank_scale.hpp"
@@ -66,8 +67,8 @@ class WellSpacedEngine {
     // Floats rounded up (see at_least): a radius only ever errs on the side of a rerun.
     float depends2 = 0;
     float inserted_depends2 = 0;
-    // Removing a vertex matters only if it bounds the cell (see facet_bit); all ones: any vertex.
-    std::uint64_t facet_mask = ~std::uint64_t(0);
+    // Removing a vertex matters only if it bounds the cell (facet_filter.hpp); everything: any vertex.
+    engine::FacetFilter<D> facets = engine::FacetFilter<D>::everything();
   };
 
   // One edit for apply(): add a point (id returned) or remove an input vertex.
@@ -152,7 +153,6 @@ class WellSpacedEngine {
   // Dispatches and fills that insert nothing decide from v's nearest neighbour and the set of vertices
   // whose bisectors bound v's cell: removing any other vertex leaves the cell and the decision as they
   // were. That set is kept as a 64-bit Bloom mask of vertex ids (false positives only cost a rerun).
-  static std::uint64_t facet_bit(VertexId w) { return std::uint64_t(1) << ((w * 0x9E3779B97F4A7C15ull) >> 58); }
   void record_facets(OpId o);
   void mark_all_readers(NodeId n);
   void propagate(PropagationStats* stats);
