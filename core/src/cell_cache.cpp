@@ -67,6 +67,7 @@ bool WellSpacedEngine<D>::reuse_cell(OpId o, const CachedCell& c, std::uint64_t 
   hood_.candidates = c.candidates;
   register_reads(o, c.covering);
   ops_[o].depends2 = ops_[o].inserted_depends2 = c.depends2;
+  ops_[o].reach = c.reach;
   return true;
 }
 
@@ -100,6 +101,7 @@ void WellSpacedEngine<D>::store_cell(OpId o, VertexId v, const Point<D>& p, doub
     if (engine::squared_distance<double, D>(u.position, p) <= double(depends2))
       c.valid_until = std::min(c.valid_until, u.birth);
   c.depends2 = depends2;
+  c.reach = ops_[o].reach;
   c.covering = covering_;  // record_reads(o, p, searched) just left them there
   c.nearest = hood_.nearest;
   c.searched = searched;

@@ -194,7 +194,13 @@ void WellSpacedEngine<D>::mark_readers_at(VertexId w, const Point<D>& p, NodeId 
       const Point<D>& c = positions_[op.vertex];
       double d2 = 0;
       for (int i = 0; i < D; ++i) d2 += (p[i] - c[i]) * (p[i] - c[i]);
-      if (d2 <= (inserted ? op.inserted_depends2 : op.depends2)) mark_redo(o);
+      if (d2 > (inserted ? op.inserted_depends2 : op.depends2)) continue;
+      if (inserted) {
+        Point<D> d;
+        for (int i = 0; i < D; ++i) d[i] = p[i] - c[i];
+        if (!op.reach.may_be_cut_by(d)) continue;
+      }
+      mark_redo(o);
     }
 }
 
@@ -371,6 +377,7 @@ void WellSpacedEngine<D>::compact_pools() {
 template <int D>
 void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   ops_[o].facets = engine::FacetFilter<D>::everything();
+  ops_[o].reach = engine::CellReach<D>::unbounded();
   const Point<D> p = positions_[v];
   // Only vertices born before this operation's time exist for it (M_t).
   const std::uint64_t now = time_key(ops_[o].rank, ops_[o].color);
@@ -546,6 +553,7 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   // one within 2 x the cell's reach (capped at 2 beta NN), or within NN. A little margin on the rounding.
   const double reach2 = std::min(4 * cell_.max_vertex_distance2(), cap2);
   ops_[o].depends2 = ops_[o].inserted_depends2 = at_least(std::max(reach2, best_d2) * (1 + 1e-6));
+  ops_[o].reach = engine::CellReach<D>::of([&](auto&& f) { cell_.for_each_vertex_box(f); });
   if (caching_) store_cell(o, v, p, searched);
 }
 

@@ -51,6 +51,12 @@ class ConvexCell {
   bool within_scaled_distance(double k, const Point<D>& u);
   // The vertex farthest from v (by interval midpoints; ties by coordinates): where Steiner points aim.
   Point<D> farthest_vertex_offset() const;
+  // Calls f(y) for every vertex of the cell, y: its position relative to v, enclosed in intervals.
+  template <class F>
+  void for_each_vertex_box(F&& f) const {
+    for (const Vertex& vtx : verts_)
+      if (vtx.alive) f(vtx.y);
+  }
   // Vertices w whose bisector bounds the cell (the clipped Voronoi neighbours found so far).
   void bisector_neighbours(std::vector<VertexId>& out) const;
 

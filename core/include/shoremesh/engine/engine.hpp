@@ -11,6 +11,7 @@
 #include <tuple>
 #include <vector>
 
+#include "shoremesh/engine/cell_reach.hpp"
 #include "shoremesh/engine/convex_cell.hpp"
 #include "shoremesh/engine/facet_filter.hpp"
 #include "shoremesh/engine/ids.hpp"
@@ -69,6 +70,8 @@ class WellSpacedEngine {
     float inserted_depends2 = 0;
     // Removing a vertex matters only if it bounds the cell (facet_filter.hpp); everything: any vertex.
     engine::FacetFilter<D> facets = engine::FacetFilter<D>::everything();
+    // Inserting a vertex within inserted_depends2 matters only if it can cut the cell (cell_reach.hpp).
+    engine::CellReach<D> reach = engine::CellReach<D>::unbounded();
   };
 
   // One edit for apply(): add a point (id returned) or remove an input vertex.
@@ -232,6 +235,7 @@ class WellSpacedEngine {
     // (or its own vertex died): it holds no more.
     std::uint64_t valid_until = 0;
     float depends2 = 0;
+    engine::CellReach<D> reach;
     // The nodes its operation read (covering the box it searched): the tree's shape does not change
     // during a propagation (Steiner vertices only enter and leave leaves), so they stay the same.
     std::vector<NodeId> covering;
