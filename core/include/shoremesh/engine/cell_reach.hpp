@@ -11,7 +11,7 @@
 //   d = (a1 - a2) s1 e_i1 + (a2 - a3) (s1 e_i1 + s2 e_i2) + a3 (s1 e_i1 + s2 e_i2 + s3 e_i3),
 // and h is sublinear (h(x + y) <= h(x) + h(y), h(l x) = l h(x) for l >= 0), so the same combination of
 // the kept values bounds h(d) from above. A round cell's bound is within about 8 % (2D) of h.
-// The values are stored in a byte each, rounded up in units of the largest: 12 bytes in 2D, 30 in 3D.
+// The values are stored in a byte each, rounded up in units of the largest: 13 bytes in 2D, 31 in 3D.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -26,7 +26,9 @@ namespace shoremesh::engine {
 template <int D>
 class CellReach {
  public:
-  static constexpr int kDirections = D == 2 ? 8 : 26;
+  // Direction u is kept at code sum (u_i + 1) 3^i; the zero vector's slot (h = 0) is kept too, so that
+  // the codes need no renumbering.
+  static constexpr int kCodes = D == 2 ? 9 : 27;
 
   // A cell of unknown shape: every vertex may cut it.
   static CellReach unbounded() { return CellReach{}; }
@@ -35,17 +37,23 @@ class CellReach {
   // calls f(const std::array<Interval, D>&) once per vertex. Under a RoundingGuard (upward rounding).
   template <class ForEachVertex>
   static CellReach of(ForEachVertex&& for_each_vertex) {
-    std::array<double, kDirections> h;
+    std::array<double, kCodes> h;
     h.fill(-std::numeric_limits<double>::infinity());
     for_each_vertex([&](const std::array<Interval, D>& y) {
-      for (int k = 0; k < kDirections; ++k) {
-        const auto u = direction(k);
-        double s = 0;  // y.u rounded up: the sup of y_i where u_i = 1, minus the inf where u_i = -1
-        for (int i = 0; i < D; ++i)
-          if (u[i] > 0) s += y[i].sup();
-          else if (u[i] < 0) s -= y[i].inf();
-        h[k] = std::max(h[k], s);
+      // y.u rounded up for every u, axis by axis: the codes of the first i axes, then each of them
+      // with u_i = -1 (minus inf y_i), 0, +1 (plus sup y_i).
+      std::array<double, kCodes> s;
+      s[0] = 0;
+      int size = 1;
+      for (int i = 0; i < D; ++i) {
+        for (int c = 0; c < size; ++c) {
+          s[size + c] = s[c];
+          s[2 * size + c] = s[c] + y[i].sup();
+          s[c] -= y[i].inf();
+        }
+        size *= 3;
       }
+      for (int k = 0; k < kCodes; ++k) h[k] = std::max(h[k], s[k]);
     });
     CellReach r;
     double largest = 0;
@@ -54,7 +62,7 @@ class CellReach {
     // One unit of the scale, rounded up, and every value rounded up in it (upward rounding is on).
     r.unit_ = float(largest / 254.0);
     if (double(r.unit_) * 254.0 < largest) r.unit_ = std::nextafter(r.unit_, std::numeric_limits<float>::infinity());
-    for (int k = 0; k < kDirections; ++k)
+    for (int k = 0; k < kCodes; ++k)
       r.q_[k] = std::uint8_t(std::clamp(std::ceil(std::max(h[k], 0.0) / double(r.unit_)), 0.0, 255.0));
     return r;
   }
@@ -72,30 +80,20 @@ class CellReach {
       const int i = axis[j];
       u[i] = d[i] < 0 ? -1 : 1;
       const double next = j + 1 < D ? std::fabs(d[axis[j + 1]]) : 0.0;
-      bound += (std::fabs(d[i]) - next) * double(q_[index_of(u)]);
+      bound += (std::fabs(d[i]) - next) * double(q_[code_of(u)]);
       d2 += d[i] * d[i];
     }
     return bound * double(unit_) * (1 + 1e-6) >= 0.5 * d2;
   }
 
  private:
-  // Direction k: the k-th of {-1, 0, 1}^D in base-3 order, skipping the zero vector.
-  static std::array<int, D> direction(int k) {
-    int code = k < (kDirections / 2) ? k : k + 1;
-    std::array<int, D> u;
-    for (int i = 0; i < D; ++i) {
-      u[i] = code % 3 - 1;
-      code /= 3;
-    }
-    return u;
-  }
-  static int index_of(const std::array<int, D>& u) {
+  static int code_of(const std::array<int, D>& u) {
     int code = 0;
     for (int i = D - 1; i >= 0; --i) code = 3 * code + (u[i] + 1);
-    return code < kDirections / 2 ? code : code - 1;
+    return code;
   }
 
-  std::array<std::uint8_t, kDirections> q_{};
+  std::array<std::uint8_t, kCodes> q_{};
   float unit_ = std::numeric_limits<float>::infinity();  // infinity: unbounded
 };
 
