@@ -1,4 +1,5 @@
 #include "shoremesh/engine/engine.hpp"
+#include "shoremesh/engine/spatial_order.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -84,7 +85,7 @@ double WellSpacedEngine<D>::squared_distance(VertexId a, VertexId b) const {
 }
 
 template <int D>
-void WellSpacedEngine<D>::build(std::span<const Point<D>> unit_points) {
+std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(std::span<const Point<D>> unit_points) {
   reset();
   for (std::size_t i = 0; i < unit_points.size(); ++i)
     for (int k = 0; k < D; ++k) {
@@ -103,7 +104,13 @@ void WellSpacedEngine<D>::build(std::span<const Point<D>> unit_points) {
     }
 
   input_count_ = unit_points.size();
-  positions_.assign(unit_points.begin(), unit_points.end());
+  const std::vector<std::size_t> along_curve = engine::spatial_order<D>(unit_points);
+  std::vector<VertexId> vertex_of_point(input_count_);
+  positions_.resize(input_count_);
+  for (VertexId v = 0; v < input_count_; ++v) {
+    positions_[v] = unit_points[along_curve[v]];
+    vertex_of_point[along_curve[v]] = v;
+  }
   vertices_.resize(input_count_);
   std::vector<VertexId> ids(input_count_);
   for (VertexId v = 0; v < input_count_; ++v) {
@@ -129,6 +136,7 @@ void WellSpacedEngine<D>::build(std::span<const Point<D>> unit_points) {
   // StableWS is a propagation in which every operation is fresh.
   propagate(nullptr);
   dynamic_ = true;
+  return vertex_of_point;
 }
 
 template <int D>
@@ -234,6 +242,15 @@ void WellSpacedEngine<D>::propagate(PropagationStats* stats) {
       agenda_.pop_back();
       ops_[o].flags &= std::uint8_t(~kQueued);
       batch_.push_back(o);
+    }
+    // In any order (Lemma 6.1); along the curve, so that the Steiner vertices and operations a large
+    // batch creates (a build's) are numbered, and later read, in the order of their places.
+    if (batch_.size() > kSortedBatch) {
+      batch_keys_.resize(batch_.size());
+      for (std::size_t k = 0; k < batch_.size(); ++k)
+        batch_keys_[k] = {engine::z_order_key<D>(positions_[ops_[batch_[k]].vertex]), batch_[k]};
+      std::sort(batch_keys_.begin(), batch_keys_.end());
+      for (std::size_t k = 0; k < batch_.size(); ++k) batch_[k] = batch_keys_[k].second;
     }
     for (OpId o : batch_) {
       Op& op = ops_[o];

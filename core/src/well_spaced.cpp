@@ -21,13 +21,10 @@ WellSpacedSet<D>& WellSpacedSet<D>::operator=(WellSpacedSet&&) noexcept = defaul
 
 template <int D>
 void WellSpacedSet<D>::build(std::span<const Point<D>> unit_points) {
-  engine_->build(unit_points);
-  input_vertex_.resize(unit_points.size());
+  const std::vector<std::uint32_t> vertex_of_point = engine_->build(unit_points);
+  input_vertex_.assign(vertex_of_point.begin(), vertex_of_point.end());
   input_id_.resize(unit_points.size());
-  for (std::size_t i = 0; i < unit_points.size(); ++i) {
-    input_vertex_[i] = std::uint32_t(i);
-    input_id_[i] = i;
-  }
+  for (std::size_t i = 0; i < unit_points.size(); ++i) input_id_[vertex_of_point[i]] = i;
 }
 
 template <int D>

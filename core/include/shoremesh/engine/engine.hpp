@@ -89,7 +89,9 @@ class WellSpacedEngine {
   explicit WellSpacedEngine(const Parameters<D>& parameters);
 
   // StableWS on points of the unit box. Throws PointInputError (non-finite, outside, duplicate).
-  void build(std::span<const Point<D>> unit_points);
+  // Returns the vertex of each point: vertices are numbered along a space-filling curve
+  // (spatial_order.hpp), not in the points' order.
+  std::vector<VertexId> build(std::span<const Point<D>> unit_points);
 
   // PropagateWS: input edits applied to the live computation, which then equals build() on the new
   // input. The caller checks the edits first (inside the box, no duplicate input, live ids).
@@ -211,6 +213,8 @@ class WellSpacedEngine {
   };
   std::vector<AgendaEntry> agenda_;       // a min-heap by time
   std::vector<OpId> batch_;               // the operations of the time being processed
+  std::vector<std::pair<std::uint64_t, OpId>> batch_keys_;  // a large batch's ops by place (propagate)
+  static constexpr std::size_t kSortedBatch = 256;
   std::vector<OpId> free_ops_, dead_ops_;
   std::vector<VertexId> free_vertices_, dead_vertices_;
   bool dynamic_ = false;                  // marking readers is needed only once a computation exists
