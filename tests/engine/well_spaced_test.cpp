@@ -110,6 +110,28 @@ TEST(InputOrder, ShuffledClustersSameOutput3D) {
   output_does_not_depend_on_input_order<3>(families::gaussian_clusters<3>(150, 3, 8));
 }
 
+// The engine numbers its vertices by place (spatial_order.hpp), not by input order: two orders of the
+// same points give the same numbering, and every id still names the point it was given for.
+TEST(InputOrder, IdsNameTheirPointsAndVerticesAreNumberedByPlace) {
+  std::vector<Point<2>> input = families::uniform<2>(500, 3);
+  std::vector<Point<2>> shuffled = input;
+  std::mt19937_64 rng(5);
+  std::shuffle(shuffled.begin(), shuffled.end(), rng);
+  WellSpacedSet<2> a, b;
+  a.build(input);
+  b.build(shuffled);
+  for (std::size_t id = 0; id < input.size(); ++id) {
+    ASSERT_EQ(a.input_point(id), input[id]);
+    ASSERT_EQ(b.input_point(id), shuffled[id]);
+  }
+  const auto pa = a.engine().positions(), pb = b.engine().positions();
+  ASSERT_EQ(pa.size(), pb.size());
+  EXPECT_TRUE(std::equal(pa.begin(), pa.end(), pb.begin()));
+  a.remove(7);
+  EXPECT_FALSE(a.has_input(7));
+  EXPECT_EQ(a.input_point(8), input[8]);
+}
+
 TEST(InputErrors, DuplicateNamesBothPoints) {
   std::vector<Point<2>> pts{{0.1, 0.2}, {0.5, 0.5}, {0.3, 0.3}, {0.5, 0.5}};
   try {
