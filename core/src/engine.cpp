@@ -200,14 +200,14 @@ void WellSpacedEngine<D>::mark_readers_at(VertexId w, const Point<D>& p, NodeId 
       if (op.rank < rank || (op.rank == rank && op.color <= color)) continue;
       if (!inserted && !op.facets.may_hold(bits)) continue;
       const Point<D>& c = positions_[op.vertex];
+      Point<D> d;
       double d2 = 0;
-      for (int i = 0; i < D; ++i) d2 += (p[i] - c[i]) * (p[i] - c[i]);
-      if (d2 > (inserted ? op.inserted_depends2 : op.depends2)) continue;
-      if (inserted) {
-        Point<D> d;
-        for (int i = 0; i < D; ++i) d[i] = p[i] - c[i];
-        if (!op.reach.may_be_cut_by(d)) continue;
+      for (int i = 0; i < D; ++i) {
+        d[i] = p[i] - c[i];
+        d2 += d[i] * d[i];
       }
+      if (d2 > (inserted ? op.inserted_depends2 : op.depends2)) continue;
+      if (inserted && !op.reach.may_be_cut_by(d)) continue;
       mark_redo(o);
     }
 }
