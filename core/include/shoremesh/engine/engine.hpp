@@ -157,7 +157,8 @@ class WellSpacedEngine {
                        std::uint32_t color);
   // Dispatches and fills that insert nothing decide from v's nearest neighbour and the set of vertices
   // whose bisectors bound v's cell: removing any other vertex leaves the cell and the decision as they
-  // were. That set is kept as a 64-bit Bloom mask of vertex ids (false positives only cost a rerun).
+  // were. That set is kept as a Bloom filter of vertex ids (facet_filter.hpp): a false "maybe" only
+  // costs a rerun.
   void record_facets(OpId o);
   void mark_all_readers(NodeId n);
   void propagate(PropagationStats* stats);
