@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -93,18 +92,17 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(s
       if (!std::isfinite(x)) throw PointInputError("point " + std::to_string(i) + " is not finite", {i});
       if (x < 0 || x > 1) throw PointInputError("point " + std::to_string(i) + " lies outside the box", {i});
     }
-  // Exact duplicates get their own message (the quadtree would call them too close).
-  std::vector<std::size_t> order(unit_points.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return unit_points[a] < unit_points[b]; });
-  for (std::size_t k = 1; k < order.size(); ++k)
-    if (unit_points[order[k]] == unit_points[order[k - 1]]) {
-      const std::size_t a = std::min(order[k], order[k - 1]), b = std::max(order[k], order[k - 1]);
+  // Exact duplicates get their own message (the quadtree would call them too close). Equal points have
+  // equal curve keys and are ordered by coordinates among those: they are neighbours in this order.
+  const std::vector<std::size_t> along_curve = engine::spatial_order<D>(unit_points);
+  for (std::size_t k = 1; k < along_curve.size(); ++k)
+    if (unit_points[along_curve[k]] == unit_points[along_curve[k - 1]]) {
+      const std::size_t a = std::min(along_curve[k], along_curve[k - 1]);
+      const std::size_t b = std::max(along_curve[k], along_curve[k - 1]);
       throw PointInputError("points " + std::to_string(a) + " and " + std::to_string(b) + " are equal", {a, b});
     }
 
   input_count_ = unit_points.size();
-  const std::vector<std::size_t> along_curve = engine::spatial_order<D>(unit_points);
   std::vector<VertexId> vertex_of_point(input_count_);
   positions_.resize(input_count_);
   for (VertexId v = 0; v < input_count_; ++v) {
