@@ -187,6 +187,42 @@ TEST(Parameters, OtherRhoIsStillWellSpaced) {
   EXPECT_LT(r.points.size(), stable_well_spaced<2>(input).points.size());
 }
 
+// A dispatch leaves out the fills of neighbours already nearer another vertex than rho^rank: they would
+// insert nothing (engine.cpp, already_below_rank). The output is Figure 3's to the last bit, with far
+// fewer operations, on every family, in 2D and 3D, and for another rho (whose rank table is rounded).
+template <int D>
+void leaving_out_idle_fills_keeps_the_output(const std::vector<Point<D>>& input, double rho, double max_ops_share) {
+  Parameters<D> literal;
+  literal.rho = rho;
+  literal.every_neighbour_fill = true;
+  Parameters<D> pruned = literal;
+  pruned.every_neighbour_fill = false;
+  const BoxTransform<D> box = BoxTransform<D>::fit(input);
+  StableResult<D> a = stable_well_spaced<D>(input, literal, box);
+  StableResult<D> b = stable_well_spaced<D>(input, pruned, box);
+  std::sort(a.points.begin(), a.points.end());
+  std::sort(b.points.begin(), b.points.end());
+  EXPECT_EQ(a.points, b.points) << a.points.size() << " vs " << b.points.size() << " points";
+  EXPECT_LE(double(b.counters.operations()), max_ops_share * double(a.counters.operations()))
+      << b.counters.operations() << " vs " << a.counters.operations() << " operations";
+}
+
+TEST(IdleFills, LeftOutWithTheSameOutput2D) {
+  leaving_out_idle_fills_keeps_the_output<2>(families::uniform<2>(1500, 41), std::sqrt(2.0), 0.75);
+  leaving_out_idle_fills_keeps_the_output<2>(families::gaussian_clusters<2>(1500, 5, 42), std::sqrt(2.0), 0.75);
+  leaving_out_idle_fills_keeps_the_output<2>(families::close_pair<2>(300, 1e-9), std::sqrt(2.0), 0.85);
+  leaving_out_idle_fills_keeps_the_output<2>(families::kuzmin<2>(1000, 43), 1.2, 0.75);
+  leaving_out_idle_fills_keeps_the_output<2>(families::uniform<2>(1000, 44), 1.8, 0.85);
+  // On a grid input nothing is inserted and every neighbour is at the same distance: little to leave out.
+  leaving_out_idle_fills_keeps_the_output<2>(families::grid<2>(20), std::sqrt(2.0), 1.0);
+}
+
+TEST(IdleFills, LeftOutWithTheSameOutput3D) {
+  leaving_out_idle_fills_keeps_the_output<3>(families::uniform<3>(300, 45), std::sqrt(2.0), 0.7);
+  leaving_out_idle_fills_keeps_the_output<3>(families::on_line<3>(150), std::sqrt(2.0), 0.7);
+  leaving_out_idle_fills_keeps_the_output<3>(families::gaussian_clusters<3>(200, 3, 46), 1.5, 0.7);
+}
+
 TEST(ComputationGraph, RecordedAndValid) {
   WellSpacedSet<2> set;
   set.build(families::gaussian_clusters<2>(800, 4, 6));

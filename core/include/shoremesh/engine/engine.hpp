@@ -168,6 +168,9 @@ class WellSpacedEngine {
   void dispatch(OpId o);
   void fill(OpId o);
   void request_fill(VertexId w, int rank);
+  // Whether a neighbour of the dispatched vertex other than w (in neighbours_) lies nearer w than
+  // rho^rank: then a fill of w at that rank would do nothing (see engine.cpp).
+  bool already_below_rank(VertexId w, int rank, engine::PredicateCounters& pc) const;
   void redispatch_input(VertexId v);
   void apply_tree_change(const typename engine::Quadtree<D>::Change& change);
   // Finds v's nearest neighbour and the vertices that can cut its cell, registers op o's reads, and

@@ -20,6 +20,10 @@ class RankScale {
   int max_rank() const { return max_rank_; }  // floor(log_rho sqrt(D)): no two points of the box are farther
   // Exact rank of |a - b| (call under a RoundingGuard).
   int rank_of(const Point<D>& a, const Point<D>& b, PredicateCounters& counters) const;
+  // Whether rank(|a - b|) < r, that is |a - b|^2 < T_r (exact).
+  bool rank_below(const Point<D>& a, const Point<D>& b, int r, PredicateCounters& counters) const {
+    return r > min_rank_ && compare_squared_distance_to<D>(counters, a, b, threshold(r)) < 0;
+  }
   // Exact rank of a length whose square is exactly representable (quadtree sides, powers of two).
   int rank_of_length(double length) const;
   // Colour 1..kappa^D of vertex p at rank r (0 is reserved for dispatches).
