@@ -390,16 +390,23 @@ void WellSpacedEngine<D>::compact_pools() {
 }
 
 template <int D>
-void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
+bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill) {
   ops_[o].facets = engine::FacetFilter<D>::everything();
   ops_[o].reach = engine::CellReach<D>::unbounded();
   const Point<D> p = positions_[v];
   // Only vertices born before this operation's time exist for it (M_t).
   const std::uint64_t now = time_key(ops_[o].rank, ops_[o].color);
+  const bool may_idle = fill && !params_.every_neighbour_fill;
   // v's cell computed earlier in this propagation, if any: taken as it is when it still holds, else
   // the vertices its entry lists spare the search (below).
   const CachedCell* earlier = caching_ ? cached_neighbourhood(v, p) : nullptr;
-  if (earlier && reuse_cell(o, *earlier, now)) return;
+  if (earlier && may_idle && now < earlier->valid_until &&
+      ranks_.rank_below(p, positions_[earlier->nearest], ops_[o].rank, cell_.counters())) {
+    hood_.nearest = earlier->nearest;  // still v's nearest neighbour: nothing came within its reach
+    record_idle_fill(o, v);
+    return false;
+  }
+  if (earlier && reuse_cell(o, *earlier, now)) return true;
   ++counters_.clipped_voronoi_calls;
   unborn_.clear();
   PredicateCounters& pc = cell_.counters();
@@ -490,7 +497,11 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
     if (caching_) forget_cell(v);
     record_reads(o, p, half);
     ops_[o].depends2 = ops_[o].inserted_depends2 = at_least(4.0 * D);  // anything in the box gives it a neighbour
-    return;
+    return true;
+  }
+  if (may_idle && ranks_.rank_below(p, positions_[hood_.nearest], ops_[o].rank, pc)) {
+    record_idle_fill(o, v);
+    return false;
   }
 
   // The box around v of half-side beta NN(v) (a little more, so it surely holds the beta-ball), cut to
@@ -570,6 +581,23 @@ void WellSpacedEngine<D>::compute_cell(OpId o, VertexId v) {
   ops_[o].depends2 = ops_[o].inserted_depends2 = at_least(std::max(reach2, best_d2) * (1 + 1e-6));
   ops_[o].reach = engine::CellReach<D>::of([&](auto&& f) { cell_.for_each_vertex_box(f); });
   if (caching_) store_cell(o, v, p, searched);
+  return true;
+}
+
+// A fill at rank r whose vertex v has a nearest neighbour u nearer than rho^r does nothing: u cannot
+// have been inserted during rank r (Fact 2 keeps the Steiner vertices of rank r farther than rho^(r+1)
+// from everything), so NN(v) < rho^r at the beginning of rank r, where Lemma 4.2 (progress) makes v
+// well-spaced, and Fact 2 keeps it so. No cell is needed, and the decision depends on u alone: a vertex
+// inserted only brings NN(v) down, and removing another vertex leaves NN(v) as it is.
+template <int D>
+void WellSpacedEngine<D>::record_idle_fill(OpId o, VertexId v) {
+  const double nn2 = squared_distance(v, hood_.nearest);
+  record_reads(o, positions_[v], std::sqrt(nn2) * (1 + 1e-6));
+  ops_[o].depends2 = at_least(nn2 * (1 + 1e-6));
+  ops_[o].inserted_depends2 = 0;  // only a vertex exactly at v's place, which reruns it
+  ops_[o].facets = engine::FacetFilter<D>::of(hood_.nearest);
+  ops_[o].reach = engine::CellReach<D>::unbounded();
+  ++counters_.fills_idle_by_rank;
 }
 
 template <int D>
@@ -616,7 +644,7 @@ void WellSpacedEngine<D>::dispatch(OpId o) {
   ++counters_.dispatches;
   const VertexId v = ops_[o].vertex;
   const int op_rank = ops_[o].rank;
-  compute_cell(o, v);
+  compute_cell(o, v, false);
   ops_[o].children_begin = ops_[o].children_end = std::uint32_t(children_.size());
   if (hood_.nearest == kNoVertex) return;  // a lone vertex is well-spaced
   PredicateCounters& pc = cell_.counters();
@@ -668,10 +696,10 @@ void WellSpacedEngine<D>::fill(OpId o) {
     for (std::uint32_t k = ops_[o].children_begin; k < ops_[o].children_end; ++k) stash_.push_back(children_[k]);
     ops_[o].flags &= std::uint8_t(~kStashed);
   }
-  compute_cell(o, v);
+  const bool has_cell = compute_cell(o, v, true);
   ops_[o].children_begin = ops_[o].children_end = std::uint32_t(children_.size());
   PredicateCounters& pc = cell_.counters();
-  for (int inserted = 0; hood_.nearest != kNoVertex &&
+  for (int inserted = 0; has_cell && hood_.nearest != kNoVertex &&
                          !cell_.within_scaled_distance(params_.rho_squared, positions_[hood_.nearest]);
        ++inserted) {
     if (inserted > 1000) throw std::logic_error("fill inserted over 1000 Steiner points around one vertex");
@@ -710,7 +738,7 @@ void WellSpacedEngine<D>::fill(OpId o) {
   ops_[o].children_end = std::uint32_t(children_.size());
   // v was already well-spaced: a vertex inserted farther than NN(v) leaves NN(v) and the clipping cube
   // as they are and can only shrink the cell, so v stays well-spaced and this fill does nothing again.
-  if (ops_[o].children_begin == ops_[o].children_end && hood_.nearest != kNoVertex) {
+  if (has_cell && ops_[o].children_begin == ops_[o].children_end && hood_.nearest != kNoVertex) {
     ops_[o].inserted_depends2 = at_least(squared_distance(v, hood_.nearest) * (1 + 1e-6));
     cell_.bisector_neighbours(neighbours_);
     record_facets(o);

@@ -15,9 +15,10 @@ struct Parameters {
   // Colours per axis; 0 derives the smallest kappa that satisfies Lemma 6.1 (16 for the defaults).
   int kappa = 0;
   // Figure 3 to the letter: a dispatch asks each of its beta-clipped Voronoi neighbours for a fill at
-  // the rank of their distance. By default it leaves out the fills that provably insert nothing
-  // (WellSpacedEngine::already_below_rank): the same output with a third to a half fewer operations.
-  // For the tests that check that claim, and to measure it.
+  // the rank of their distance, and every fill computes its vertex's cell. By default the dispatch
+  // leaves out the fills that provably insert nothing (WellSpacedEngine::already_below_rank), and a
+  // fill whose vertex already has a neighbour nearer than its rank stops there (record_idle_fill):
+  // the same output with far less work. For the tests that check that claim, and to measure it.
   bool every_neighbour_fill = false;
 };
 
@@ -40,6 +41,7 @@ struct DerivedParameters {
 struct Counters {
   std::uint64_t dispatches = 0;
   std::uint64_t fills = 0;
+  std::uint64_t fills_idle_by_rank = 0;     // fills whose vertex's nearest neighbour was already below their rank
   std::uint64_t clipped_voronoi_calls = 0;  // cells computed (searched and clipped)
   std::uint64_t cells_reused = 0;          // cells a propagation took from its cache instead
   std::uint64_t neighbourhoods_reused = 0; // cells computed from the cache's vertex lists, not a search

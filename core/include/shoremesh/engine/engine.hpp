@@ -174,8 +174,10 @@ class WellSpacedEngine {
   void redispatch_input(VertexId v);
   void apply_tree_change(const typename engine::Quadtree<D>::Change& change);
   // Finds v's nearest neighbour and the vertices that can cut its cell, registers op o's reads, and
-  // computes v's cell clipped to the box and to the cube of half-side beta NN(v).
-  void compute_cell(OpId o, VertexId v);
+  // computes v's cell clipped to the box and to the cube of half-side beta NN(v). For a fill, returns
+  // false without a cell when v's nearest neighbour makes the fill idle (record_idle_fill).
+  bool compute_cell(OpId o, VertexId v, bool fill);
+  void record_idle_fill(OpId o, VertexId v);
   // Registers op o as a reader of the nodes covering the box of half-side h around p (left in covering_).
   void record_reads(OpId o, const Point<D>& p, double h);
   void register_reads(OpId o, std::span<const NodeId> nodes);
