@@ -396,7 +396,7 @@ bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill) {
   const Point<D> p = positions_[v];
   // Only vertices born before this operation's time exist for it (M_t).
   const std::uint64_t now = time_key(ops_[o].rank, ops_[o].color);
-  const bool may_idle = fill && !params_.every_neighbour_fill;
+  const bool may_idle = fill && !params_.literal_stable_ws;
   // v's cell computed earlier in this propagation, if any: taken as it is when it still holds, else
   // the vertices its entry lists spare the search (below).
   const CachedCell* earlier = caching_ ? cached_neighbourhood(v, p) : nullptr;
@@ -660,7 +660,7 @@ void WellSpacedEngine<D>::dispatch(OpId o) {
   for (VertexId w : neighbours_) {
     if (squared_distance(v, w) > limit2) continue;
     const int rw = ranks_.rank_of(p, positions_[w], pc);
-    if (rw < op_rank || (!params_.every_neighbour_fill && already_below_rank(w, rw, pc))) continue;
+    if (rw < op_rank || (!params_.literal_stable_ws && already_below_rank(w, rw, pc))) continue;
     request_fill(w, rw);
   }
   ops_[o].children_end = std::uint32_t(children_.size());

@@ -38,7 +38,7 @@ DerivedParameters<D> DerivedParameters<D>::derive(const Parameters<D>& p) {
   }
   if (std::pow(double(kappa), D) > 1e7) throw ParameterError("kappa^d colours exceed 10^7: choose a smaller beta");
   d.kappa = kappa;
-  d.every_neighbour_fill = p.every_neighbour_fill;
+  d.literal_stable_ws = p.literal_stable_ws;
   return d;
 }
 

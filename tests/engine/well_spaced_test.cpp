@@ -190,14 +190,14 @@ TEST(Parameters, OtherRhoIsStillWellSpaced) {
 // A dispatch leaves out the fills of neighbours already nearer another vertex than rho^rank, and a fill
 // whose vertex already has a neighbour that near stops without a cell: they would insert nothing
 // (engine.cpp, already_below_rank and record_idle_fill). The output is Figure 3's to the last bit, with
-// far fewer operations, on every family, in 2D and 3D, and for other rho (whose rank tables are rounded).
+// far fewer operations, on five families in 2D and three in 3D, and for other rho (rounded rank tables).
 template <int D>
 void leaving_out_idle_fills_keeps_the_output(const std::vector<Point<D>>& input, double rho, double max_ops_share) {
   Parameters<D> literal;
   literal.rho = rho;
-  literal.every_neighbour_fill = true;
+  literal.literal_stable_ws = true;
   Parameters<D> pruned = literal;
-  pruned.every_neighbour_fill = false;
+  pruned.literal_stable_ws = false;
   const BoxTransform<D> box = BoxTransform<D>::fit(input);
   StableResult<D> a = stable_well_spaced<D>(input, literal, box);
   StableResult<D> b = stable_well_spaced<D>(input, pruned, box);

@@ -19,7 +19,7 @@ struct Parameters {
   // leaves out the fills that provably insert nothing (WellSpacedEngine::already_below_rank), and a
   // fill whose vertex already has a neighbour nearer than its rank stops there (record_idle_fill):
   // the same output with far less work. For the tests that check that claim, and to measure it.
-  bool every_neighbour_fill = false;
+  bool literal_stable_ws = false;
 };
 
 // The derived constants every part of the engine agrees on. Construct through `derive`, which refuses
@@ -31,7 +31,7 @@ struct DerivedParameters {
   double beta = 0;
   double beta_squared = 0;
   int kappa = 0;          // colours per axis: kappa^D periodic tiles (Lemma 6.1)
-  bool every_neighbour_fill = false;  // as given
+  bool literal_stable_ws = false;  // as given
   static DerivedParameters derive(const Parameters<D>& p);
   // l(r) = rho^(r - 1/2) / sqrt(D): side of the rank-r colour tiles.
   double tile_side(int rank) const;
