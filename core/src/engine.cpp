@@ -652,9 +652,13 @@ void WellSpacedEngine<D>::dispatch(OpId o) {
   // v's fill at its current rank, and fills that update the ranks of its beta-clipped Voronoi
   // neighbours (bisector faces of the cell no farther than 2 beta NN(v): a superset, harmless, since a
   // fill at rank floor(log |vw|) finds w already well-spaced unless it truly is due), less those that
-  // cannot be due (already_below_rank).
+  // cannot be due (already_below_rank). v's own fill is not asked for when v is well-spaced already:
+  // should NN(v) still be |vu| at the beginning of rank r, no vertex came nearer since, the cell only
+  // shrank, and v is well-spaced through rank r (Fact 2), so the fill would insert nothing; should a
+  // vertex z come nearer first, v's fill at the new rank is the business of z's dispatch (Lemma 4.1).
   const int r = ranks_.rank_of(p, positions_[hood_.nearest], pc);
-  if (r >= op_rank) request_fill(v, r);
+  if (r >= op_rank && (params_.literal_stable_ws || !cell_.within_scaled_distance(params_.rho_squared, positions_[hood_.nearest])))
+    request_fill(v, r);
   const double limit2 = 4 * params_.beta_squared * squared_distance(v, hood_.nearest) * (1 + 1e-9);
   cell_.bisector_neighbours(neighbours_);
   for (VertexId w : neighbours_) {

@@ -187,7 +187,8 @@ TEST(Parameters, OtherRhoIsStillWellSpaced) {
   EXPECT_LT(r.points.size(), stable_well_spaced<2>(input).points.size());
 }
 
-// A dispatch leaves out the fills of neighbours already nearer another vertex than rho^rank, and a fill
+// A dispatch leaves out the fills of neighbours already nearer another vertex than rho^rank, and that
+// of its own vertex when it is well-spaced already, and a fill
 // whose vertex already has a neighbour that near stops without a cell: they would insert nothing
 // (engine.cpp, already_below_rank and record_idle_fill). The output is Figure 3's to the last bit, with
 // far fewer operations, on five families in 2D and three in 3D, and for other rho (rounded rank tables).

@@ -15,10 +15,11 @@ struct Parameters {
   // Colours per axis; 0 derives the smallest kappa that satisfies Lemma 6.1 (16 for the defaults).
   int kappa = 0;
   // Figure 3 to the letter: a dispatch asks each of its beta-clipped Voronoi neighbours for a fill at
-  // the rank of their distance, and every fill computes its vertex's cell. By default the dispatch
-  // leaves out the fills that provably insert nothing (WellSpacedEngine::already_below_rank), and a
-  // fill whose vertex already has a neighbour nearer than its rank stops there (record_idle_fill):
-  // the same output with far less work. For the tests that check that claim, and to measure it.
+  // the rank of their distance, and for its own vertex; every fill computes its vertex's cell. By
+  // default the dispatch leaves out the fills that provably insert nothing (a neighbour's, see
+  // WellSpacedEngine::already_below_rank; its vertex's own when it is well-spaced already), and a fill
+  // whose vertex already has a neighbour nearer than its rank stops there (record_idle_fill): the same
+  // output with far less work. For the tests that check that claim, and to measure it.
   bool literal_stable_ws = false;
 };
 
