@@ -187,11 +187,11 @@ TEST(Parameters, OtherRhoIsStillWellSpaced) {
   EXPECT_LT(r.points.size(), stable_well_spaced<2>(input).points.size());
 }
 
-// A dispatch leaves out the fills of neighbours already nearer another vertex than rho^rank, and that
-// of its own vertex when it is well-spaced already, and a fill
-// whose vertex already has a neighbour that near stops without a cell: they would insert nothing
-// (engine.cpp, already_below_rank and record_idle_fill). The output is Figure 3's to the last bit, with
-// far fewer operations, on five families in 2D and three in 3D, and for other rho (rounded rank tables).
+// A dispatch leaves out the fills of neighbours already nearer another vertex than rho^rank, and that of
+// its own vertex when it is well-spaced already; a fill whose vertex already has a neighbour that near
+// stops without a cell. They would insert nothing (engine.cpp: dispatch, already_below_rank,
+// record_idle_fill). The output is Figure 3's to the last bit, with far fewer operations, on five
+// families in 2D and three in 3D, and for other rho (rounded rank tables).
 template <int D>
 void leaving_out_idle_fills_keeps_the_output(const std::vector<Point<D>>& input, double rho, double max_ops_share) {
   Parameters<D> literal;
