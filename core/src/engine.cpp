@@ -657,8 +657,8 @@ void WellSpacedEngine<D>::dispatch(OpId o) {
   // shrank, and v is well-spaced through rank r (Fact 2), so the fill would insert nothing; should a
   // vertex z come nearer first, v's fill at the new rank is the business of z's dispatch (Lemma 4.1).
   const int r = ranks_.rank_of(p, positions_[hood_.nearest], pc);
-  if (r >= op_rank && (params_.literal_stable_ws || !cell_.within_scaled_distance(params_.rho_squared, positions_[hood_.nearest])))
-    request_fill(v, r);
+  const bool well_spaced = cell_.within_scaled_distance(params_.rho_squared, positions_[hood_.nearest]);
+  if (r >= op_rank && (params_.literal_stable_ws || !well_spaced)) request_fill(v, r);
   const double limit2 = 4 * params_.beta_squared * squared_distance(v, hood_.nearest) * (1 + 1e-9);
   cell_.bisector_neighbours(neighbours_);
   for (VertexId w : neighbours_) {
