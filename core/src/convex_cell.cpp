@@ -1,6 +1,7 @@
 #include "shoremesh/engine/convex_cell.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <stdexcept>
 
@@ -99,14 +100,21 @@ template <int D>
 typename ConvexCell<D>::Vertex ConvexCell<D>::make_vertex(const std::array<std::uint16_t, D>& planes) {
   Vertex vtx;
   vtx.planes = planes;
-  if (D == 3 && out_of_order_)
-    std::sort(vtx.planes.begin(), vtx.planes.end(),
-              [&](std::uint16_t a, std::uint16_t b) { return before_in_distance_order(a, b); });
+  // A 3D vertex is solved from its planes in distance order, whatever their orientation: the order in
+  // which a from-scratch run numbers them (plane order), also between the out-of-order cuts.
+  std::array<std::uint16_t, D> order = planes;
+  if constexpr (D == 3) {
+    vtx.serial = vtx.place = next_serial_++;
+    if (out_of_order_)
+      std::sort(order.begin(), order.end(), [&](std::uint16_t a, std::uint16_t b) { return before_in_distance_order(a, b); });
+    else
+      std::sort(order.begin(), order.end());
+  }
   std::array<std::array<Interval, D>, D> n;
   std::array<Interval, D> b;
   for (int k = 0; k < D; ++k) {
-    n[k] = constraints_[vtx.planes[k]].n;
-    b[k] = constraints_[vtx.planes[k]].b;
+    n[k] = constraints_[order[k]].n;
+    b[k] = constraints_[order[k]].b;
   }
   vtx.y = solve(n, b);
   // Rounded upward (the caller holds a RoundingGuard): an upper bound.
@@ -127,6 +135,16 @@ const std::array<Exact, D>& ConvexCell<D>::exact_position(Vertex& vtx) {
     vtx.exact = std::int32_t(exact_.size() - 1);
   }
   return exact_[std::size_t(vtx.exact)];
+}
+
+template <int D>
+bool ConvexCell<D>::same_point(std::size_t i, std::size_t j) {
+  for (int k = 0; k < D; ++k)
+    if (verts_[i].y[k].sup() < verts_[j].y[k].inf() || verts_[j].y[k].sup() < verts_[i].y[k].inf()) return false;
+  ++counters_.exact;
+  exact_position(verts_[i]);
+  exact_position(verts_[j]);  // may grow exact_: compare by index, after both
+  return exact_[std::size_t(verts_[i].exact)] == exact_[std::size_t(verts_[j].exact)];
 }
 
 template <int D>
@@ -155,7 +173,7 @@ void ConvexCell<D>::reset(const Point<D>& v, const Point<D>& lo, const Point<D>&
   constraints_.clear();
   exact_.clear();
   verts_.clear();
-  free_verts_.clear();
+  next_serial_ = 0;
   using Kind = typename Constraint<D>::Kind;
   // Constraint 2*axis is x[axis] >= lo, 2*axis+1 is x[axis] <= hi.
   for (int a = 0; a < D; ++a) {
@@ -173,6 +191,9 @@ void ConvexCell<D>::reset(const Point<D>& v, const Point<D>& lo, const Point<D>&
   auto corner = [&](int bits) {
     std::array<std::uint16_t, D> planes;
     for (int a = 0; a < D; ++a) planes[a] = std::uint16_t(2 * a + ((bits >> a) & 1));
+    // 3D: counter-clockwise seen from outside when the outward normals (+-e_x, +-e_y, +-e_z) have a
+    // positive determinant, that is when an even number of them point down.
+    if (D == 3 && std::popcount(unsigned(bits)) % 2 == 0) std::swap(planes[1], planes[2]);
     return make_vertex(planes);
   };
   if constexpr (D == 2) {
@@ -181,11 +202,6 @@ void ConvexCell<D>::reset(const Point<D>& v, const Point<D>& lo, const Point<D>&
     edges_ = {2, 1, 3, 0};  // y >= lo, x <= hi, y <= hi, x >= lo
   } else {
     for (int bits = 0; bits < 8; ++bits) verts_.push_back(corner(bits));
-    // Faces with their vertices counter-clockwise seen from outside.
-    face_plane_ = {0, 1, 2, 3, 4, 5};
-    face_verts_ = {0, 4, 6, 2, /**/ 1, 3, 7, 5, /**/ 0, 1, 5, 4, /**/ 2, 6, 7, 3, /**/ 0, 2, 3, 1, /**/ 4, 5, 7, 6};
-    face_begin_ = {0, 4, 8, 12, 16, 20};
-    face_len_ = {4, 4, 4, 4, 4, 4};
   }
   live_vertices_ = verts_.size();
 }
@@ -210,25 +226,9 @@ void ConvexCell<D>::end_out_of_order_cuts() {
       sorted[k] = constraints_[order[k]];
     }
     constraints_.swap(sorted);
-    // The renaming keeps the distance order, in which every vertex already lists its planes.
+    // A vertex keeps its planes' orientation; its coordinates were solved in distance order already.
     for (Vertex& vtx : verts_)
       for (std::uint16_t& plane : vtx.planes) plane = renamed[plane];
-    // Faces back in increasing plane order (clip_polyhedron takes a cut edge's faces in that order).
-    std::vector<std::size_t> faces(face_plane_.size());
-    for (std::size_t f = 0; f < faces.size(); ++f) faces[f] = f;
-    std::sort(faces.begin(), faces.end(), [&](std::size_t a, std::size_t b) {
-      return renamed[face_plane_[a]] < renamed[face_plane_[b]];
-    });
-    std::vector<std::uint16_t> plane(faces.size());
-    std::vector<std::uint32_t> begin(faces.size()), len(faces.size());
-    for (std::size_t k = 0; k < faces.size(); ++k) {
-      plane[k] = renamed[face_plane_[faces[k]]];
-      begin[k] = face_begin_[faces[k]];
-      len[k] = face_len_[faces[k]];
-    }
-    face_plane_.swap(plane);
-    face_begin_.swap(begin);
-    face_len_.swap(len);
   }
 }
 
@@ -274,7 +274,7 @@ bool ConvexCell<D>::clip_by(std::uint16_t plane) {
   const double inside_below = c.kind == Constraint<D>::Kind::Bisector ? 0.25 * c.b.inf() : 0.0;
   for (std::size_t i = 0; i < m; ++i) {
     Vertex& vtx = verts_[i];
-    if (!vtx.alive || vtx.r2 < inside_below) {
+    if (vtx.r2 < inside_below) {
       signs_[i] = -1;
       continue;
     }
@@ -327,163 +327,51 @@ void ConvexCell<D>::clip_polygon(std::uint16_t plane) {
   }
 }
 
-template <int D>
-std::uint32_t ConvexCell<D>::new_vertex_slot() {
-  if (!free_verts_.empty()) {
-    const std::uint32_t slot = free_verts_.back();
-    free_verts_.pop_back();
-    return slot;
-  }
-  verts_.emplace_back();
-  return std::uint32_t(verts_.size() - 1);
-}
-
-template <int D>
-void ConvexCell<D>::compact_face_arena() {
-  arena_scratch_.clear();
-  for (std::size_t f = 0; f < face_plane_.size(); ++f) {
-    const std::uint32_t begin = face_begin_[f];
-    face_begin_[f] = std::uint32_t(arena_scratch_.size());
-    arena_scratch_.insert(arena_scratch_.end(), face_verts_.begin() + begin, face_verts_.begin() + begin + face_len_[f]);
-  }
-  face_verts_.swap(arena_scratch_);
-}
-
-// Only the faces with a vertex on or beyond the plane change; the others keep their cycles where they
-// are. signs_ holds the side of every vertex slot (dead slots -1).
+// The triangles of the vertices beyond the plane go; the directed edges among them whose reverse
+// belongs to a kept triangle form the rim, a cycle around the plane's new face, and each rim edge a -> b
+// gives the new vertex (a, b, plane) on the cell's edge it crosses, oriented as the triangle it replaces.
+// signs_ holds the side of every vertex.
 template <int D>
 void ConvexCell<D>::clip_polyhedron(std::uint16_t plane) {
   if constexpr (D == 3) {
-    const std::size_t m = verts_.size();
-    const std::size_t nf = face_plane_.size();
-    // New vertices on edges whose ends lie strictly on opposite sides; each such edge is shared by two
-    // faces, whose planes (in face order, which is plane order) with the new plane define the vertex.
-    std::vector<CutEdge>& cuts = cuts_;  // few: a cut of a convex cell crosses a handful of edges
-    cuts.clear();
-    auto cut_of = [&](std::uint32_t a, std::uint32_t b) -> CutEdge& {
-      const std::uint32_t lo = std::min(a, b), hi = std::max(a, b);
-      for (CutEdge& e : cuts)
-        if (e.a == lo && e.b == hi) return e;
-      cuts.push_back(CutEdge{lo, hi, {0, 0}, 0, 0});
-      return cuts.back();
-    };
-    // face_cuts_ lists, face by face and edge by edge, which cut each touched face crosses: the rewrite
-    // below walks the same edges in the same order and takes them from it without a search.
-    touched_faces_.clear();
-    face_cuts_.clear();
-    bool on_plane_old = false;
-    for (std::size_t f = 0; f < nf; ++f) {
-      const std::uint32_t* cycle = face_verts_.data() + face_begin_[f];
-      const std::uint32_t len = face_len_[f];
-      int most = -1;
-      for (std::uint32_t k = 0; k < len; ++k) most = std::max(most, int(signs_[cycle[k]]));
-      if (most < 0) continue;
-      touched_faces_.push_back(std::uint32_t(f));
-      for (std::uint32_t k = 0; k < len; ++k) {
-        const std::uint32_t a = cycle[k], b = cycle[k + 1 == len ? 0 : k + 1];
-        on_plane_old = on_plane_old || signs_[a] == 0;
-        if (signs_[a] * signs_[b] < 0) {
-          CutEdge& e = cut_of(a, b);
-          if (e.count < 2) e.faces[e.count] = face_plane_[f];
-          ++e.count;
-          face_cuts_.push_back(std::uint32_t(&e - cuts.data()));
-        }
-      }
-    }
-    // Slots freed by earlier clips only: this clip's outside vertices are still read below.
-    for (CutEdge& e : cuts) {
-      if (e.count != 2) throw std::logic_error("convex cell: a cut edge not shared by two faces");
-      const Vertex vtx = make_vertex({e.faces[0], e.faces[1], plane});
-      e.vertex = new_vertex_slot();
-      verts_[e.vertex] = vtx;
-    }
-    signs_.resize(verts_.size());
-    for (const CutEdge& e : cuts) signs_[e.vertex] = 0;  // new vertices lie on the new plane
-
-    // The touched faces' clipped cycles, and the edges of the new plane's face from them.
-    rim_.clear();
-    bool face_dropped = false;
-    std::size_t next_cut = 0;
-    for (std::uint32_t f : touched_faces_) {
-      const std::uint32_t begin = face_begin_[f], len = face_len_[f];
-      const std::uint32_t start = std::uint32_t(face_verts_.size());
-      for (std::uint32_t k = 0; k < len; ++k) {
-        const std::uint32_t a = face_verts_[begin + k], b = face_verts_[begin + (k + 1 == len ? 0 : k + 1)];
-        if (signs_[a] <= 0) face_verts_.push_back(a);
-        if (signs_[a] * signs_[b] < 0) face_verts_.push_back(cuts[face_cuts_[next_cut++]].vertex);
-      }
-      const std::uint32_t flen = std::uint32_t(face_verts_.size()) - start;
-      if (flen < 3) {  // the face was cut away, or only touches the new plane
-        face_verts_.resize(start);
-        face_len_[f] = 0;
-        face_dropped = true;
+    cut_edges_.clear();
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < verts_.size(); ++i) {
+      if (signs_[i] > 0) {
+        const auto& p = verts_[i].planes;
+        cut_edges_.push_back({p[0], p[1]});
+        cut_edges_.push_back({p[1], p[2]});
+        cut_edges_.push_back({p[2], p[0]});
         continue;
       }
-      // The face's edge on the new plane, p -> q in this face, is q -> p in the new face (one per q).
-      for (std::uint32_t k = 0; k < flen; ++k) {
-        const std::uint32_t p = face_verts_[start + k], q = face_verts_[start + (k + 1 == flen ? 0 : k + 1)];
-        if (signs_[p] != 0 || signs_[q] != 0) continue;
-        auto same_to = std::find_if(rim_.begin(), rim_.end(), [&](const RimEdge& r) { return r.from == q; });
-        if (same_to != rim_.end())
-          same_to->to = p;
-        else
-          rim_.push_back(RimEdge{q, p});
-      }
-      face_begin_[f] = start;
-      face_len_[f] = flen;
+      signs_[kept] = signs_[i];
+      verts_[kept++] = verts_[i];
     }
-    if (face_dropped) {
-      std::size_t kept = 0;
-      for (std::size_t f = 0; f < nf; ++f)
-        if (face_len_[f] != 0) {
-          face_plane_[kept] = face_plane_[f];
-          face_begin_[kept] = face_begin_[f];
-          face_len_[kept] = face_len_[f];
-          ++kept;
-        }
-      face_plane_.resize(kept);
-      face_begin_.resize(kept);
-      face_len_.resize(kept);
-    }
-    // The new face: follow the chain of on-plane edges.
-    const std::size_t chain = rim_.size();
-    if (chain < 3) throw std::logic_error("convex cell: the cut face has fewer than three edges");
-    const std::uint32_t start = std::uint32_t(face_verts_.size());
-    const std::uint32_t startv = rim_.front().from;
-    std::size_t walked = 0;
-    std::uint32_t cur = startv;
-    do {
-      face_verts_.push_back(cur);
-      auto r = std::find_if(rim_.begin(), rim_.end(), [&](const RimEdge& e) { return e.from == cur; });
-      if (r == rim_.end() || ++walked > chain) throw std::logic_error("convex cell: the cut face is not a cycle");
-      cur = r->to;
-    } while (cur != startv);
-    if (walked != chain) throw std::logic_error("convex cell: the cut face has two cycles");
-    face_plane_.push_back(plane);
-    face_begin_.push_back(start);
-    face_len_.push_back(std::uint32_t(face_verts_.size()) - start);
-
-    // Free the vertices cut away, and old vertices on the plane no kept face uses (their faces all went).
-    for (std::size_t i = 0; i < m; ++i)
-      if (signs_[i] > 0) {
-        verts_[i].alive = false;
-        free_verts_.push_back(std::uint32_t(i));
-      }
-    if (on_plane_old) {
-      used_.assign(verts_.size(), 0);
-      for (std::size_t f = 0; f < face_plane_.size(); ++f)
-        for (std::uint32_t k = 0; k < face_len_[f]; ++k) used_[face_verts_[face_begin_[f] + k]] = 1;
-      for (std::size_t i = 0; i < m; ++i)
-        if (signs_[i] == 0 && !used_[i]) {
-          verts_[i].alive = false;
-          free_verts_.push_back(std::uint32_t(i));
-        }
-    }
-    live_vertices_ = verts_.size() - free_verts_.size();
-    // The arena holds every cycle a face ever had in this cell: compact it once it is mostly garbage.
-    std::size_t live_entries = 0;
-    for (std::uint32_t len : face_len_) live_entries += len;
-    if (face_verts_.size() > 4096 && face_verts_.size() > 4 * live_entries) compact_face_arena();
+    rim_.clear();
+    for (const PlanePair& e : cut_edges_)
+      if (std::none_of(cut_edges_.begin(), cut_edges_.end(), [&](const PlanePair& f) { return f.a == e.b && f.b == e.a; }))
+        rim_.push_back(e);
+    // A cut of a convex cell removes a disc of triangles: its rim is one simple cycle.
+    if (rim_.size() < 3) throw std::logic_error("convex cell: the cut face has fewer than three edges");
+    for (const PlanePair& e : rim_)
+      if (std::count_if(rim_.begin(), rim_.end(), [&](const PlanePair& f) { return f.a == e.a; }) != 1)
+        throw std::logic_error("convex cell: the cut face is not one cycle");
+    verts_.resize(kept);
+    for (const PlanePair& e : rim_) verts_.push_back(make_vertex({e.a, e.b, plane}));
+    // Treating a vertex on the plane as inside is the plane moved outward by an infinitesimal larger
+    // than every earlier plane's: the triangles stay those of a simple polytope, and the rim one cycle.
+    // Geometrically a new vertex may then be a kept vertex on the plane, or, once a cut met a vertex
+    // (edges of length zero since), another new one: it names that place, so that each point counts
+    // once (vertex_count, faces in bisector_neighbours).
+    if (vertex_on_plane_)
+      for (std::size_t j = kept; j < verts_.size(); ++j)
+        for (std::size_t i = 0; i < j; ++i)
+          if ((i >= kept || signs_[i] == 0) && verts_[i].place == verts_[i].serial && same_point(i, j)) {
+            verts_[j].place = verts_[i].place;
+            break;
+          }
+    live_vertices_ = 0;
+    for (const Vertex& vtx : verts_) live_vertices_ += vtx.place == vtx.serial;
   }
 }
 
@@ -497,7 +385,7 @@ bool ConvexCell<D>::within_scaled_distance(double k, const Point<D>& u) {
   }
   r2i *= Interval(k);
   for (Vertex& vtx : verts_) {
-    if (!vtx.alive) continue;
+    if (vtx.place != vtx.serial) continue;  // another vertex is the same point
     ++counters_.calls;
     Interval s = -r2i;
     for (int i = 0; i < D; ++i) s += CGAL::square(vtx.y[i]);
@@ -519,7 +407,7 @@ Point<D> ConvexCell<D>::farthest_vertex_offset() const {
   Point<D> best{};
   double best_d2 = -1;
   for (const Vertex& vtx : verts_) {
-    if (!vtx.alive) continue;
+    if (vtx.place != vtx.serial) continue;  // another vertex is the same point
     Point<D> y;
     double d2 = 0;
     for (int i = 0; i < D; ++i) {
@@ -538,16 +426,35 @@ template <int D>
 double ConvexCell<D>::max_vertex_distance2() const {
   double best = 0;
   for (const Vertex& vtx : verts_)
-    if (vtx.alive) best = std::max(best, vtx.r2);
+    if (vtx.place == vtx.serial) best = std::max(best, vtx.r2);
   return best;
 }
 
+// 2D: the constraints of the edges. 3D: the planes of the triangles; where a clip met a vertex exactly,
+// only those planes that meet the cell in three or more distinct points (a face, not an edge or a point).
 template <int D>
 void ConvexCell<D>::bisector_neighbours(std::vector<VertexId>& out) const {
   out.clear();
-  const auto& planes = (D == 2) ? edges_ : face_plane_;
-  for (std::uint16_t p : planes)
+  auto add = [&](std::uint16_t p) {
     if (constraints_[p].kind == Constraint<D>::Kind::Bisector) out.push_back(constraints_[p].other);
+  };
+  if constexpr (D == 2) {
+    for (std::uint16_t p : edges_) add(p);
+  } else if (!vertex_on_plane_) {
+    for (const Vertex& vtx : verts_)
+      for (std::uint16_t p : vtx.planes) add(p);
+  } else {
+    // (plane, place) pairs, sorted: a plane with three distinct places bounds a face.
+    auto& pairs = plane_places_;
+    pairs.clear();
+    for (const Vertex& vtx : verts_)
+      for (std::uint16_t p : vtx.planes) pairs.push_back(std::uint64_t(p) << 32 | vtx.place);
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    for (std::size_t k = 0; k + 2 < pairs.size(); ++k)
+      if ((pairs[k] >> 32) == (pairs[k + 2] >> 32) && (k == 0 || (pairs[k - 1] >> 32) != (pairs[k] >> 32)))
+        add(std::uint16_t(pairs[k] >> 32));
+  }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
 }
@@ -561,22 +468,15 @@ void ConvexCell<D>::assign_geometry(const ConvexCell& other) {
   live_vertices_ = other.live_vertices_;
   vertex_on_plane_ = other.vertex_on_plane_;
   edges_ = other.edges_;
-  face_plane_ = other.face_plane_;
-  face_begin_ = other.face_begin_;
-  face_len_ = other.face_len_;
-  face_verts_ = other.face_verts_;
-  free_verts_ = other.free_verts_;
+  next_serial_ = other.next_serial_;
 }
 
 template <int D>
 std::size_t ConvexCell<D>::memory_bytes() const {
   return constraints_.capacity() * sizeof(Constraint<D>) + exact_.capacity() * sizeof(exact_[0]) +
          (verts_.capacity() + next_verts_.capacity()) * sizeof(Vertex) + signs_.capacity() +
-         (edges_.capacity() + next_edges_.capacity() + face_plane_.capacity()) * sizeof(std::uint16_t) +
-         (face_begin_.capacity() + face_len_.capacity() + face_verts_.capacity() + arena_scratch_.capacity() +
-          free_verts_.capacity() + touched_faces_.capacity() + face_cuts_.capacity()) *
-             sizeof(std::uint32_t) +
-         used_.capacity() + cuts_.capacity() * sizeof(CutEdge) + rim_.capacity() * sizeof(RimEdge);
+         (edges_.capacity() + next_edges_.capacity()) * sizeof(std::uint16_t) +
+         (cut_edges_.capacity() + rim_.capacity()) * sizeof(PlanePair) + plane_places_.capacity() * sizeof(std::uint64_t);
 }
 
 template class ConvexCell<2>;

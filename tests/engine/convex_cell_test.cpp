@@ -74,6 +74,63 @@ TEST(ConvexCell, RandomCellVerticesAreEquidistantFromTheirSites3D) {
   EXPECT_GE(cell.vertex_count(), 4u);
 }
 
+// Lattice cells are full of points on four or more planes, and clipped in a shuffled order their cuts
+// meet vertices exactly again and again: the cell must still count each point once and list only the
+// sites whose bisector bounds a face. Simple cubic: a cube (8 points, 6 faces). Body-centred cubic: a
+// truncated octahedron (24, 14). Face-centred cubic: a rhombic dodecahedron (14, 12), six of whose
+// points lie on four faces and on the bisectors of the second neighbours too.
+struct LatticeCell {
+  const char* name;
+  bool (*member)(int, int, int);
+  std::size_t vertices, faces;
+  int face_distance2_max;  // the sites at squared distance <= this bound faces (lattice units)
+};
+
+void lattice_cell_in_shuffled_orders(const LatticeCell& lattice) {
+  RoundingGuard guard;
+  const double unit = 1.0 / 32;  // dyadic: every bisector and cell vertex is exact
+  const Point<3> v{0.5, 0.5, 0.5};
+  struct Site {
+    Point<3> p;
+    VertexId id;
+    int d2;
+  };
+  std::vector<Site> sites;
+  for (int i = -3; i <= 3; ++i)
+    for (int j = -3; j <= 3; ++j)
+      for (int k = -3; k <= 3; ++k)
+        if ((i || j || k) && lattice.member(i, j, k))
+          sites.push_back({{0.5 + unit * i, 0.5 + unit * j, 0.5 + unit * k}, VertexId(sites.size()), i * i + j * j + k * k});
+  std::sort(sites.begin(), sites.end(), [](const Site& a, const Site& b) { return a.d2 != b.d2 ? a.d2 < b.d2 : a.p < b.p; });
+  std::vector<VertexId> expected;
+  for (const Site& s : sites)
+    if (s.d2 <= lattice.face_distance2_max) expected.push_back(s.id);
+  std::sort(expected.begin(), expected.end());
+  std::uint64_t x = 7;
+  for (int order = 0; order < 40; ++order) {
+    // Order 0: by distance, as the engine clips; then shuffled.
+    if (order > 0)
+      for (std::size_t k = sites.size() - 1; k > 0; --k) {
+        x = x * 6364136223846793005ull + 1442695040888963407ull;
+        std::swap(sites[k], sites[std::size_t(x >> 33) % (k + 1)]);
+      }
+    ConvexCell<3> cell;
+    cell.reset(v, {0.3, 0.3, 0.3}, {0.7, 0.7, 0.7});
+    for (const Site& s : sites) cell.clip(s.id, s.p, unit * unit * s.d2);
+    EXPECT_EQ(cell.vertex_count(), lattice.vertices) << lattice.name << ", order " << order;
+    std::vector<VertexId> nb;
+    cell.bisector_neighbours(nb);
+    EXPECT_EQ(nb, expected) << lattice.name << ", order " << order;
+  }
+}
+
+TEST(ConvexCell, LatticeCellsCountEachPointOnceInAnyCutOrder3D) {
+  lattice_cell_in_shuffled_orders({"simple cubic", [](int, int, int) { return true; }, 8, 6, 1});
+  lattice_cell_in_shuffled_orders(
+      {"body-centred cubic", [](int i, int j, int k) { return (i & 1) == (j & 1) && (j & 1) == (k & 1); }, 24, 14, 4});
+  lattice_cell_in_shuffled_orders({"face-centred cubic", [](int i, int j, int k) { return ((i + j + k) & 1) == 0; }, 14, 12, 2});
+}
+
 // A cell cut by some sites in distance order, then by the others in any order between
 // begin_out_of_order_cuts and end_out_of_order_cuts, is the cell all sites cut in distance order give,
 // bit for bit: how the engine brings a cached cell up to date with the vertices born since.

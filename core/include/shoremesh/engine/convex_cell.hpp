@@ -1,8 +1,11 @@
 #pragma once
 // The Voronoi cell of one vertex v, clipped to a box, computed locally: start from a box around v and
 // cut it by the bisectors of nearby vertices. A convex polygon in 2D (cyclic edge list) and a convex
-// polyhedron in 3D (faces with vertex cycles). All decisions are exact (predicates.hpp); vertices are
-// kept symbolically as the D constraints that define them, with interval coordinates for the filter.
+// polyhedron in 3D, kept in its dual: each vertex is the triangle of its three planes, listed counter-
+// clockwise seen from outside, and those triangles tile the sphere of planes (as in Ray et al., "Meshless
+// Voronoi on the GPU", 2018): a cut needs no faces, only the vertices it removes. All decisions are exact
+// (predicates.hpp); vertices are kept symbolically as the D constraints that define them, with interval
+// coordinates for the filter.
 // Degenerate inputs (grids: four co-circular points, eight co-spherical) give vertices that lie exactly
 // on a new plane; those are kept (sign 0 counts as inside), so no ad-hoc epsilon is ever needed.
 #include <array>
@@ -55,7 +58,7 @@ class ConvexCell {
   template <class F>
   void for_each_vertex_box(F&& f) const {
     for (const Vertex& vtx : verts_)
-      if (vtx.alive) f(vtx.y);
+      if (vtx.place == vtx.serial) f(vtx.y);
   }
   // Vertices w whose bisector bounds the cell (the clipped Voronoi neighbours found so far).
   void bisector_neighbours(std::vector<VertexId>& out) const;
@@ -78,34 +81,31 @@ class ConvexCell {
 
  private:
   struct Vertex {
-    std::array<std::uint16_t, D> planes{};  // the constraints that define it
+    // The constraints that define it. 2D: its incoming, then its outgoing edge. 3D: its three planes
+    // counter-clockwise seen from outside the cell (the dual triangle's orientation).
+    std::array<std::uint16_t, D> planes{};
     std::array<Interval, D> y{};            // its position relative to v, enclosed
     double r2 = 0;                          // an upper bound on |y|^2
     std::int32_t exact = -1;                // index into exact_ once computed
-    bool alive = true;                      // 3D: a freed slot (cut away) waits in free_verts_
+    // 3D: a point on four or more planes is several dual triangles (a cut that met a kept vertex exactly
+    // made a new one at the same point). `place` names the first vertex made at its point, by `serial`:
+    // only that one counts as a vertex of the cell.
+    std::uint32_t serial = 0, place = 0;
   };
-  // A cut edge of the 3D clip: the edge a-b (a < b), the planes of the two faces sharing it (in face
-  // order), its new vertex.
-  struct CutEdge {
-    std::uint32_t a, b;
-    std::uint16_t faces[2];
-    int count;
-    std::uint32_t vertex;
-  };
-  // An edge p -> q of a clipped face lying on the new plane: the new face runs q -> p.
-  struct RimEdge {
-    std::uint32_t from, to;
+  // A directed edge a -> b of a dual triangle: the cell's edge on planes a and b.
+  struct PlanePair {
+    std::uint16_t a, b;
   };
   std::uint16_t add_constraint(const Constraint<D>& c);
   bool before_in_distance_order(std::uint16_t a, std::uint16_t b) const;
   Vertex make_vertex(const std::array<std::uint16_t, D>& planes);
   const std::array<Exact, D>& exact_position(Vertex& vtx);
   int side(Vertex& vtx, std::uint16_t plane);  // sign of n.y - b: > 0 outside
+  // Whether vertices i and j are the same point (exact).
+  bool same_point(std::size_t i, std::size_t j);
   bool clip_by(std::uint16_t plane);
   void clip_polygon(std::uint16_t plane);
   void clip_polyhedron(std::uint16_t plane);
-  std::uint32_t new_vertex_slot();
-  void compact_face_arena();
 
   Point<D> v_{};
   std::vector<Constraint<D>> constraints_;
@@ -117,19 +117,11 @@ class ConvexCell {
   std::vector<std::int8_t> signs_;
   // 2D: edges_[i] is the constraint of the edge from vertex i to vertex i+1.
   std::vector<std::uint16_t> edges_, next_edges_;
-  // 3D: face f is face_plane_[f] with vertex cycle face_verts_[face_begin_[f] .. + face_len_[f]). Faces
-  // are in increasing plane order (each cut appends its plane, which is the newest constraint). A
-  // clipped face gets its new cycle appended to face_verts_, an arena that only grows during one cell
-  // (compacted when mostly garbage), so untouched faces are never copied. Vertex slots of cut-away
-  // vertices are reused (free_verts_): no renumbering.
-  std::vector<std::uint16_t> face_plane_;
-  std::vector<std::uint32_t> face_begin_, face_len_;
-  std::vector<std::uint32_t> face_verts_, arena_scratch_;
-  std::vector<std::uint32_t> free_verts_;
-  std::vector<std::uint32_t> touched_faces_, face_cuts_;
-  std::vector<std::uint8_t> used_;
-  std::vector<CutEdge> cuts_;
-  std::vector<RimEdge> rim_;
+  // 3D scratch of a cut: the directed edges of the triangles cut away, and those of them on the rim
+  // (their reverse belongs to a kept triangle). plane_places_: scratch of bisector_neighbours.
+  std::vector<PlanePair> cut_edges_, rim_;
+  std::uint32_t next_serial_ = 0;
+  mutable std::vector<std::uint64_t> plane_places_;
   PredicateCounters counters_;
 };
 
