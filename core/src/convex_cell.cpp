@@ -334,19 +334,23 @@ void ConvexCell<D>::clip_polygon(std::uint16_t plane) {
 template <int D>
 void ConvexCell<D>::clip_polyhedron(std::uint16_t plane) {
   if constexpr (D == 3) {
+    // The vertices beyond go, the last one taking each one's slot (the cell's answers do not depend on
+    // the vertices' order), their triangles' edges listed.
     cut_edges_.clear();
-    std::size_t kept = 0;
-    for (std::size_t i = 0; i < verts_.size(); ++i) {
-      if (signs_[i] > 0) {
-        const auto& p = verts_[i].planes;
-        cut_edges_.push_back({p[0], p[1]});
-        cut_edges_.push_back({p[1], p[2]});
-        cut_edges_.push_back({p[2], p[0]});
+    for (std::size_t i = 0; i < verts_.size();) {
+      if (signs_[i] <= 0) {
+        ++i;
         continue;
       }
-      signs_[kept] = signs_[i];
-      verts_[kept++] = verts_[i];
+      const auto& p = verts_[i].planes;
+      cut_edges_.push_back({p[0], p[1]});
+      cut_edges_.push_back({p[1], p[2]});
+      cut_edges_.push_back({p[2], p[0]});
+      verts_[i] = verts_.back();
+      signs_[i] = signs_[verts_.size() - 1];
+      verts_.pop_back();
     }
+    const std::size_t kept = verts_.size();
     rim_.clear();
     for (const PlanePair& e : cut_edges_)
       if (std::none_of(cut_edges_.begin(), cut_edges_.end(), [&](const PlanePair& f) { return f.a == e.b && f.b == e.a; }))
@@ -356,7 +360,6 @@ void ConvexCell<D>::clip_polyhedron(std::uint16_t plane) {
     for (const PlanePair& e : rim_)
       if (std::count_if(rim_.begin(), rim_.end(), [&](const PlanePair& f) { return f.a == e.a; }) != 1)
         throw std::logic_error("convex cell: the cut face is not one cycle");
-    verts_.resize(kept);
     for (const PlanePair& e : rim_) verts_.push_back(make_vertex({e.a, e.b, plane}));
     // Treating a vertex on the plane as inside is the plane moved outward by an infinitesimal larger
     // than every earlier plane's: the triangles stay those of a simple polytope, and the rim one cycle.
@@ -441,8 +444,15 @@ void ConvexCell<D>::bisector_neighbours(std::vector<VertexId>& out) const {
   if constexpr (D == 2) {
     for (std::uint16_t p : edges_) add(p);
   } else if (!vertex_on_plane_) {
+    // Each plane once (it is in every triangle around its face).
+    auto& seen = plane_seen_;
+    seen.assign(constraints_.size(), 0);
     for (const Vertex& vtx : verts_)
-      for (std::uint16_t p : vtx.planes) add(p);
+      for (std::uint16_t p : vtx.planes)
+        if (!seen[p]) {
+          seen[p] = 1;
+          add(p);
+        }
   } else {
     // (plane, place) pairs, sorted: a plane with three distinct places bounds a face.
     auto& pairs = plane_places_;
@@ -476,7 +486,8 @@ std::size_t ConvexCell<D>::memory_bytes() const {
   return constraints_.capacity() * sizeof(Constraint<D>) + exact_.capacity() * sizeof(exact_[0]) +
          (verts_.capacity() + next_verts_.capacity()) * sizeof(Vertex) + signs_.capacity() +
          (edges_.capacity() + next_edges_.capacity()) * sizeof(std::uint16_t) +
-         (cut_edges_.capacity() + rim_.capacity()) * sizeof(PlanePair) + plane_places_.capacity() * sizeof(std::uint64_t);
+         (cut_edges_.capacity() + rim_.capacity()) * sizeof(PlanePair) + plane_places_.capacity() * sizeof(std::uint64_t) +
+         plane_seen_.capacity();
 }
 
 template class ConvexCell<2>;

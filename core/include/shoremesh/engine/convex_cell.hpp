@@ -118,9 +118,11 @@ class ConvexCell {
   // 2D: edges_[i] is the constraint of the edge from vertex i to vertex i+1.
   std::vector<std::uint16_t> edges_, next_edges_;
   // 3D scratch of a cut: the directed edges of the triangles cut away, and those of them on the rim
-  // (their reverse belongs to a kept triangle). plane_places_: scratch of bisector_neighbours.
+  // (their reverse belongs to a kept triangle). plane_seen_, plane_places_: scratch of
+  // bisector_neighbours.
   std::vector<PlanePair> cut_edges_, rim_;
   std::uint32_t next_serial_ = 0;
+  mutable std::vector<std::uint8_t> plane_seen_;
   mutable std::vector<std::uint64_t> plane_places_;
   PredicateCounters counters_;
 };
