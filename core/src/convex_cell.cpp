@@ -191,8 +191,8 @@ void ConvexCell<D>::reset(const Point<D>& v, const Point<D>& lo, const Point<D>&
   auto corner = [&](int bits) {
     std::array<std::uint16_t, D> planes;
     for (int a = 0; a < D; ++a) planes[a] = std::uint16_t(2 * a + ((bits >> a) & 1));
-    // 3D: counter-clockwise seen from outside when the outward normals (+-e_x, +-e_y, +-e_z) have a
-    // positive determinant, that is when an even number of them point down.
+    // 3D: (x, y, z) is counter-clockwise seen from outside when the outward normals (+-e_x, +-e_y,
+    // +-e_z) have a positive determinant, that is when an even number of them point down; else (x, z, y).
     if (D == 3 && std::popcount(unsigned(bits)) % 2 == 0) std::swap(planes[1], planes[2]);
     return make_vertex(planes);
   };
