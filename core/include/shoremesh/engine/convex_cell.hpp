@@ -121,6 +121,8 @@ class ConvexCell {
   // (their reverse belongs to a kept triangle). plane_seen_, plane_places_: scratch of
   // bisector_neighbours.
   std::vector<PlanePair> cut_edges_, rim_;
+  static constexpr std::uint32_t kNoEdge = ~std::uint32_t(0);  // planes are 16-bit: no edge's code
+  std::vector<std::uint32_t> edge_table_;                     // cut_edges_ by code, to find reverses
   std::uint32_t next_serial_ = 0;
   mutable std::vector<std::uint8_t> plane_seen_;
   mutable std::vector<std::uint64_t> plane_places_;
