@@ -30,6 +30,11 @@ struct Constraint {
   double order_d2 = 0;         // Bisector: |other - v|^2 as the engine orders its candidates
   std::array<Interval, D> n{};
   Interval b{};
+  // For the vertex solve in doubles (convex_cell.cpp): |inf| + width of each coefficient, and whether
+  // every width is within 2^-50 of |inf|.
+  std::array<double, D> n_magnitude{};
+  double b_magnitude = 0;
+  bool narrow = false;
 };
 
 template <int D>
