@@ -501,6 +501,16 @@ bool ConvexCell<D>::within_scaled_distance(double k, const Point<D>& u) {
 }
 
 template <int D>
+bool ConvexCell<D>::vertex_boxes_hold_exact_positions() {
+  for (Vertex& vtx : verts_) {
+    const auto exact = exact_position(vtx);  // a copy: exact_ may grow for the next vertex
+    for (int i = 0; i < D; ++i)
+      if (exact[i] < Exact(vtx.y[i].inf()) || exact[i] > Exact(vtx.y[i].sup())) return false;
+  }
+  return true;
+}
+
+template <int D>
 Point<D> ConvexCell<D>::farthest_vertex_offset() const {
   Point<D> best{};
   double best_d2 = -1;

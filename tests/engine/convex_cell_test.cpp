@@ -131,6 +131,57 @@ TEST(ConvexCell, LatticeCellsCountEachPointOnceInAnyCutOrder3D) {
   lattice_cell_in_shuffled_orders({"face-centred cubic", [](int i, int j, int k) { return ((i + j + k) & 1) == 0; }, 14, 12, 2});
 }
 
+// Vertices are solved in doubles with an error bound (and in intervals where the bound cannot decide):
+// every vertex's box must hold its exact position, also for sites nearly on a line or a plane, nearly
+// equidistant, 1e-9 apart, or far from v relative to their spacing (ill-conditioned vertices).
+template <int D>
+void vertex_boxes_hold_exact_positions(std::uint64_t seed) {
+  RoundingGuard guard;
+  std::uint64_t x = seed;
+  auto rnd = [&] {
+    x = x * 6364136223846793005ull + 1442695040888963407ull;
+    return double(x >> 11) * 0x1p-53;
+  };
+  for (int shape = 0; shape < 4; ++shape) {
+    Point<D> v, lo, hi;
+    for (int i = 0; i < D; ++i) {
+      v[i] = 0.3 + 0.4 * rnd();
+      lo[i] = v[i] - 0.2;
+      hi[i] = v[i] + 0.2;
+    }
+    ConvexCell<D> cell;
+    cell.reset(v, lo, hi);
+    std::vector<std::pair<double, Point<D>>> sites;
+    for (int k = 0; k < 60; ++k) {
+      Point<D> w;
+      for (int i = 0; i < D; ++i) {
+        switch (shape) {
+          case 0: w[i] = v[i] + 0.2 * (rnd() - 0.5); break;                               // uniform
+          case 1: w[i] = v[i] + (i == 0 ? 0.1 * (rnd() - 0.5) : 1e-7 * (rnd() - 0.5)); break;  // nearly a line
+          case 2: w[i] = v[i] + 1e-9 * (rnd() - 0.5) + (k % 2 ? 1e-3 : -1e-3); break;       // two tight clusters
+          default: w[i] = v[i] + (i + 1 < D ? 0.1 * (rnd() - 0.5) : 0.05 + 1e-12 * rnd()); break;  // a plane
+        }
+      }
+      if (w == v) continue;
+      sites.push_back({squared_distance<double, D>(w, v), w});
+    }
+    std::sort(sites.begin(), sites.end());
+    VertexId id = 0;
+    for (const auto& [d2, w] : sites) {
+      cell.clip(id++, w, d2);
+      ASSERT_TRUE(cell.vertex_boxes_hold_exact_positions()) << "seed " << seed << ", shape " << shape << ", site " << id;
+    }
+  }
+}
+
+TEST(ConvexCell, VertexBoxesHoldExactPositions2D) {
+  for (std::uint64_t seed : {1, 2, 3, 4, 5, 6, 7, 8}) vertex_boxes_hold_exact_positions<2>(seed);
+}
+
+TEST(ConvexCell, VertexBoxesHoldExactPositions3D) {
+  for (std::uint64_t seed : {1, 2, 3, 4, 5, 6, 7, 8}) vertex_boxes_hold_exact_positions<3>(seed);
+}
+
 // A cell cut by some sites in distance order, then by the others in any order between
 // begin_out_of_order_cuts and end_out_of_order_cuts, is the cell all sites cut in distance order give,
 // bit for bit: how the engine brings a cached cell up to date with the vertices born since.

@@ -65,6 +65,8 @@ class ConvexCell {
     for (const Vertex& vtx : verts_)
       if (vtx.place == vtx.serial) f(vtx.y);
   }
+  // Whether every vertex's interval box holds its exact position (a self-check for tests: exact, slow).
+  bool vertex_boxes_hold_exact_positions();
   // Vertices w whose bisector bounds the cell (the clipped Voronoi neighbours found so far).
   void bisector_neighbours(std::vector<VertexId>& out) const;
 
