@@ -10,6 +10,15 @@
 namespace shoremesh::engine {
 namespace {
 
+// Reproducible numbers in [0, 1) (a 64-bit linear congruential generator).
+struct Uniform01 {
+  std::uint64_t x;
+  double operator()() {
+    x = x * 6364136223846793005ull + 1442695040888963407ull;
+    return double(x >> 11) * 0x1p-53;
+  }
+};
+
 TEST(ConvexCell, GridPointCellIsASquare2D) {
   RoundingGuard guard;
   ConvexCell<2> cell;
@@ -53,11 +62,7 @@ TEST(ConvexCell, RandomCellVerticesAreEquidistantFromTheirSites3D) {
   ConvexCell<3> cell;
   const Point<3> v{0.5, 0.5, 0.5};
   cell.reset(v, {0.0, 0.0, 0.0}, {1.0, 1.0, 1.0});
-  std::uint64_t x = 12345;
-  auto rnd = [&] {
-    x = x * 6364136223846793005ull + 1442695040888963407ull;
-    return double(x >> 11) * 0x1p-53;
-  };
+  Uniform01 rnd{12345};
   std::vector<Point<3>> sites;
   for (VertexId id = 0; id < 60; ++id) {
     Point<3> w{0.2 + 0.6 * rnd(), 0.2 + 0.6 * rnd(), 0.2 + 0.6 * rnd()};
@@ -137,11 +142,7 @@ TEST(ConvexCell, LatticeCellsCountEachPointOnceInAnyCutOrder3D) {
 template <int D>
 void vertex_boxes_hold_exact_positions(std::uint64_t seed) {
   RoundingGuard guard;
-  std::uint64_t x = seed;
-  auto rnd = [&] {
-    x = x * 6364136223846793005ull + 1442695040888963407ull;
-    return double(x >> 11) * 0x1p-53;
-  };
+  Uniform01 rnd{seed};
   for (int shape = 0; shape < 4; ++shape) {
     Point<D> v, lo, hi;
     for (int i = 0; i < D; ++i) {
@@ -188,11 +189,7 @@ TEST(ConvexCell, VertexBoxesHoldExactPositions3D) {
 template <int D>
 void out_of_order_cuts_equal_distance_order(std::uint64_t seed) {
   RoundingGuard guard;
-  std::uint64_t x = seed;
-  auto rnd = [&] {
-    x = x * 6364136223846793005ull + 1442695040888963407ull;
-    return double(x >> 11) * 0x1p-53;
-  };
+  Uniform01 rnd{seed};
   Point<D> v, lo, hi;
   for (int i = 0; i < D; ++i) {
     v[i] = 0.5;
