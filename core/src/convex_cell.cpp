@@ -287,7 +287,6 @@ void ConvexCell<D>::reset(const Point<D>& v, const Point<D>& lo, const Point<D>&
   } else {
     for (int bits = 0; bits < 8; ++bits) verts_.push_back(corner(bits));
   }
-  live_vertices_ = verts_.size();
 }
 
 template <int D>
@@ -407,7 +406,6 @@ void ConvexCell<D>::clip_polygon(std::uint16_t plane) {
     }
     verts_.swap(next_verts_);
     edges_.swap(next_edges_);
-    live_vertices_ = verts_.size();
   }
 }
 
@@ -464,12 +462,10 @@ void ConvexCell<D>::clip_polyhedron(std::uint16_t plane) {
     if (vertex_on_plane_)
       for (std::size_t j = kept; j < verts_.size(); ++j)
         for (std::size_t i = 0; i < j; ++i)
-          if ((i >= kept || signs_[i] == 0) && verts_[i].place == verts_[i].serial && same_point(i, j)) {
+          if ((i >= kept || signs_[i] == 0) && verts_[i].first_at_its_point() && same_point(i, j)) {
             verts_[j].place = verts_[i].place;
             break;
           }
-    live_vertices_ = 0;
-    for (const Vertex& vtx : verts_) live_vertices_ += vtx.place == vtx.serial;
   }
 }
 
@@ -483,7 +479,7 @@ bool ConvexCell<D>::within_scaled_distance(double k, const Point<D>& u) {
   }
   r2i *= Interval(k);
   for (Vertex& vtx : verts_) {
-    if (vtx.place != vtx.serial) continue;  // another vertex is the same point
+    if (!vtx.first_at_its_point()) continue;  // another vertex is the same point
     ++counters_.calls;
     Interval s = -r2i;
     for (int i = 0; i < D; ++i) s += CGAL::square(vtx.y[i]);
@@ -515,7 +511,7 @@ Point<D> ConvexCell<D>::farthest_vertex_offset() const {
   Point<D> best{};
   double best_d2 = -1;
   for (const Vertex& vtx : verts_) {
-    if (vtx.place != vtx.serial) continue;  // another vertex is the same point
+    if (!vtx.first_at_its_point()) continue;  // another vertex is the same point
     Point<D> y;
     double d2 = 0;
     for (int i = 0; i < D; ++i) {
@@ -534,7 +530,7 @@ template <int D>
 double ConvexCell<D>::max_vertex_distance2() const {
   double best = 0;
   for (const Vertex& vtx : verts_)
-    if (vtx.place == vtx.serial) best = std::max(best, vtx.r2);
+    if (vtx.first_at_its_point()) best = std::max(best, vtx.r2);
   return best;
 }
 
@@ -580,7 +576,6 @@ void ConvexCell<D>::assign_geometry(const ConvexCell& other) {
   constraints_ = other.constraints_;
   exact_ = other.exact_;
   verts_ = other.verts_;
-  live_vertices_ = other.live_vertices_;
   vertex_on_plane_ = other.vertex_on_plane_;
   edges_ = other.edges_;
   next_serial_ = other.next_serial_;

@@ -8,6 +8,7 @@
 // coordinates for the filter.
 // Degenerate inputs (grids: four co-circular points, eight co-spherical) give vertices that lie exactly
 // on a new plane; those are kept (sign 0 counts as inside), so no ad-hoc epsilon is ever needed.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -63,7 +64,7 @@ class ConvexCell {
   template <class F>
   void for_each_vertex_box(F&& f) const {
     for (const Vertex& vtx : verts_)
-      if (vtx.place == vtx.serial) f(vtx.y);
+      if (vtx.first_at_its_point()) f(vtx.y);
   }
   // Whether every vertex's interval box holds its exact position (a self-check for tests: exact, slow).
   bool vertex_boxes_hold_exact_positions();
@@ -82,7 +83,10 @@ class ConvexCell {
   // Heap bytes held by its buffers.
   std::size_t memory_bytes() const;
   const Point<D>& site() const { return v_; }
-  std::size_t vertex_count() const { return live_vertices_; }
+  // Distinct points among the vertices (counted: only tests ask).
+  std::size_t vertex_count() const {
+    return std::size_t(std::count_if(verts_.begin(), verts_.end(), [](const Vertex& vtx) { return vtx.first_at_its_point(); }));
+  }
   PredicateCounters& counters() { return counters_; }
   const PredicateCounters& counters() const { return counters_; }
 
@@ -98,6 +102,7 @@ class ConvexCell {
     // made a new one at the same point). `place` names the first vertex made at its point, by `serial`:
     // only that one counts as a vertex of the cell.
     std::uint32_t serial = 0, place = 0;
+    bool first_at_its_point() const { return place == serial; }
   };
   // A directed edge a -> b of a dual triangle: the cell's edge on planes a and b.
   struct PlanePair {
@@ -118,7 +123,6 @@ class ConvexCell {
   std::vector<Constraint<D>> constraints_;
   std::vector<std::array<Exact, D>> exact_;
   std::vector<Vertex> verts_, next_verts_;
-  std::size_t live_vertices_ = 0;
   bool vertex_on_plane_ = false;
   bool out_of_order_ = false;  // between begin_ and end_out_of_order_cuts
   std::vector<std::int8_t> signs_;
