@@ -133,6 +133,7 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(s
   }
   // StableWS is a propagation in which every operation is fresh.
   propagate(nullptr);
+  renumber_operations_by_place();
   dynamic_ = true;
   return vertex_of_point;
 }
@@ -364,6 +365,61 @@ void WellSpacedEngine<D>::execute(OpId o) {
   else fill(o);
   ops_[o].flags |= kExecuted;
   if (stats_) ++stats_->executed;
+}
+
+// The build numbers operations in time order (each time's batch along the curve), so the operations on
+// the vertices around one place lie in as many distant stretches of ops_ as there are times. An update
+// reads the operations of one place at all times (marking readers loads every reader's operation), and
+// at n = 1e6 each of those loads was a cache miss. Numbered by place instead (the vertices along the
+// curve, each vertex's operations in time order), they share cache lines. Operation ids are internal:
+// only the references change. (Vertices keep their ids: the facet filters hash them.)
+template <int D>
+void WellSpacedEngine<D>::renumber_operations_by_place() {
+  const std::size_t m = ops_.size();
+  std::vector<std::pair<std::uint64_t, VertexId>> places;
+  places.reserve(vertices_.size());
+  for (VertexId v = 0; v < vertices_.size(); ++v)
+    if (vertices_[v].alive) places.emplace_back(engine::z_order_key<D>(positions_[v]), v);
+  std::sort(places.begin(), places.end());
+  std::vector<OpId> new_id(m, kNoOp);
+  OpId next = 0;
+  std::vector<OpId> own;
+  for (const auto& [key, v] : places) {
+    own.clear();
+    if (vertices_[v].dispatch != kNoOp) own.push_back(vertices_[v].dispatch);
+    for (OpId f = vertices_[v].first_fill; f != kNoOp; f = ops_[f].next_fill) own.push_back(f);
+    std::sort(own.begin(), own.end(), [&](OpId a, OpId b) {
+      return time_key(ops_[a].rank, ops_[a].color) < time_key(ops_[b].rank, ops_[b].color);
+    });
+    for (OpId o : own) new_id[o] = next++;
+  }
+  for (OpId& id : new_id)
+    if (id == kNoOp) id = next++;  // deleted slots last
+  // The permutation applied in place, cycle by cycle (a copy of ops_ would double its memory).
+  std::vector<bool> placed(m, false);
+  for (OpId start = 0; start < m; ++start) {
+    if (placed[start]) continue;
+    Op carried = ops_[start];
+    for (OpId from = start;;) {
+      const OpId to = new_id[from];
+      placed[to] = true;
+      std::swap(carried, ops_[to]);
+      if (to == start) break;
+      from = to;
+    }
+  }
+  auto renamed = [&](OpId o) { return o == kNoOp ? kNoOp : new_id[o]; };
+  for (Op& op : ops_) op.next_fill = renamed(op.next_fill);
+  for (Vertex& vx : vertices_) {
+    vx.creator = renamed(vx.creator);
+    vx.dispatch = renamed(vx.dispatch);
+    vx.first_fill = renamed(vx.first_fill);
+  }
+  for (OpId& c : children_) c = new_id[c];
+  for (auto& list : readers_)
+    for (OpId& o : list) o = new_id[o];
+  for (OpId& o : free_ops_) o = new_id[o];
+  compact_pools();  // the children and reads pools in the new order too
 }
 
 // Rebuilds the children and reads pools without the entries of undone operations.

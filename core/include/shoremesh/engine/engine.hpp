@@ -197,6 +197,7 @@ class WellSpacedEngine {
   VertexId new_vertex(const Point<D>& p);
   void kill_vertex(VertexId v);
   void compact_pools();
+  void renumber_operations_by_place();
   double squared_distance(VertexId a, VertexId b) const;
 
   DerivedParameters<D> params_;
