@@ -115,6 +115,7 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(s
     vertices_[v].position = positions_[v];
     vertices_[v].is_input = true;
     vertices_[v].alive = true;
+    vertices_[v].filter_key = v;
     ids[v] = v;
   }
   tree_.build(positions_, ids);
@@ -133,6 +134,8 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(s
   }
   // StableWS is a propagation in which every operation is fresh.
   propagate(nullptr);
+  const std::vector<VertexId> new_id = renumber_vertices_by_place();
+  for (VertexId& v : vertex_of_point) v = new_id[v];
   renumber_operations_by_place();
   dynamic_ = true;
   return vertex_of_point;
@@ -192,7 +195,7 @@ template <int D>
 void WellSpacedEngine<D>::mark_readers_at(VertexId w, const Point<D>& p, NodeId leaf, VertexChange change, int rank,
                                           std::uint32_t color) {
   const bool inserted = change == VertexChange::Inserted;
-  const auto bits = engine::FacetFilter<D>::of(w);
+  const auto bits = facet_bits(w);
   for (NodeId n = leaf; n != kNoNode; n = tree_.node(n).parent)
     for (OpId o : readers_[n]) {
       const Op& op = ops_[o];
@@ -213,8 +216,8 @@ void WellSpacedEngine<D>::mark_readers_at(VertexId w, const Point<D>& p, NodeId 
 
 template <int D>
 void WellSpacedEngine<D>::record_facets(OpId o) {
-  auto facets = engine::FacetFilter<D>::of(hood_.nearest);
-  for (VertexId w : neighbours_) facets.add(engine::FacetFilter<D>::of(w));
+  auto facets = facet_bits(hood_.nearest);
+  for (VertexId w : neighbours_) facets.add(facet_bits(w));
   ops_[o].facets = facets;
 }
 
@@ -367,24 +370,63 @@ void WellSpacedEngine<D>::execute(OpId o) {
   if (stats_) ++stats_->executed;
 }
 
-// The build numbers operations in time order (each time's batch along the curve), so the operations on
-// the vertices around one place lie in as many distant stretches of ops_ as there are times. An update
-// reads the operations of one place at all times (marking readers loads every reader's operation), and
-// at n = 1e6 each of those loads was a cache miss. Numbered by place instead (the vertices along the
-// curve, each vertex's operations in time order), they share cache lines. Operation ids are internal:
-// only the references change. (Vertices keep their ids: the facet filters hash them.)
+namespace {
+// Moves item o of items to new_id[o], cycle by cycle (a copy would double the memory of the largest
+// arrays of the engine).
+template <class T>
+void permute_in_place(std::vector<T>& items, const std::vector<std::uint32_t>& new_id) {
+  std::vector<bool> placed(items.size(), false);
+  for (std::uint32_t start = 0; start < items.size(); ++start) {
+    if (placed[start]) continue;
+    T carried = items[start];
+    for (std::uint32_t from = start;;) {
+      const std::uint32_t to = new_id[from];
+      placed[to] = true;
+      std::swap(carried, items[to]);
+      if (to == start) break;
+      from = to;
+    }
+  }
+}
+}  // namespace
+
+// The build numbers Steiner vertices and operations in time order (each time's batch along the curve),
+// so the vertices and operations around one place lie in as many distant stretches of their arrays as
+// there are times. An update reads those of one place at all times (marking readers loads every
+// reader's operation and its vertex's position): at n = 1e6 each such load was a cache miss. Numbered
+// by place instead (vertices along the curve, each vertex's operations in time order after it), they
+// share cache lines. The ids are internal: only the references change, and the facet filters hash each
+// vertex's filter_key, which stays.
+template <int D>
+std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::renumber_vertices_by_place() {
+  const std::size_t count = vertices_.size();
+  std::vector<std::pair<std::uint64_t, VertexId>> places;
+  places.reserve(count);
+  for (VertexId v = 0; v < count; ++v)
+    if (vertices_[v].alive) places.emplace_back(engine::z_order_key<D>(positions_[v]), v);
+  std::sort(places.begin(), places.end());  // equal keys (nearly equal points) by id: deterministic
+  std::vector<VertexId> new_id(count, kNoVertex);
+  VertexId next = 0;
+  for (const auto& place : places) new_id[place.second] = next++;
+  for (VertexId& id : new_id)
+    if (id == kNoVertex) id = next++;  // free slots last
+  permute_in_place(vertices_, new_id);
+  permute_in_place(positions_, new_id);
+  for (Op& op : ops_)
+    if (op.vertex != kNoVertex) op.vertex = new_id[op.vertex];
+  for (VertexId& v : free_vertices_) v = new_id[v];
+  tree_.rename_vertices(new_id);
+  return new_id;
+}
+
 template <int D>
 void WellSpacedEngine<D>::renumber_operations_by_place() {
   const std::size_t m = ops_.size();
-  std::vector<std::pair<std::uint64_t, VertexId>> places;
-  places.reserve(vertices_.size());
-  for (VertexId v = 0; v < vertices_.size(); ++v)
-    if (vertices_[v].alive) places.emplace_back(engine::z_order_key<D>(positions_[v]), v);
-  std::sort(places.begin(), places.end());
   std::vector<OpId> new_id(m, kNoOp);
   OpId next = 0;
   std::vector<OpId> own;
-  for (const auto& [key, v] : places) {
+  for (VertexId v = 0; v < vertices_.size(); ++v) {  // along the curve, after renumber_vertices_by_place
+    if (!vertices_[v].alive) continue;
     own.clear();
     if (vertices_[v].dispatch != kNoOp) own.push_back(vertices_[v].dispatch);
     for (OpId f = vertices_[v].first_fill; f != kNoOp; f = ops_[f].next_fill) own.push_back(f);
@@ -395,19 +437,7 @@ void WellSpacedEngine<D>::renumber_operations_by_place() {
   }
   for (OpId& id : new_id)
     if (id == kNoOp) id = next++;  // deleted slots last
-  // The permutation applied in place, cycle by cycle (a copy of ops_ would double its memory).
-  std::vector<bool> placed(m, false);
-  for (OpId start = 0; start < m; ++start) {
-    if (placed[start]) continue;
-    Op carried = ops_[start];
-    for (OpId from = start;;) {
-      const OpId to = new_id[from];
-      placed[to] = true;
-      std::swap(carried, ops_[to]);
-      if (to == start) break;
-      from = to;
-    }
-  }
+  permute_in_place(ops_, new_id);
   auto renamed = [&](OpId o) { return o == kNoOp ? kNoOp : new_id[o]; };
   for (Op& op : ops_) op.next_fill = renamed(op.next_fill);
   for (Vertex& vx : vertices_) {
@@ -651,7 +681,7 @@ void WellSpacedEngine<D>::record_idle_fill(OpId o, VertexId v) {
   record_reads(o, positions_[v], std::sqrt(nn2) * (1 + 1e-6));
   ops_[o].depends2 = at_least(nn2 * (1 + 1e-6));
   ops_[o].inserted_depends2 = 0;  // only a vertex exactly at v's place, which reruns it
-  ops_[o].facets = engine::FacetFilter<D>::of(hood_.nearest);
+  ops_[o].facets = facet_bits(hood_.nearest);
   ops_[o].reach = engine::CellReach<D>::unbounded();
   ++counters_.fills_idle_by_rank;
 }
@@ -858,10 +888,12 @@ typename WellSpacedEngine<D>::VertexId WellSpacedEngine<D>::new_vertex(const Poi
   if (!free_vertices_.empty()) {
     const VertexId id = free_vertices_.back();
     free_vertices_.pop_back();
+    vx.filter_key = id;
     vertices_[id] = vx;
     positions_[id] = p;
     return id;
   }
+  vx.filter_key = std::uint32_t(vertices_.size());
   vertices_.push_back(vx);
   positions_.push_back(p);
   return VertexId(vertices_.size() - 1);

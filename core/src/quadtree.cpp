@@ -582,6 +582,15 @@ NodeId Quadtree<D>::insert_vertex(VertexId id, const Point<D>& p, std::uint64_t 
 }
 
 template <int D>
+void Quadtree<D>::rename_vertices(std::span<const VertexId> new_id) {
+  for (Node& nd : nodes_) {
+    if (nd.level < 0) continue;  // a free slot
+    if (nd.input_vertex != kNoVertex) nd.input_vertex = new_id[nd.input_vertex];
+    for (LeafVertex<D>& e : nd.vertices) e.id = new_id[e.id];
+  }
+}
+
+template <int D>
 void Quadtree<D>::erase_vertex(VertexId id, NodeId leaf) {
   auto& vs = nodes_[leaf].vertices;
   auto it = std::find_if(vs.begin(), vs.end(), [&](const LeafVertex<D>& e) { return e.id == id; });

@@ -23,7 +23,7 @@ template <int D>
 void WellSpacedSet<D>::build(std::span<const Point<D>> unit_points) {
   const std::vector<std::uint32_t> vertex_of_point = engine_->build(unit_points);
   input_vertex_.assign(vertex_of_point.begin(), vertex_of_point.end());
-  input_id_.resize(unit_points.size());
+  input_id_.resize(engine_->vertex_count());  // Steiner vertices are numbered among the inputs
   for (std::size_t i = 0; i < unit_points.size(); ++i) input_id_[vertex_of_point[i]] = i;
 }
 

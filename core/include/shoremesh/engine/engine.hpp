@@ -37,6 +37,9 @@ class WellSpacedEngine {
     OpId creator = engine::kNoOp;      // the fill that inserted this Steiner vertex; none for inputs
     OpId dispatch = engine::kNoOp;     // the one dispatch acting on it
     OpId first_fill = engine::kNoOp;   // its fills, linked by Op::next_fill (one per rank)
+    // What its facet bits hash (facet_filter.hpp): its id when it was made. Filters recorded before the
+    // build renumbered the vertices by place keep meaning the same vertices.
+    std::uint32_t filter_key = 0;
     bool is_input = false;
     bool alive = false;
   };
@@ -89,8 +92,8 @@ class WellSpacedEngine {
   explicit WellSpacedEngine(const Parameters<D>& parameters);
 
   // StableWS on points of the unit box. Throws PointInputError (non-finite, outside, duplicate).
-  // Returns the vertex of each point: vertices are numbered along a space-filling curve
-  // (spatial_order.hpp), not in the points' order.
+  // Returns the vertex of each point: all vertices, inputs and Steiner, are numbered along a
+  // space-filling curve (spatial_order.hpp), not in the points' order, inputs among the others.
   std::vector<VertexId> build(std::span<const Point<D>> unit_points);
 
   // PropagateWS: input edits applied to the live computation, which then equals build() on the new
@@ -197,7 +200,11 @@ class WellSpacedEngine {
   VertexId new_vertex(const Point<D>& p);
   void kill_vertex(VertexId v);
   void compact_pools();
+  // After the build: vertices, then operations, renumbered along the curve (engine.cpp says why).
+  // Returns the new id of each old vertex id.
+  std::vector<VertexId> renumber_vertices_by_place();
   void renumber_operations_by_place();
+  engine::FacetFilter<D> facet_bits(VertexId w) const { return engine::FacetFilter<D>::of(vertices_[w].filter_key); }
   double squared_distance(VertexId a, VertexId b) const;
 
   DerivedParameters<D> params_;

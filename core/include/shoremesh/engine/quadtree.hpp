@@ -126,6 +126,9 @@ class Quadtree {
   NodeId insert_vertex(VertexId id, const Point<D>& p, std::uint64_t tag, NodeId hint = kNoNode);
   void erase_vertex(VertexId id, NodeId leaf);
 
+  // Vertex v becomes new_id[v] everywhere in the tree (the owner renumbered its vertices).
+  void rename_vertices(std::span<const VertexId> new_id);
+
   NodeId root() const { return 0; }
   const Node& node(NodeId n) const { return nodes_[n]; }
   std::size_t node_capacity() const { return nodes_.size(); }
