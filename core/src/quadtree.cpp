@@ -583,10 +583,21 @@ NodeId Quadtree<D>::insert_vertex(VertexId id, const Point<D>& p, std::uint64_t 
 
 template <int D>
 void Quadtree<D>::rename_vertices(std::span<const VertexId> new_id) {
-  for (Node& nd : nodes_) {
+  // Each leaf's array is allocated afresh, in node order (nodes are numbered along the curve), all
+  // before the old ones are freed (which the new ones would fill, scattered): Steiner vertices grew
+  // the arrays at the times they arrived, so neighbouring leaves lay far apart on the heap.
+  std::vector<std::vector<LeafVertex<D>>> old_arrays;
+  for (NodeId n = 0; n < nodes_.size(); ++n) {
+    Node& nd = nodes_[n];
     if (nd.level < 0) continue;  // a free slot
     if (nd.input_vertex != kNoVertex) nd.input_vertex = new_id[nd.input_vertex];
     for (LeafVertex<D>& e : nd.vertices) e.id = new_id[e.id];
+    if (nd.is_leaf() && !nd.vertices.empty()) {
+      std::vector<LeafVertex<D>> repacked(nd.vertices.begin(), nd.vertices.end());
+      old_arrays.push_back(std::move(nd.vertices));
+      nd.vertices = std::move(repacked);
+      search_[n].vertices = nd.vertices.data();
+    }
   }
 }
 
