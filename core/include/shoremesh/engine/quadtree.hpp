@@ -126,7 +126,8 @@ class Quadtree {
   NodeId insert_vertex(VertexId id, const Point<D>& p, std::uint64_t tag, NodeId hint = kNoNode);
   void erase_vertex(VertexId id, NodeId leaf);
 
-  // Vertex v becomes new_id[v] everywhere in the tree (the owner renumbered its vertices).
+  // Vertex v becomes new_id[v] everywhere in the tree (the owner renumbered its vertices); the leaves'
+  // arrays are allocated afresh in node order on the way.
   void rename_vertices(std::span<const VertexId> new_id);
 
   NodeId root() const { return 0; }
