@@ -7,6 +7,7 @@
 #include <random>
 
 #include "shoremesh/engine/engine.hpp"
+#include "shoremesh/engine/spatial_order.hpp"
 #include "shoremesh/error.hpp"
 #include "shoremesh/families.hpp"
 #include "shoremesh/verify.hpp"
@@ -242,6 +243,39 @@ TEST(ComputationGraph, RecordedAndValid) {
   // Every operation read at least one square.
   for (engine::OpId o = 0; o < e.op_count(); ++o) EXPECT_GT(e.reads(o).size(), 0u);
 }
+
+// After the build, vertices (inputs and Steiner together) follow the space-filling curve and each
+// vertex's operations come after those of the vertex before it, in time order: an update then reads
+// neighbouring memory (engine.cpp, renumber_vertices_by_place). The renumbered computation stays valid.
+template <int D>
+void expect_numbered_by_place(const std::vector<Point<D>>& input) {
+  WellSpacedSet<D> set;
+  set.build(input);
+  ASSERT_NO_THROW(set.check_valid());
+  const auto& e = set.engine();
+  std::size_t steiner_between_inputs = 0;
+  bool input_seen = false;
+  const engine::VertexId live = engine::VertexId(e.live_vertex_count());
+  for (engine::VertexId v = 0; v < live; ++v) {  // free slots, if any, come last
+    ASSERT_TRUE(e.vertex(v).alive) << "a free slot before live vertex " << v;
+    if (v > 0) ASSERT_LE(engine::z_order_key<D>(e.positions()[v - 1]), engine::z_order_key<D>(e.positions()[v])) << v;
+    if (e.vertex(v).is_input) input_seen = true;
+    else if (input_seen) ++steiner_between_inputs;
+  }
+  EXPECT_GT(steiner_between_inputs, 0u);  // Steiner vertices are not all numbered after the inputs
+  using Engine = WellSpacedEngine<D>;
+  auto time_of = [&](engine::OpId o) { return std::pair(e.op(o).rank, e.op(o).color); };
+  for (engine::OpId o = 1; o < e.live_op_count(); ++o) {  // deleted slots, if any, come last
+    const auto& a = e.op(o - 1);
+    const auto& b = e.op(o);
+    ASSERT_LE(a.vertex, b.vertex) << "operation " << o;
+    if (a.vertex == b.vertex) ASSERT_LT(time_of(o - 1), time_of(o)) << "operation " << o;
+  }
+  EXPECT_EQ(e.op(e.vertex(0).dispatch).kind, Engine::OpKind::Dispatch);
+}
+
+TEST(ComputationGraph, NumberedByPlaceAfterTheBuild2D) { expect_numbered_by_place<2>(families::gaussian_clusters<2>(600, 4, 3)); }
+TEST(ComputationGraph, NumberedByPlaceAfterTheBuild3D) { expect_numbered_by_place<3>(families::uniform<3>(300, 4)); }
 
 // Work is linear: operations per output vertex and output vertices per input vertex stay bounded as n
 // grows 100-fold (a test of counts, not of time).
