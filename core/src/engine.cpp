@@ -400,14 +400,16 @@ void permute_in_place(std::vector<T>& items, const std::vector<std::uint32_t>& n
 template <int D>
 std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::renumber_vertices_by_place() {
   const std::size_t count = vertices_.size();
-  std::vector<std::pair<std::uint64_t, VertexId>> places;
-  places.reserve(count);
+  std::vector<VertexId> live;
+  std::vector<Point<D>> places;
   for (VertexId v = 0; v < count; ++v)
-    if (vertices_[v].alive) places.emplace_back(engine::z_order_key<D>(positions_[v]), v);
-  std::sort(places.begin(), places.end());  // equal keys (nearly equal points) by id: deterministic
+    if (vertices_[v].alive) {
+      live.push_back(v);
+      places.push_back(positions_[v]);
+    }
   std::vector<VertexId> new_id(count, kNoVertex);
   VertexId next = 0;
-  for (const auto& place : places) new_id[place.second] = next++;
+  for (std::size_t k : engine::spatial_order<D>(places)) new_id[live[k]] = next++;
   for (VertexId& id : new_id)
     if (id == kNoVertex) id = next++;  // free slots last
   permute_in_place(vertices_, new_id);
