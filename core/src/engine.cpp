@@ -84,7 +84,8 @@ double WellSpacedEngine<D>::squared_distance(VertexId a, VertexId b) const {
 }
 
 template <int D>
-std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(std::span<const Point<D>> unit_points) {
+std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(std::span<const Point<D>> unit_points,
+                                                                                  bool lay_out_for_updates) {
   reset();
   for (std::size_t i = 0; i < unit_points.size(); ++i)
     for (int k = 0; k < D; ++k) {
@@ -134,9 +135,11 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(s
   }
   // StableWS is a propagation in which every operation is fresh.
   propagate(nullptr);
-  const std::vector<VertexId> new_id = renumber_vertices_by_place();
-  for (VertexId& v : vertex_of_point) v = new_id[v];
-  renumber_operations_by_place();
+  if (lay_out_for_updates) {
+    const std::vector<VertexId> new_id = renumber_vertices_by_place();
+    for (VertexId& v : vertex_of_point) v = new_id[v];
+    renumber_operations_by_place();
+  }
   dynamic_ = true;
   return vertex_of_point;
 }

@@ -20,10 +20,10 @@ template <int D>
 WellSpacedSet<D>& WellSpacedSet<D>::operator=(WellSpacedSet&&) noexcept = default;
 
 template <int D>
-void WellSpacedSet<D>::build(std::span<const Point<D>> unit_points) {
-  const std::vector<std::uint32_t> vertex_of_point = engine_->build(unit_points);
+void WellSpacedSet<D>::build(std::span<const Point<D>> unit_points, BuildFor purpose) {
+  const std::vector<std::uint32_t> vertex_of_point = engine_->build(unit_points, purpose == BuildFor::Updates);
   input_vertex_.assign(vertex_of_point.begin(), vertex_of_point.end());
-  input_id_.resize(engine_->vertex_count());  // Steiner vertices are numbered among the inputs
+  input_id_.resize(engine_->vertex_count());  // Steiner vertices may be numbered among the inputs
   for (std::size_t i = 0; i < unit_points.size(); ++i) input_id_[vertex_of_point[i]] = i;
 }
 
@@ -213,7 +213,7 @@ const WellSpacedEngine<D>& WellSpacedSet<D>::engine() const {
 template <int D>
 StableResult<D> stable_well_spaced(std::span<const Point<D>> user_points, const Parameters<D>& parameters,
                                    std::optional<BoxTransform<D>> box) {
-  const DynamicWellSpaced<D> dynamic(user_points, parameters, box);
+  const DynamicWellSpaced<D> dynamic(user_points, parameters, box, BuildFor::OutputOnly);
   StableResult<D> result;
   result.box = dynamic.box();
   result.points = dynamic.points();
@@ -225,7 +225,7 @@ StableResult<D> stable_well_spaced(std::span<const Point<D>> user_points, const 
 
 template <int D>
 DynamicWellSpaced<D>::DynamicWellSpaced(std::span<const Point<D>> user_points, const Parameters<D>& parameters,
-                                        std::optional<BoxTransform<D>> box)
+                                        std::optional<BoxTransform<D>> box, BuildFor purpose)
     : set_(parameters) {
   if (user_points.empty()) throw InputError("no input points");
   for (std::size_t i = 0; i < user_points.size(); ++i)
@@ -241,7 +241,7 @@ DynamicWellSpaced<D>::DynamicWellSpaced(std::span<const Point<D>> user_points, c
   box_ = box ? *box : BoxTransform<D>::fit(user_points);  // a fitted box holds every point
   std::vector<Point<D>> unit(user_points.size());
   for (std::size_t i = 0; i < unit.size(); ++i) unit[i] = box_.to_unit(user_points[i]);
-  set_.build(unit);
+  set_.build(unit, purpose);
   user_inputs_.assign(user_points.begin(), user_points.end());
 }
 

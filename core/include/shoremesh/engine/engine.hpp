@@ -92,9 +92,12 @@ class WellSpacedEngine {
   explicit WellSpacedEngine(const Parameters<D>& parameters);
 
   // StableWS on points of the unit box. Throws PointInputError (non-finite, outside, duplicate).
-  // Returns the vertex of each point: all vertices, inputs and Steiner, are numbered along a
-  // space-filling curve (spatial_order.hpp), not in the points' order, inputs among the others.
-  std::vector<VertexId> build(std::span<const Point<D>> unit_points);
+  // Returns the vertex of each point. With lay_out_for_updates, all vertices, inputs and Steiner, are
+  // then numbered along a space-filling curve (spatial_order.hpp), inputs among the others, and the
+  // operations after their vertices: what updates read together lies together. Without it (the output
+  // is read once) the numbering stays as built: inputs along the curve, then Steiner vertices and
+  // operations in time order. The output and every later update are the same either way.
+  std::vector<VertexId> build(std::span<const Point<D>> unit_points, bool lay_out_for_updates = true);
 
   // PropagateWS: input edits applied to the live computation, which then equals build() on the new
   // input. The caller checks the edits first (inside the box, no duplicate input, live ids).
