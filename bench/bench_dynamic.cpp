@@ -1,13 +1,15 @@
 // The paper's Figure 7 (right): speedup of one unit dynamic change over StableWS from scratch.
 // A unit change removes a random input point and updates, then adds a new random point and updates.
 //
-//   bench_dynamic --dim 2|3 --n N --changes C --inputs K --seed S
+//   bench_dynamic --dim 2|3 --n N --changes C --inputs K --seed S [--window W]
 //
 // Input k (0 <= k < K) is families::uniform(N, S + k). Prints one line of key=value fields: the
 // from-scratch run (operations, seconds), the unit changes (mean operations and seconds), the single
 // updates (median and 99th percentile latency, median and maximum operations touched), the speedups in
 // operations and in time, and the work per clipped cell during the build and the updates. Input
-// generation is not timed.
+// generation is not timed. With --window W, a line per W changes of each input comes first
+// ("window=..."), with the median and 99th percentile of that window's updates: how the latency evolves
+// over a long edit session, as the engine's arrays fill with ids reused out of place.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -26,7 +28,7 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 
 struct Options {
   int dim = 2;
-  std::size_t n = 1000, changes = 100, inputs = 1;
+  std::size_t n = 1000, changes = 100, inputs = 1, window = 0;
   std::uint64_t seed = 1;
 };
 
@@ -89,6 +91,12 @@ void run(const Options& opt) {
       update_ops.push_back(double(removed.operations_touched()));
       update_ops.push_back(double(added.operations_touched()));
       unit_seconds += a + b;
+      if (opt.window > 0 && (c + 1) % opt.window == 0) {
+        const std::vector<double> last(latencies.end() - long(2 * opt.window), latencies.end());
+        std::printf("window=%zu input=%zu changes=%zu..%zu update_median_seconds=%.6g update_p99_seconds=%.6g\n",
+                    (c + 1) / opt.window, input, c + 1 - opt.window, c + 1, quantile(last, 0.5), quantile(last, 0.99));
+        std::fflush(stdout);
+      }
       unit_ops += double(removed.operations_touched() + added.operations_touched());
     }
     update_work.add(set.counters(), after_build);
@@ -123,8 +131,9 @@ int main(int argc, char** argv) {
     else if (value && key == "--changes") opt.changes = std::size_t(std::atof(value));
     else if (value && key == "--inputs") opt.inputs = std::size_t(std::atof(value));
     else if (value && key == "--seed") opt.seed = std::uint64_t(std::atoll(value));
+    else if (value && key == "--window") opt.window = std::size_t(std::atof(value));
     else {
-      std::fprintf(stderr, "usage: bench_dynamic --dim 2|3 --n N --changes C --inputs K --seed S\n");
+      std::fprintf(stderr, "usage: bench_dynamic --dim 2|3 --n N --changes C --inputs K --seed S [--window W]\n");
       return 2;
     }
   }
