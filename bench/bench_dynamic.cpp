@@ -8,8 +8,8 @@
 // updates (median and 99th percentile latency, median and maximum operations touched), the speedups in
 // operations and in time, and the work per clipped cell during the build and the updates. Input
 // generation is not timed. With --window W, a line per W changes of each input comes first
-// ("window=..."), with the median and 99th percentile of that window's updates: how the latency evolves
-// over a long edit session, as the engine's arrays fill with ids reused out of place.
+// ("window=..."), with the median and 99th percentile of that window's updates and the engine's memory
+// (not timed): how latency and memory evolve over a long edit session.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -93,8 +93,10 @@ void run(const Options& opt) {
       unit_seconds += a + b;
       if (opt.window > 0 && (c + 1) % opt.window == 0) {
         const std::vector<double> last(latencies.end() - long(2 * opt.window), latencies.end());
-        std::printf("window=%zu input=%zu changes=%zu..%zu update_median_seconds=%.6g update_p99_seconds=%.6g\n",
-                    (c + 1) / opt.window, input, c + 1 - opt.window, c + 1, quantile(last, 0.5), quantile(last, 0.99));
+        std::printf("window=%zu input=%zu changes=%zu..%zu update_median_seconds=%.6g update_p99_seconds=%.6g "
+                    "engine_memory_bytes=%zu\n",
+                    (c + 1) / opt.window, input, c + 1 - opt.window, c + 1, quantile(last, 0.5), quantile(last, 0.99),
+                    set.memory_bytes());
         std::fflush(stdout);
       }
       unit_ops += double(removed.operations_touched() + added.operations_touched());
