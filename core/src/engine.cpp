@@ -139,6 +139,11 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(s
     const std::vector<VertexId> new_id = renumber_vertices_by_place();
     for (VertexId& v : vertex_of_point) v = new_id[v];
     renumber_operations_by_place();
+    // Room to grow in every reader list. Updates register readers again, and a list that outgrows its
+    // block moves wherever the allocator finds room, away from the lists of its neighbours, which
+    // marking and undo walk together: at 2D n = 1e6 the median update grew by a fifth over 40,000
+    // changes without it, by a tenth with it (bench/RESULTS.md), for 3 % more memory.
+    for (auto& list : readers_) list.reserve(list.size() + list.size() / 2 + 2);
   }
   dynamic_ = true;
   return vertex_of_point;
