@@ -142,7 +142,7 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(s
     // Room to grow in every reader list. Updates register readers again, and a list that outgrows its
     // block moves wherever the allocator finds room, away from the lists of its neighbours, which
     // marking and undo walk together: at 2D n = 1e6 the median update grew by a fifth over 40,000
-    // changes without it, by a tenth with it (bench/RESULTS.md), for 3 % more memory.
+    // changes without it, by about a tenth with it (bench/RESULTS.md), for 2 to 3 % more memory.
     for (auto& list : readers_) list.reserve(list.size() + list.size() / 2 + 2);
   }
   dynamic_ = true;

@@ -94,9 +94,10 @@ class WellSpacedEngine {
   // StableWS on points of the unit box. Throws PointInputError (non-finite, outside, duplicate).
   // Returns the vertex of each point. With lay_out_for_updates, all vertices, inputs and Steiner, are
   // then numbered along a space-filling curve (spatial_order.hpp), inputs among the others, and the
-  // operations after their vertices: what updates read together lies together. Without it (the output
-  // is read once) the numbering stays as built: inputs along the curve, then Steiner vertices and
-  // operations in time order. The output and every later update are the same either way.
+  // operations after their vertices, and reader lists get room to grow: what updates read together lies
+  // together, and stays so. Without it (the output is read once) the numbering stays as built: inputs
+  // along the curve, then Steiner vertices and operations in time order. The output and every later
+  // update are the same either way.
   std::vector<VertexId> build(std::span<const Point<D>> unit_points, bool lay_out_for_updates = true);
 
   // PropagateWS: input edits applied to the live computation, which then equals build() on the new
