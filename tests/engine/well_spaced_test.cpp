@@ -272,6 +272,13 @@ void expect_numbered_by_place(const std::vector<Point<D>>& input) {
     if (a.vertex == b.vertex) ASSERT_LT(time_of(o - 1), time_of(o)) << "operation " << o;
   }
   EXPECT_EQ(e.op(e.vertex(0).dispatch).kind, Engine::OpKind::Dispatch);
+  // The references followed the renumbering: each vertex's dispatch is a dispatch of that vertex.
+  for (engine::VertexId v = 0; v < live; ++v) {
+    const engine::OpId d = e.vertex(v).dispatch;
+    if (d == engine::kNoOp) continue;
+    ASSERT_EQ(e.op(d).vertex, v) << "vertex " << v;
+    ASSERT_EQ(e.op(d).kind, Engine::OpKind::Dispatch) << "vertex " << v;
+  }
 }
 
 TEST(ComputationGraph, NumberedByPlaceAfterTheBuild2D) { expect_numbered_by_place<2>(families::gaussian_clusters<2>(600, 4, 3)); }
