@@ -203,6 +203,7 @@ class WellSpacedEngine {
   Point<D> pick_steiner(VertexId v);
   VertexId new_vertex(const Point<D>& p);
   void kill_vertex(VertexId v);
+  bool pools_need_compaction() const;
   void compact_pools();
   // After the build: vertices, then operations, renumbered along the curve (engine.cpp says why).
   // Returns the new id of each old vertex id.
