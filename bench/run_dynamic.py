@@ -81,7 +81,9 @@ def section(lines):
         "a random point and updates (the paper's definition); every update's output equals a from-scratch run "
         "(tests/engine/dynamic_test.cpp checks that bit for bit). Speedup = one from-scratch StableWS run / the mean "
         "unit change, in operations (dispatches + fills executed, plus those undone, for the update) and in wall "
-        "time. Latency: one update (a remove or an add), median and 99th percentile over all updates.",
+        "time. Latency: one update (a remove or an add), median and 99th percentile over all updates; first "
+        "update: the slower of the two updates of the first change after a build, the slowest over the inputs "
+        "(what the first edit after loading costs).",
         "",
         "Command: `bench/run_dynamic.py BUILD_DIR` (`--dim`, `--n` to rerun a part), which runs from BUILD_DIR/bench:",
         "", "```sh"]
@@ -89,14 +91,15 @@ def section(lines):
             f"--seed {SEED}" for f in rows]
     out += ["```", "",
             "| dim | n | inputs × changes | output vertices | StableWS ops | ops per unit change | speedup (ops) | "
-            "StableWS s | unit change | speedup (time) | one update: median | p99 | ops per update: median | max |",
-            "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+            "StableWS s | unit change | speedup (time) | one update: median | p99 | first update | ops per update: median | max |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for f in rows:
         out.append(
             f"| {f['dim']} | {fmt_n(f['n'])} | {f['inputs']} × {f['changes_per_input']} | {float(f['output_vertices']):,.0f} | "
             f"{float(f['build_ops']):,.0f} | {float(f['unit_change_ops']):,.1f} | {float(f['speedup_ops']):,.0f} | "
             f"{float(f['build_seconds']):.2f} | {fmt_time(f['unit_change_seconds'])} | {float(f['speedup_time']):,.0f} | "
             f"{fmt_time(f['update_median_seconds'])} | {fmt_time(f['update_p99_seconds'])} | "
+            f"{fmt_time(f['first_update_seconds']) if 'first_update_seconds' in f else '-'} | "
             f"{f['update_median_ops']} | {f['update_max_ops']} |")
     out += ["", "Work per clipped Voronoi cell (what one operation costs), from scratch and during the updates "
             "(cells: computed, and taken again from the propagation's cell cache; searches: box queries to the "
