@@ -465,7 +465,7 @@ void WellSpacedEngine<D>::renumber_operations_by_place() {
 // When the undone operations' entries outnumber the live ones, or when a pool is about to outgrow its
 // room (the two pools' garbage grows at different rates). Growing a pool copies it whole in the middle
 // of an update (24 ms at 2D n = 1e5), and the compaction came a little later anyway: now it comes
-// first, and the pool never grows.
+// first, between updates. A pool still grows within an update that appends more than its room.
 template <int D>
 bool WellSpacedEngine<D>::pools_need_compaction() const {
   auto nearly_full = [](const auto& pool) { return pool.capacity() - pool.size() < pool.capacity() / 16; };
@@ -476,8 +476,8 @@ bool WellSpacedEngine<D>::pools_need_compaction() const {
 // Rebuilds the children and reads pools without the entries of undone operations. Each gets room for
 // as many entries again: operations run again append theirs, and the next compaction comes once the
 // undone ones outnumber the live ones (propagate), so a pool fills that room about when it is compacted.
-// An exact fit made the first update after a build copy both pools to grow them: 52 ms of one update at
-// 2D n = 1e6 (bench/RESULTS.md). Room never written takes no physical memory.
+// An exact fit made the first update after a build copy both pools to grow them: 41 to 52 ms of that
+// update at 2D n = 1e6 (bench/RESULTS.md). Room never written takes no physical memory.
 template <int D>
 void WellSpacedEngine<D>::compact_pools() {
   std::size_t live_children = 0, live_reads = 0;
