@@ -67,7 +67,6 @@ void WellSpacedEngine<D>::reset() {
   cell_.counters() = PredicateCounters{};
   input_count_ = 0;
   dynamic_ = false;
-  garbage_ = 0;
   caching_ = false;
   cell_cache_live_ = 0;
   cache_table_.clear();
@@ -288,7 +287,6 @@ void WellSpacedEngine<D>::propagate(PropagationStats* stats) {
   dead_ops_.clear();
   for (VertexId v : dead_vertices_) free_vertices_.push_back(v);
   dead_vertices_.clear();
-  if (pools_need_compaction()) compact_pools();
   stats_ = nullptr;
 }
 
@@ -332,9 +330,8 @@ void WellSpacedEngine<D>::undo(OpId o) {
     }
   }
   Op& again = ops_[o];
-  garbage_ += (again.children_end - again.children_begin) + (again.reads_end - again.reads_begin);
-  if (!(again.flags & kStashed)) again.children_begin = again.children_end = 0;
-  again.reads_begin = again.reads_end = 0;
+  release_reads(again);
+  if (!(again.flags & kStashed)) release_children(again);  // a stashed fill's go when it runs (fill)
   again.flags &= std::uint8_t(~kExecuted);
   ++counters_.operations_undone;
   if (stats_) ++stats_->undone;
@@ -365,6 +362,8 @@ void WellSpacedEngine<D>::kill(OpId o) {
   } else if (vx.dispatch == o) {
     vx.dispatch = kNoOp;
   }
+  release_reads(op);  // none once undone; a fresh operation never ran
+  release_children(op);
   op.flags = kDead;
   dead_ops_.push_back(o);
 }
@@ -455,55 +454,58 @@ void WellSpacedEngine<D>::renumber_operations_by_place() {
     vx.dispatch = renamed(vx.dispatch);
     vx.first_fill = renamed(vx.first_fill);
   }
-  for (OpId& c : children_) c = new_id[c];
+  for (const Op& op : ops_)
+    for (std::uint32_t k = op.children_begin; k < op.children_end; ++k) children_[k] = new_id[children_[k]];
   for (auto& list : readers_)
     for (OpId& o : list) o = new_id[o];
   for (OpId& o : free_ops_) o = new_id[o];
-  compact_pools();  // the children and reads pools in the new order too
+  lay_out_pools();  // the children and reads pools in the new order too
 }
 
-// When the undone operations' entries outnumber the live ones, or when a pool is about to outgrow its
-// room (the two pools' garbage grows at different rates). Growing a pool copies it whole in the middle
-// of an update (24 ms at 2D n = 1e5), and the compaction came a little later anyway: now it comes
-// first, between updates. A pool still grows within an update that appends more than its room.
+// Rewrites the children and reads pools with each operation's runs in operation order (after the
+// build has numbered the operations by place), with room for an eighth more. The free lists are empty
+// after a build, so the first updates append their runs, and a pool that grew in the middle of an
+// update copied itself whole (41 to 52 ms at 2D n = 1e6, bench/RESULTS.md); later updates mostly take
+// the blocks that earlier ones gave back. Room never written takes no physical memory.
 template <int D>
-bool WellSpacedEngine<D>::pools_need_compaction() const {
-  auto nearly_full = [](const auto& pool) { return pool.capacity() - pool.size() < pool.capacity() / 16; };
-  if (garbage_ <= 1024) return false;
-  return garbage_ > children_.size() + reads_.size() - garbage_ || nearly_full(children_) || nearly_full(reads_);
-}
-
-// Rebuilds the children and reads pools without the entries of undone operations. Each gets room for
-// as many entries again: operations run again append theirs, and the next compaction comes once the
-// undone ones outnumber the live ones (propagate), so a pool fills that room about when it is compacted.
-// An exact fit made the first update after a build copy both pools to grow them: 41 to 52 ms of that
-// update at 2D n = 1e6 (bench/RESULTS.md). Room never written takes no physical memory.
-template <int D>
-void WellSpacedEngine<D>::compact_pools() {
-  std::size_t live_children = 0, live_reads = 0;
-  for (const Op& op : ops_)
-    if (!(op.flags & kDead)) {
-      live_children += op.children_end - op.children_begin;
-      live_reads += op.reads_end - op.reads_begin;
-    }
-  std::vector<OpId> children;
-  std::vector<NodeId> reads;
-  children.reserve(2 * live_children + 1024);
-  reads.reserve(2 * live_reads + 1024);
+void WellSpacedEngine<D>::lay_out_pools() {
+  std::size_t children_entries = 0, reads_entries = 0;
+  for (const Op& op : ops_) {
+    children_entries += engine::BlockPool::block_size(op.children_end - op.children_begin);
+    reads_entries += engine::BlockPool::block_size(op.reads_end - op.reads_begin);
+  }
+  engine::BlockPool children, reads;
+  children.reserve(children_entries + children_entries / 8 + 1024);
+  reads.reserve(reads_entries + reads_entries / 8 + 1024);
   for (Op& op : ops_) {
-    if (op.flags & kDead) continue;
-    const std::uint32_t cb = std::uint32_t(children.size());
-    children.insert(children.end(), children_.begin() + op.children_begin, children_.begin() + op.children_end);
-    op.children_begin = cb;
-    op.children_end = std::uint32_t(children.size());
-    const std::uint32_t rb = std::uint32_t(reads.size());
-    reads.insert(reads.end(), reads_.begin() + op.reads_begin, reads_.begin() + op.reads_end);
-    op.reads_begin = rb;
-    op.reads_end = std::uint32_t(reads.size());
+    const std::uint32_t children_count = op.children_end - op.children_begin;
+    op.children_begin = children.allocate(children_.run(op.children_begin, op.children_end));
+    op.children_end = op.children_begin + children_count;
+    const std::uint32_t reads_count = op.reads_end - op.reads_begin;
+    op.reads_begin = reads.allocate(reads_.run(op.reads_begin, op.reads_end));
+    op.reads_end = op.reads_begin + reads_count;
   }
   children_ = std::move(children);
   reads_ = std::move(reads);
-  garbage_ = 0;
+}
+
+template <int D>
+void WellSpacedEngine<D>::release_reads(Op& op) {
+  reads_.release(op.reads_begin, op.reads_end - op.reads_begin);
+  op.reads_begin = op.reads_end = 0;
+}
+
+template <int D>
+void WellSpacedEngine<D>::release_children(Op& op) {
+  children_.release(op.children_begin, op.children_end - op.children_begin);
+  op.children_begin = op.children_end = 0;
+}
+
+// The children the operation being executed gathered in new_children_ become its run.
+template <int D>
+void WellSpacedEngine<D>::store_children(OpId o) {
+  ops_[o].children_begin = children_.allocate(new_children_);
+  ops_[o].children_end = ops_[o].children_begin + std::uint32_t(new_children_.size());
 }
 
 template <int D>
@@ -730,12 +732,9 @@ void WellSpacedEngine<D>::record_reads(OpId o, const Point<D>& p, double h) {
 
 template <int D>
 void WellSpacedEngine<D>::register_reads(OpId o, std::span<const NodeId> nodes) {
-  ops_[o].reads_begin = std::uint32_t(reads_.size());
-  for (NodeId n : nodes) {
-    reads_.push_back(n);
-    readers_[n].push_back(o);
-  }
-  ops_[o].reads_end = std::uint32_t(reads_.size());
+  ops_[o].reads_begin = reads_.allocate(nodes);
+  ops_[o].reads_end = ops_[o].reads_begin + std::uint32_t(nodes.size());
+  for (NodeId n : nodes) readers_[n].push_back(o);
 }
 
 template <int D>
@@ -744,14 +743,14 @@ void WellSpacedEngine<D>::request_fill(VertexId w, int rank) {
     if (ops_[f].rank == rank && !(ops_[f].flags & kDead)) {
       ++ops_[f].requesters;
       ops_[f].flags &= std::uint8_t(~kObsolete);  // asked for again before its time: it lives on
-      children_.push_back(f);
+      new_children_.push_back(f);
       return;
     }
   const OpId f = new_op(OpKind::Fill, w, rank, ranks_.color(positions_[w], rank));
   ops_[f].requesters = 1;
   ops_[f].next_fill = vertices_[w].first_fill;
   vertices_[w].first_fill = f;
-  children_.push_back(f);
+  new_children_.push_back(f);
   mark_fresh(f);
 }
 
@@ -762,7 +761,7 @@ void WellSpacedEngine<D>::dispatch(OpId o) {
   const VertexId v = ops_[o].vertex;
   const int op_rank = ops_[o].rank;
   compute_cell(o, v, false);
-  ops_[o].children_begin = ops_[o].children_end = std::uint32_t(children_.size());
+  new_children_.clear();
   if (hood_.nearest == kNoVertex) return;  // a lone vertex is well-spaced
   PredicateCounters& pc = cell_.counters();
   const Point<D>& p = positions_[v];
@@ -784,7 +783,7 @@ void WellSpacedEngine<D>::dispatch(OpId o) {
     if (rw < op_rank || (!params_.literal_stable_ws && already_below_rank(w, rw, pc))) continue;
     request_fill(w, rw);
   }
-  ops_[o].children_end = std::uint32_t(children_.size());
+  store_children(o);
   record_facets(o);
 }
 
@@ -814,11 +813,12 @@ void WellSpacedEngine<D>::fill(OpId o) {
   // The Steiner vertices of this fill's previous run, when it runs again (see undo).
   stash_.clear();
   if (ops_[o].flags & kStashed) {
-    for (std::uint32_t k = ops_[o].children_begin; k < ops_[o].children_end; ++k) stash_.push_back(children_[k]);
+    for (OpId d : children(o)) stash_.push_back(d);
+    release_children(ops_[o]);
     ops_[o].flags &= std::uint8_t(~kStashed);
   }
   const bool has_cell = compute_cell(o, v, true);
-  ops_[o].children_begin = ops_[o].children_end = std::uint32_t(children_.size());
+  new_children_.clear();
   PredicateCounters& pc = cell_.counters();
   for (int inserted = 0; has_cell && hood_.nearest != kNoVertex &&
                          !cell_.within_scaled_distance(params_.rho_squared, positions_[hood_.nearest]);
@@ -832,7 +832,7 @@ void WellSpacedEngine<D>::fill(OpId o) {
       *again = stash_.back();
       stash_.pop_back();
       const VertexId id = ops_[d].vertex;
-      children_.push_back(d);
+      new_children_.push_back(d);
       const double d2 = squared_distance(v, id);
       cell_.clip(id, w, d2);
       hood_.candidates.push_back({d2, id, w});
@@ -850,16 +850,16 @@ void WellSpacedEngine<D>::fill(OpId o) {
     const int rank = std::max(ranks_.rank_of(w, positions_[v], pc), op_rank + 1);
     const OpId d = new_op(OpKind::Dispatch, id, rank, 0);
     vertices_[id].dispatch = d;
-    children_.push_back(d);
+    new_children_.push_back(d);
     mark_fresh(d);
     const double d2 = squared_distance(v, id);
     cell_.clip(id, w, d2);
     hood_.candidates.push_back({d2, id, w});
   }
-  ops_[o].children_end = std::uint32_t(children_.size());
+  store_children(o);
   // v was already well-spaced: a vertex inserted farther than NN(v) leaves NN(v) and the clipping cube
   // as they are and can only shrink the cell, so v stays well-spaced and this fill does nothing again.
-  if (has_cell && ops_[o].children_begin == ops_[o].children_end && hood_.nearest != kNoVertex) {
+  if (has_cell && new_children_.empty() && hood_.nearest != kNoVertex) {
     ops_[o].inserted_depends2 = at_least(squared_distance(v, hood_.nearest) * (1 + 1e-6));
     cell_.bisector_neighbours(neighbours_);
     record_facets(o);
@@ -1020,8 +1020,8 @@ std::vector<std::tuple<Point<D>, int, std::uint32_t>> WellSpacedEngine<D>::opera
 template <int D>
 std::size_t WellSpacedEngine<D>::memory_bytes() const {
   std::size_t bytes = vertices_.capacity() * sizeof(Vertex) + positions_.capacity() * sizeof(Point<D>) +
-                      ops_.capacity() * sizeof(Op) + children_.capacity() * sizeof(OpId) +
-                      reads_.capacity() * sizeof(NodeId) + readers_.size() * sizeof(std::vector<OpId>) +
+                      ops_.capacity() * sizeof(Op) + children_.memory_bytes() +
+                      reads_.memory_bytes() + readers_.size() * sizeof(std::vector<OpId>) +
                       (free_ops_.capacity() + free_vertices_.capacity()) * sizeof(std::uint32_t) +
                       tree_.memory_bytes();
   for (const auto& r : readers_) bytes += r.capacity() * sizeof(OpId);
@@ -1071,10 +1071,19 @@ void WellSpacedEngine<D>::check_valid() const {
       if (std::find(rs.begin(), rs.end(), o) == rs.end()) fail("read edge without reader entry");
     }
   }
-  // Memory is reclaimed: no reader entry of a deleted operation survives.
+  // Memory is reclaimed: no reader entry of a deleted operation survives, and every block of the pools
+  // holds a live operation's run or is free.
   for (const auto& rs : readers_)
     for (OpId o : rs)
       if (ops_[o].flags & kDead) fail("reader entry of a deleted operation");
+  std::size_t children_blocks = 0, reads_blocks = 0;
+  for (const Op& op : ops_)
+    if (!(op.flags & kDead)) {
+      children_blocks += engine::BlockPool::block_size(op.children_end - op.children_begin);
+      reads_blocks += engine::BlockPool::block_size(op.reads_end - op.reads_begin);
+    }
+  if (children_blocks + children_.free_entries() != children_.size()) fail("a children block lost");
+  if (reads_blocks + reads_.free_entries() != reads_.size()) fail("a reads block lost");
 }
 
 template class WellSpacedEngine<2>;

@@ -11,6 +11,7 @@
 #include <tuple>
 #include <vector>
 
+#include "shoremesh/engine/block_pool.hpp"
 #include "shoremesh/engine/cell_reach.hpp"
 #include "shoremesh/engine/convex_cell.hpp"
 #include "shoremesh/engine/facet_filter.hpp"
@@ -119,10 +120,10 @@ class WellSpacedEngine {
   std::size_t op_count() const { return ops_.size(); }
   const Op& op(OpId o) const { return ops_[o]; }
   std::span<const OpId> children(OpId o) const {
-    return {children_.data() + ops_[o].children_begin, children_.data() + ops_[o].children_end};
+    return children_.run(ops_[o].children_begin, ops_[o].children_end);
   }
   std::span<const NodeId> reads(OpId o) const {
-    return {reads_.data() + ops_[o].reads_begin, reads_.data() + ops_[o].reads_end};
+    return reads_.run(ops_[o].reads_begin, ops_[o].reads_end);
   }
   const engine::Quadtree<D>& quadtree() const { return tree_; }
   const DerivedParameters<D>& parameters() const { return params_; }
@@ -203,8 +204,10 @@ class WellSpacedEngine {
   Point<D> pick_steiner(VertexId v);
   VertexId new_vertex(const Point<D>& p);
   void kill_vertex(VertexId v);
-  bool pools_need_compaction() const;
-  void compact_pools();
+  void lay_out_pools();
+  void release_reads(Op& op);
+  void release_children(Op& op);
+  void store_children(OpId o);
   // After the build: vertices, then operations, renumbered along the curve (engine.cpp says why).
   // Returns the new id of each old vertex id.
   std::vector<VertexId> renumber_vertices_by_place();
@@ -219,8 +222,9 @@ class WellSpacedEngine {
   std::vector<Point<D>> positions_;     // positions_[v] == vertices_[v].position, contiguous for the tree
   std::size_t input_count_ = 0;
   std::vector<Op> ops_;
-  std::vector<OpId> children_;
-  std::vector<NodeId> reads_;
+  engine::BlockPool children_;  // each operation's run: [children_begin, children_end)
+  engine::BlockPool reads_;     // [reads_begin, reads_end)
+  std::vector<OpId> new_children_;  // the children of the operation being executed, stored when it ends
   // Per quadtree node: the operations that read it. A deque, so that growing with the tree never moves
   // the lists: a vector of them reallocating took ~13 ms of one update at n = 1e5.
   std::deque<std::vector<OpId>> readers_;
@@ -238,7 +242,6 @@ class WellSpacedEngine {
   std::vector<VertexId> free_vertices_, dead_vertices_;
   bool dynamic_ = false;                  // marking readers is needed only once a computation exists
   PropagationStats* stats_ = nullptr;
-  std::size_t garbage_ = 0;               // children_/reads_ entries of undone operations
   // Scratch of the operation being executed (reused: no allocation per operation).
   engine::ConvexCell<D> cell_;
   Neighbourhood hood_;
