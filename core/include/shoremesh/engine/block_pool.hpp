@@ -4,11 +4,12 @@
 // given back leaves its block on a free list of its size class, and the next run of that class takes
 // it, so the array follows the live runs with no compaction pass. (The engine used to append every
 // new run and compact the array once the dead entries outnumbered the live ones: a pause of 38 to 45
-// ms every 7,000 changes or so at 2D n = 1e5, bench/RESULTS.md.)
+// ms every 7,000 changes or so at 2D n = 1e5, and of half a second every 65,000 at n = 1e6,
+// bench/RESULTS.md.)
 //
-// Size classes: a run of up to kExactSizes entries gets a block of exactly its size (most runs are
-// shorter than that: a 2D operation reads 1 to 9 squares), a longer one the next power of two. A
-// block's size follows from its run's length, so the runs need not store it.
+// Size classes: a run of up to kExactSizes entries gets a block of exactly its size (an operation reads
+// a few squares and asks for a few fills), a longer one the next power of two. A block's size follows
+// from its run's length, so the runs need not store it.
 #include <cstddef>
 #include <cstdint>
 #include <span>
