@@ -469,14 +469,10 @@ void WellSpacedEngine<D>::renumber_operations_by_place() {
 // the blocks that earlier ones gave back. Room never written takes no physical memory.
 template <int D>
 void WellSpacedEngine<D>::lay_out_pools() {
-  std::size_t children_entries = 0, reads_entries = 0;
-  for (const Op& op : ops_) {
-    children_entries += engine::BlockPool::block_size(op.children_end - op.children_begin);
-    reads_entries += engine::BlockPool::block_size(op.reads_end - op.reads_begin);
-  }
+  const PoolEntries live = live_pool_entries();
   engine::BlockPool children, reads;
-  children.reserve(children_entries + children_entries / 8 + 1024);
-  reads.reserve(reads_entries + reads_entries / 8 + 1024);
+  children.reserve(live.children + live.children / 8 + 1024);
+  reads.reserve(live.reads + live.reads / 8 + 1024);
   for (Op& op : ops_) {
     const std::uint32_t children_count = op.children_end - op.children_begin;
     op.children_begin = children.allocate(children_.run(op.children_begin, op.children_end));
@@ -487,6 +483,18 @@ void WellSpacedEngine<D>::lay_out_pools() {
   }
   children_ = std::move(children);
   reads_ = std::move(reads);
+}
+
+// The pool entries that the live operations' runs take (their blocks, not just their lengths).
+template <int D>
+typename WellSpacedEngine<D>::PoolEntries WellSpacedEngine<D>::live_pool_entries() const {
+  PoolEntries live;
+  for (const Op& op : ops_)
+    if (!(op.flags & kDead)) {
+      live.children += engine::BlockPool::block_size(op.children_end - op.children_begin);
+      live.reads += engine::BlockPool::block_size(op.reads_end - op.reads_begin);
+    }
+  return live;
 }
 
 template <int D>
@@ -1076,14 +1084,9 @@ void WellSpacedEngine<D>::check_valid() const {
   for (const auto& rs : readers_)
     for (OpId o : rs)
       if (ops_[o].flags & kDead) fail("reader entry of a deleted operation");
-  std::size_t children_blocks = 0, reads_blocks = 0;
-  for (const Op& op : ops_)
-    if (!(op.flags & kDead)) {
-      children_blocks += engine::BlockPool::block_size(op.children_end - op.children_begin);
-      reads_blocks += engine::BlockPool::block_size(op.reads_end - op.reads_begin);
-    }
-  if (children_blocks + children_.free_entries() != children_.size()) fail("a children block lost");
-  if (reads_blocks + reads_.free_entries() != reads_.size()) fail("a reads block lost");
+  const PoolEntries live = live_pool_entries();
+  if (live.children + children_.free_entries() != children_.size()) fail("a children block lost");
+  if (live.reads + reads_.free_entries() != reads_.size()) fail("a reads block lost");
 }
 
 template class WellSpacedEngine<2>;

@@ -205,6 +205,10 @@ class WellSpacedEngine {
   VertexId new_vertex(const Point<D>& p);
   void kill_vertex(VertexId v);
   void lay_out_pools();
+  struct PoolEntries {
+    std::size_t children = 0, reads = 0;
+  };
+  PoolEntries live_pool_entries() const;
   void release_reads(Op& op);
   void release_children(Op& op);
   void store_children(OpId o);
