@@ -1,7 +1,7 @@
 // The paper's Figure 7 (right): speedup of one unit dynamic change over StableWS from scratch.
 // A unit change removes a random input point and updates, then adds a new random point and updates.
 //
-//   bench_dynamic --dim 2|3 --n N --changes C --inputs K --seed S [--window W]
+//   bench_dynamic --dim 2|3 --n N --changes C --inputs K --seed S [--window W] [--mesh 1]
 //
 // Input k (0 <= k < K) is families::uniform(N, S + k). Prints one line of key=value fields: the
 // from-scratch run (operations, seconds), the unit changes (mean operations and seconds), the single
@@ -9,16 +9,23 @@
 // operations and in time, and the work per clipped cell during the build and the updates. Input
 // generation is not timed. With --window W, a line per W changes of each input comes first
 // ("window=..."), with the median, 99th percentile and maximum of that window's updates and the engine's memory
-// (not timed): how latency and memory evolve over a long edit session.
+// (not timed): how latency and memory evolve over a long edit session. update_steiner_changes_median: the
+// Steiner points removed plus added by one update, the median (the size of the output's change).
+// With --mesh 1, a Delaunay mesh of the output (core's Mesh, a CGAL triangulation) follows every update
+// the way the shoremesh edit session updates it (Mesh::apply: CGAL's incremental removal and insertion
+// of the changed points), and the median and 99th percentile of that step are printed too: what an edit
+// costs after the engine, and a yardstick for the engine's own time (the same change, applied by CGAL).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "shoremesh/families.hpp"
+#include "shoremesh/mesh.hpp"
 #include "shoremesh/well_spaced.hpp"
 
 namespace {
@@ -30,6 +37,7 @@ struct Options {
   int dim = 2;
   std::size_t n = 1000, changes = 100, inputs = 1, window = 0;
   std::uint64_t seed = 1;
+  bool mesh = false;
 };
 
 // Cells computed and taken from the cache; box searches, leaves searched, candidate vertices looked at
@@ -60,7 +68,7 @@ void run(const Options& opt) {
   // The first change after a build, the slower of its two updates, the slowest over the inputs: what the
   // first edit after loading costs (growing a pool or a table then shows here, not in the median).
   double first_update_seconds = 0;
-  std::vector<double> latencies, update_ops;
+  std::vector<double> latencies, update_ops, steiner_changes, mesh_latencies;
   CellWork build_work, update_work;
   for (std::size_t input = 0; input < opt.inputs; ++input) {
     const auto points = shoremesh::families::uniform<D>(opt.n, opt.seed + input);
@@ -71,6 +79,24 @@ void run(const Options& opt) {
     build_ops += double(set.counters().operations());
     output += double(set.input_count() + set.steiner_count());
     const shoremesh::Counters after_build = set.counters();
+    std::optional<shoremesh::Mesh<D>> mesh;
+    if (opt.mesh) mesh.emplace(set.output_points(), set.input_count());
+    // The engine's report of one update, as the mesh takes it (the input point first, as the edit
+    // session passes it), and the time Mesh::apply took.
+    auto follow = [&](const shoremesh::UpdateReport<D>& report, const shoremesh::Point<D>* input_removed,
+                      const shoremesh::Point<D>* input_added) {
+      steiner_changes.push_back(double(report.steiner_removed.size() + report.steiner_added.size()));
+      if (!mesh) return;
+      shoremesh::PointChange<D> change;
+      if (input_removed) change.removed.push_back(*input_removed);
+      if (input_added) change.added.push_back(*input_added);
+      change.added_input_count = change.added.size();
+      change.removed.insert(change.removed.end(), report.steiner_removed.begin(), report.steiner_removed.end());
+      change.added.insert(change.added.end(), report.steiner_added.begin(), report.steiner_added.end());
+      const auto t = Clock::now();
+      mesh->apply(change);
+      mesh_latencies.push_back(seconds_since(t));
+    };
     build_work.add(after_build, shoremesh::Counters{});
     std::mt19937_64 rng(opt.seed * 7919 + input);
     std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -80,6 +106,7 @@ void run(const Options& opt) {
     for (std::size_t c = 0; c < opt.changes; ++c) {
       shoremesh::UpdateReport<D> removed, added;
       const std::size_t k = rng() % ids.size();
+      const shoremesh::Point<D> gone = set.input_point(ids[k]);
       auto t1 = Clock::now();
       set.remove(ids[k], &removed);
       const double a = seconds_since(t1);
@@ -89,6 +116,8 @@ void run(const Options& opt) {
       const std::size_t id = set.add(p, &added);
       const double b = seconds_since(t2);
       ids[k] = id;
+      follow(removed, &gone, nullptr);
+      follow(added, nullptr, &p);
       if (c == 0) first_update_seconds = std::max({first_update_seconds, a, b});
       latencies.push_back(a);
       latencies.push_back(b);
@@ -109,12 +138,17 @@ void run(const Options& opt) {
   }
   const double k = double(opt.inputs), changes = double(opt.inputs * opt.changes);
   const double updates = 2 * changes;
+  char mesh_fields[128] = "";
+  if (opt.mesh)
+    std::snprintf(mesh_fields, sizeof mesh_fields, " mesh_update_median_seconds=%.6g mesh_update_p99_seconds=%.6g",
+                  quantile(mesh_latencies, 0.5), quantile(mesh_latencies, 0.99));
   std::printf(
       "dim=%d n=%zu inputs=%zu changes_per_input=%zu output_vertices=%.0f build_seconds=%.6f build_ops=%.0f "
       "unit_change_seconds=%.6g unit_change_ops=%.1f update_median_seconds=%.6g update_p99_seconds=%.6g "
       "update_median_ops=%.0f update_max_ops=%.0f first_update_seconds=%.6g speedup_ops=%.1f speedup_time=%.1f "
       "build_leaves_per_cell=%.1f build_candidates_per_cell=%.1f build_clips_per_cell=%.1f "
-      "update_cells=%.1f update_leaves_per_cell=%.1f update_candidates_per_cell=%.1f update_clips_per_cell=%.1f build_searches_per_cell=%.2f update_searches_per_cell=%.2f update_cells_reused=%.1f update_cells_from_lists=%.1f update_cells_updated=%.1f\n",
+      "update_cells=%.1f update_leaves_per_cell=%.1f update_candidates_per_cell=%.1f update_clips_per_cell=%.1f build_searches_per_cell=%.2f update_searches_per_cell=%.2f update_cells_reused=%.1f update_cells_from_lists=%.1f update_cells_updated=%.1f "
+      "update_steiner_changes_median=%.0f%s\n",
       D, opt.n, opt.inputs, opt.changes, output / k, build_seconds / k, build_ops / k, unit_seconds / changes,
       unit_ops / changes, quantile(latencies, 0.5), quantile(latencies, 0.99), quantile(update_ops, 0.5),
       quantile(update_ops, 1.0), first_update_seconds, (build_ops / k) / (unit_ops / changes), (build_seconds / k) / (unit_seconds / changes),
@@ -122,7 +156,7 @@ void run(const Options& opt) {
       update_work.cells / updates, update_work.leaves / update_work.cells, update_work.candidates / update_work.cells,
       update_work.clips / update_work.cells, build_work.searches / build_work.cells,
       update_work.searches / update_work.cells, update_work.reused / updates, update_work.listed / updates,
-      update_work.updated / updates);
+      update_work.updated / updates, quantile(steiner_changes, 0.5), mesh_fields);
 }
 
 }  // namespace
@@ -138,8 +172,9 @@ int main(int argc, char** argv) {
     else if (value && key == "--inputs") opt.inputs = std::size_t(std::atof(value));
     else if (value && key == "--seed") opt.seed = std::uint64_t(std::atoll(value));
     else if (value && key == "--window") opt.window = std::size_t(std::atof(value));
+    else if (value && key == "--mesh") opt.mesh = std::atoi(value) != 0;
     else {
-      std::fprintf(stderr, "usage: bench_dynamic --dim 2|3 --n N --changes C --inputs K --seed S [--window W]\n");
+      std::fprintf(stderr, "usage: bench_dynamic --dim 2|3 --n N --changes C --inputs K --seed S [--window W] [--mesh 1]\n");
       return 2;
     }
   }
