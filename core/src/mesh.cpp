@@ -184,16 +184,6 @@ class MeshTriangulation {
     }
   }
 
-  // The keys of the water elements incident to any of `vertices`.
-  std::set<Key> incident_keys(const std::vector<Vertex>& vertices) const {
-    std::set<Key> keys;
-    for (Vertex v : vertices)
-      C::for_each_incident_finite_face(triangulation, v, [&](Face f) {
-        if (in_water(f)) keys.insert(key(f));
-      });
-    return keys;
-  }
-
   std::set<Key> all_keys() const {
     std::set<Key> keys;
     if (triangulation.dimension() < D) return keys;
@@ -203,22 +193,46 @@ class MeshTriangulation {
     return keys;
   }
 
-  // Net change over a batch: an element removed then recreated (or created then removed) cancels.
+  // The elements a change destroyed and created, netted once at the end: an element removed then
+  // recreated (or created then removed) cancels. Each element's births and deaths alternate, so the net is
+  // the multiset difference of the two lists. (Vectors sorted once, not std::sets kept sorted on every
+  // insertion: with keys of D + 1 points the sets took most of a 3D mesh update.)
   struct Accumulator {
-    std::set<Key> gone, born;
-    void remove(const Key& k) {
-      if (!born.erase(k)) gone.insert(k);
-    }
-    void add(const Key& k) {
-      if (!gone.erase(k)) born.insert(k);
-    }
+    std::vector<Key> gone, born;
+    void remove(const Key& k) { gone.push_back(k); }
+    void add(const Key& k) { born.push_back(k); }
     void record(const std::set<Key>& before, const std::set<Key>& after) {
       for (const Key& k : before)
         if (!after.count(k)) remove(k);
       for (const Key& k : after)
         if (!before.count(k)) add(k);
     }
+    MeshDelta<D> net() {
+      std::sort(gone.begin(), gone.end());
+      std::sort(born.begin(), born.end());
+      MeshDelta<D> delta;
+      std::set_difference(gone.begin(), gone.end(), born.begin(), born.end(), std::back_inserter(delta.removed));
+      std::set_difference(born.begin(), born.end(), gone.begin(), gone.end(), std::back_inserter(delta.added));
+      return delta;
+    }
   };
+
+  // The keys of the water elements that have only `corners` as corners and are incident to one of them
+  // (each once, sorted), classifying them first when `classify_them`. `corners` is sorted.
+  std::vector<Key> keys_within(const std::vector<Vertex>& corners, bool classify_them) {
+    auto is_corner = [&](Vertex u) { return std::binary_search(corners.begin(), corners.end(), u); };
+    std::vector<Key> keys;
+    for (Vertex u : corners)
+      C::for_each_incident_finite_face(triangulation, u, [&](Face f) {
+        for (int i = 0; i <= D; ++i)
+          if (!is_corner(f->vertex(i))) return;
+        if (classify_them) classify(f);
+        if (in_water(f)) keys.push_back(key(f));
+      });
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    return keys;
+  }
 
   void remove(const Point<D>& p, std::vector<Point<D>>& points, std::vector<PointKind>& kinds, Accumulator& acc) {
     const Vertex v = vertex_of.at(p);
@@ -229,21 +243,23 @@ class MeshTriangulation {
       acc.record(before, all_keys());
       hint_ = Vertex();
     } else {
-      // The faces destroyed are those around v; the faces created fill its star and have only link
-      // vertices as corners. Comparing the faces around the link before and after catches both.
-      const std::vector<Vertex> link = C::adjacent_finite_vertices(triangulation, v);
-      const std::set<Key> before = incident_keys(link);
+      // The faces destroyed are those around v (its star). The faces created fill the star's hole, so
+      // they have only link vertices as corners; so may a few faces outside the star, which the
+      // removal keeps. The faces with only link corners, before and after, tell the new ones apart.
+      std::vector<Vertex> link = C::adjacent_finite_vertices(triangulation, v);
+      std::sort(link.begin(), link.end());
+      C::for_each_incident_finite_face(triangulation, v, [&](Face f) {
+        if (in_water(f)) acc.remove(key(f));
+      });
+      const std::vector<Key> kept = keys_within(link, false);  // none has v as a corner
       triangulation.remove(v);
       if (!link.empty()) hint_ = link.front();
-      std::set<Key> after;
       if (triangulation.dimension() == D) {
-        for (Vertex u : link)
-          C::for_each_incident_finite_face(triangulation, u, [&](Face f) {
-            classify(f);
-            if (in_water(f)) after.insert(key(f));
-          });
+        const std::vector<Key> after = keys_within(link, true);
+        std::vector<Key> created;
+        std::set_difference(after.begin(), after.end(), kept.begin(), kept.end(), std::back_inserter(created));
+        for (const Key& k : created) acc.add(k);
       }
-      acc.record(before, after);
     }
     vertex_of.erase(p);
     if (hint_ == v) hint_ = Vertex();
@@ -378,7 +394,7 @@ MeshDelta<D> Mesh<D>::apply(const PointChange<D>& change) {
   for (const Point<D>& p : change.removed) t.remove(p, points_, kinds_, acc);
   for (std::size_t i = 0; i < change.added.size(); ++i)
     t.insert(change.added[i], i < change.added_input_count ? PointKind::Input : PointKind::Steiner, points_, kinds_, acc);
-  return {{acc.gone.begin(), acc.gone.end()}, {acc.born.begin(), acc.born.end()}};
+  return acc.net();
 }
 
 template <int D>
