@@ -14,7 +14,6 @@
 #include <bit>
 #include <cmath>
 #include <iterator>
-#include <limits>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -143,6 +142,11 @@ class MeshTriangulation {
   using Face = typename C::Face;
   using Key = ElementCorners<D>;
 
+  // A vertex's info is its slot in the point list; the top bit marks the link of a vertex being removed
+  // while the faces around it are compared (keys_within), so slots stay below it.
+  static constexpr std::uint32_t kLinkMark = 1u << 31;
+  static constexpr std::size_t kMaxPoints = kLinkMark;
+
   explicit MeshTriangulation(const Domain2& domain) : water_(domain) {}
 
   Triangulation triangulation;
@@ -217,15 +221,14 @@ class MeshTriangulation {
     }
   };
 
-  // The keys of the water elements that have only `corners` as corners and are incident to one of them
-  // (each once, sorted), classifying them first when `classify_them`. `corners` is sorted.
-  std::vector<Key> keys_within(const std::vector<Vertex>& corners, bool classify_them) {
-    auto is_corner = [&](Vertex u) { return std::binary_search(corners.begin(), corners.end(), u); };
+  // The keys of the water elements whose corners are all in `link` (each once, sorted), classifying them
+  // first when `classify_them`. The link's vertices carry kLinkMark meanwhile.
+  std::vector<Key> keys_within(const std::vector<Vertex>& link, bool classify_them) {
     std::vector<Key> keys;
-    for (Vertex u : corners)
+    for (Vertex u : link)
       C::for_each_incident_finite_face(triangulation, u, [&](Face f) {
         for (int i = 0; i <= D; ++i)
-          if (!is_corner(f->vertex(i))) return;
+          if (!(f->vertex(i)->info() & kLinkMark)) return;
         if (classify_them) classify(f);
         if (in_water(f)) keys.push_back(key(f));
       });
@@ -246,8 +249,8 @@ class MeshTriangulation {
       // The faces destroyed are those around v (its star). The faces created fill the star's hole, so
       // they have only link vertices as corners; so may a few faces outside the star, which the
       // removal keeps. The faces with only link corners, before and after, tell the new ones apart.
-      std::vector<Vertex> link = C::adjacent_finite_vertices(triangulation, v);
-      std::sort(link.begin(), link.end());
+      const std::vector<Vertex> link = C::adjacent_finite_vertices(triangulation, v);
+      for (Vertex u : link) u->info() |= kLinkMark;
       C::for_each_incident_finite_face(triangulation, v, [&](Face f) {
         if (in_water(f)) acc.remove(key(f));
       });
@@ -260,6 +263,7 @@ class MeshTriangulation {
         std::set_difference(after.begin(), after.end(), kept.begin(), kept.end(), std::back_inserter(created));
         for (const Key& k : created) acc.add(k);
       }
+      for (Vertex u : link) u->info() &= ~kLinkMark;
     }
     vertex_of.erase(p);
     if (hint_ == v) hint_ = Vertex();
@@ -333,7 +337,7 @@ Mesh<D>& Mesh<D>::operator=(Mesh&&) noexcept = default;
 template <int D>
 void Mesh<D>::build(std::span<const Point<D>> points, std::size_t input_count) {
   if (input_count > points.size()) throw InputError("input_count exceeds the number of points");
-  if (points.size() >= std::numeric_limits<std::uint32_t>::max()) throw InputError("too many points for a mesh");
+  if (points.size() >= MeshTriangulation<D>::kMaxPoints) throw InputError("too many points for a mesh");
   std::unordered_map<Point<D>, std::size_t, PointHash<D>> seen;
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!finite<D>(points[i])) throw InputError("point " + std::to_string(i) + " is not finite", {}, i + 1);
@@ -390,6 +394,8 @@ MeshDelta<D> Mesh<D>::apply(const PointChange<D>& change) {
     if (!added.emplace(p, i).second) throw InputError("added point " + describe<D>(p) + " is given twice", {}, i + 1);
   }
 
+  if (points_.size() + change.added.size() - change.removed.size() >= MeshTriangulation<D>::kMaxPoints)
+    throw InputError("too many points for a mesh");
   typename MeshTriangulation<D>::Accumulator acc;
   for (const Point<D>& p : change.removed) t.remove(p, points_, kinds_, acc);
   for (std::size_t i = 0; i < change.added.size(); ++i)
