@@ -113,7 +113,7 @@ template <int D>
 json EditSession<D>::build_reply(double ms) const {
   json r = {{"line", 0}, {"ok", true}, {"op", "build"}};
   r["input_points"] = set_.input_count();
-  r["steiner_points"] = set_.points().size() - set_.input_count();
+  r["steiner_points"] = set_.steiner_count();
   r["elements"] = mesh_.element_count();
   std::vector<double> box(set_.box().origin.begin(), set_.box().origin.end());
   box.push_back(set_.box().side);
@@ -244,17 +244,17 @@ void EditSession<D>::update_mesh(const UpdateReport<D>& report, std::vector<Poin
   change.added.insert(change.added.end(), report.steiner_added.begin(), report.steiner_added.end());
   const auto start = Clock::now();
   bool rebuilt = false;
-  if (!new_domain) {
-    try {
-      last_delta_ = mesh_.apply(change);
-    } catch (const InputError&) {
-      rebuilt = true;  // the mesh and the engine disagree: rebuild from the engine's points
-    }
+  try {
+    // A shore point moved, added or removed changes the rings too: the mesh takes them with the points
+    // and classifies again only the triangles near the changed stretch.
+    if constexpr (D == 2) last_delta_ = new_domain ? mesh_.apply(change, *new_domain) : mesh_.apply(change);
+    else last_delta_ = mesh_.apply(change);
+  } catch (const InputError&) {
+    rebuilt = true;  // the mesh and the engine disagree (nothing was changed): rebuild from the engine's points
   }
-  if (new_domain || rebuilt) {
-    // The water changed (a shore point moved or went): the same points, clipped to the new rings.
+  if (new_domain) domain_ = std::move(*new_domain);
+  if (rebuilt) {
     const auto before = sorted_corners<D>(mesh_);
-    if (new_domain) domain_ = std::move(*new_domain);
     mesh_ = make_mesh<D>(set_.points(), set_.input_count(), domain_);
     last_delta_ = diff<D>(before, sorted_corners<D>(mesh_));
   }
@@ -263,7 +263,7 @@ void EditSession<D>::update_mesh(const UpdateReport<D>& report, std::vector<Poin
   reply["elements_changed"] = last_delta_.removed.size() + last_delta_.added.size();
   reply["elements"] = mesh_.element_count();
   reply["input_points"] = set_.input_count();
-  reply["steiner_points"] = set_.points().size() - set_.input_count();
+  reply["steiner_points"] = set_.steiner_count();
   reply["mesh_ms"] = ms_since(start);
   reply["ms"] = ms_since(engine_start);
 }
@@ -400,7 +400,7 @@ json EditSession<D>::stats() const {
   const QualityNumbers q = quality_numbers<D>(mesh_, rho_, set_.box(), frame_);
   json r;
   r["input_points"] = set_.input_count();
-  r["steiner_points"] = set_.points().size() - set_.input_count();
+  r["steiner_points"] = set_.steiner_count();
   r["next_id"] = next_id_;
   r["elements"] = q.elements;
   r["min_angle"] = q.min_angle;

@@ -14,6 +14,8 @@
 #include <bit>
 #include <cmath>
 #include <iterator>
+#include <limits>
+#include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -129,6 +131,47 @@ std::string describe(const Point<D>& p) {
 template <int D>
 bool finite(const Point<D>& p) {
   return std::all_of(p.begin(), p.end(), [](double x) { return std::isfinite(x); });
+}
+
+// Where the water of `after` can differ from that of `before`: the bounding box of each ring's changed
+// stretch with its two unchanged ends, old and new points, and a point of it (an unchanged end) to start
+// a walk from. Empty when the rings are the same; nullopt when the rings themselves differ in number
+// (then anything may have changed).
+struct ChangedWater {
+  bool changed = false;
+  Point2 lo{}, hi{}, seed{};
+};
+
+std::optional<ChangedWater> changed_water(const Domain2& before, const Domain2& after) {
+  if (before.rings.size() != after.rings.size()) return std::nullopt;
+  ChangedWater w;
+  w.lo = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  w.hi = {-w.lo[0], -w.lo[1]};
+  auto take = [&](const Point2& p) {
+    for (int i = 0; i < 2; ++i) {
+      w.lo[std::size_t(i)] = std::min(w.lo[std::size_t(i)], p[std::size_t(i)]);
+      w.hi[std::size_t(i)] = std::max(w.hi[std::size_t(i)], p[std::size_t(i)]);
+    }
+  };
+  for (std::size_t r = 0; r < before.rings.size(); ++r) {
+    const auto& o = before.rings[r].points;
+    const auto& n = after.rings[r].points;
+    if (o == n) continue;
+    if (o.empty() || n.empty()) return std::nullopt;
+    // The common prefix and suffix; the stretch between them changed, with the edges to its ends.
+    const std::size_t common = std::min(o.size(), n.size());
+    std::size_t prefix = 0, suffix = 0;
+    while (prefix < common && o[prefix] == n[prefix]) ++prefix;
+    while (suffix < common - prefix && o[o.size() - 1 - suffix] == n[n.size() - 1 - suffix]) ++suffix;
+    for (const auto* ring : {&o, &n}) {
+      const std::size_t m = ring->size();
+      // From the end before the stretch (cyclically) to the end after it.
+      for (std::size_t k = prefix + m - 1; k <= 2 * m - suffix; ++k) take((*ring)[k % m]);
+    }
+    w.seed = o[(prefix + o.size() - 1) % o.size()];
+    w.changed = true;
+  }
+  return w;
 }
 
 }  // namespace
@@ -310,6 +353,64 @@ class MeshTriangulation {
     }
   }
 
+  // Classifies every face again, recording those that changed side.
+  void reclassify_all(Accumulator& acc) {
+    if (triangulation.dimension() < D) return;
+    C::for_each_finite_face(triangulation, [&](Face f) {
+      const bool was = in_water(f);
+      classify(f);
+      if (was != in_water(f)) {
+        if (was) acc.remove(key(f));
+        else acc.add(key(f));
+      }
+    });
+  }
+
+  // The water becomes that of `domain`: new faces are classified against it from now on.
+  void set_water(const Domain2& domain) { water_ = WaterTest(domain); }
+
+  // Classifies again the faces whose bounding box meets [lo, hi] (a walk from the face at `seed`, a point
+  // in that box and in the mesh's hull), and records those that changed side. Outside that box the
+  // change of the rings changed no face's side (Mesh::apply with a domain says why).
+  void reclassify_within(const Point2& lo, const Point2& hi, const Point2& seed, Accumulator& acc)
+    requires(D == 2)
+  {
+    if (triangulation.dimension() < 2) return;
+    auto meets = [&](Face f) {
+      if (triangulation.is_infinite(f)) return false;
+      for (int i = 0; i < 2; ++i) {
+        double f_lo = f->vertex(0)->point()[i], f_hi = f_lo;
+        for (int k = 1; k < 3; ++k) {
+          f_lo = std::min(f_lo, f->vertex(k)->point()[i]);
+          f_hi = std::max(f_hi, f->vertex(k)->point()[i]);
+        }
+        if (f_hi < lo[std::size_t(i)] || f_lo > hi[std::size_t(i)]) return false;
+      }
+      return true;
+    };
+    Face start = C::locate(triangulation, C::to_cgal(seed), hint_);
+    if (triangulation.is_infinite(start)) start = start->neighbor(start->index(triangulation.infinite_vertex()));
+    if (!meets(start)) {  // the seed outside the mesh's hull: no walk to start from
+      reclassify_all(acc);
+      return;
+    }
+    std::set<Face> seen{start};
+    std::vector<Face> todo{start};
+    while (!todo.empty()) {
+      const Face f = todo.back();
+      todo.pop_back();
+      if (!meets(f)) continue;  // the walk stops at the first faces outside the box
+      const bool was = in_water(f);
+      classify(f);
+      if (was != in_water(f)) {
+        if (was) acc.remove(key(f));
+        else acc.add(key(f));
+      }
+      for (int i = 0; i < 3; ++i)
+        if (seen.insert(f->neighbor(i)).second) todo.push_back(f->neighbor(i));
+    }
+  }
+
  private:
   WaterTest water_;
   Vertex hint_;  // a live vertex near the last change, where the next point location starts
@@ -351,6 +452,7 @@ void Mesh<D>::build(std::span<const Point<D>> points, std::size_t input_count) {
   std::fill_n(kinds_.begin(), input_count, PointKind::Input);
   triangulation_ = std::make_unique<MeshTriangulation<D>>(domain_);
   triangulation_->build(points_);
+  element_count_ = count_elements();
 }
 
 template <int D>
@@ -365,7 +467,7 @@ std::vector<Element<D>> Mesh<D>::elements() const {
 }
 
 template <int D>
-std::size_t Mesh<D>::element_count() const {
+std::size_t Mesh<D>::count_elements() const {
   const auto& t = *triangulation_;
   if (t.triangulation.dimension() < D) return 0;
   std::size_t n = 0;
@@ -375,6 +477,22 @@ std::size_t Mesh<D>::element_count() const {
 
 template <int D>
 MeshDelta<D> Mesh<D>::apply(const PointChange<D>& change) {
+  return apply_with_water(change, nullptr);
+}
+
+// The rings' change is local too: a point's side of the water (even-odd over the rings) changes only
+// where the closed path made of a ring's old stretch and its new stretch winds around it an odd number
+// of times, which is inside that path's bounding box (changed_water). Faces elsewhere keep their side,
+// so only the faces meeting the box are classified again, and the mesh is not rebuilt.
+template <int D>
+MeshDelta<D> Mesh<D>::apply(const PointChange<D>& change, const Domain2& domain)
+  requires(D == 2)
+{
+  return apply_with_water(change, &domain);
+}
+
+template <int D>
+MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domain2* domain) {
   auto& t = *triangulation_;
   // Validate everything first, so that a bad change leaves the mesh as it was.
   if (change.added_input_count > change.added.size())
@@ -396,11 +514,25 @@ MeshDelta<D> Mesh<D>::apply(const PointChange<D>& change) {
 
   if (points_.size() + change.added.size() - change.removed.size() >= MeshTriangulation<D>::kMaxPoints)
     throw InputError("too many points for a mesh");
+  std::optional<ChangedWater> water;
+  if constexpr (D == 2) {
+    if (domain) {
+      water = changed_water(domain_, *domain);
+      t.set_water(*domain);  // the faces the change creates are classified against the new rings
+      domain_ = *domain;
+    }
+  }
   typename MeshTriangulation<D>::Accumulator acc;
   for (const Point<D>& p : change.removed) t.remove(p, points_, kinds_, acc);
   for (std::size_t i = 0; i < change.added.size(); ++i)
     t.insert(change.added[i], i < change.added_input_count ? PointKind::Input : PointKind::Steiner, points_, kinds_, acc);
-  return acc.net();
+  if constexpr (D == 2) {
+    if (domain && !water) t.reclassify_all(acc);
+    else if (domain && water->changed) t.reclassify_within(water->lo, water->hi, water->seed, acc);
+  }
+  MeshDelta<D> delta = acc.net();
+  element_count_ = element_count_ + delta.added.size() - delta.removed.size();
+  return delta;
 }
 
 template <int D>
@@ -421,6 +553,9 @@ void Mesh<D>::check_valid() const {
     if (i >= points_.size() || points_[i] != Cgal<D>::from_cgal(v->point()))
       throw std::logic_error("mesh: vertex " + describe<D>(Cgal<D>::from_cgal(v->point())) + " has a stale index");
   }
+  if (element_count_ != count_elements())
+    throw std::logic_error("mesh: element count " + std::to_string(element_count_) + ", but " +
+                           std::to_string(count_elements()) + " elements in the water");
 }
 
 // Walks each ring segment a->b through the triangulation: along mesh edges lying on it while there are

@@ -115,6 +115,58 @@ TEST(MeshIncremental, RandomChangesWithDomainEqualFromScratch) {
   mesh.check_valid();
 }
 
+// Shore edits change the rings too: a ring point moved, inserted or removed, with the rings passed to
+// apply. Only the triangles near the changed stretch are classified again; the kept triangles must still
+// be those of a mesh built from scratch on the new points and rings, and the delta exactly the change.
+TEST(MeshIncremental, RingEditsEqualFromScratch) {
+  Domain2 domain = mesh_test::subdivide({{Ring{{{0.1, 0.1}, {0.9, 0.1}, {0.9, 0.9}, {0.1, 0.9}}, RingRole::Shore},
+                                          Ring{{{0.4, 0.4}, {0.6, 0.45}, {0.5, 0.6}}, RingRole::Island}}},
+                                         0.05);
+  std::size_t input_count = 0;
+  std::vector<Point2> points = mesh_test::sample_domain(domain, 0.05, 0.02, 41, input_count);
+  Mesh2 mesh(points, input_count, domain);
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> jitter(-0.03, 0.03);
+  auto erase_point = [&](const Point2& p) { points.erase(std::find(points.begin(), points.end(), p)); };
+  for (int step = 0; step < 60; ++step) {
+    PointChange<2> change;
+    Domain2 edited = domain;
+    auto& ring = edited.rings[rng() % edited.rings.size()].points;
+    const std::size_t k = rng() % ring.size();
+    const int kind = step == 59 ? 3 : int(rng() % 3);
+    if (kind == 0) {  // move, by up to two ring segments: the old place can lie outside the new stretch's box
+      change.removed.push_back(ring[k]);
+      ring[k] = {ring[k][0] + 3 * jitter(rng), ring[k][1] + 3 * jitter(rng)};
+      change.added.push_back(ring[k]);
+    } else if (kind == 1) {  // insert after k, near the middle of the segment
+      const Point2& a = ring[k];
+      const Point2& b = ring[(k + 1) % ring.size()];
+      const Point2 p{(a[0] + b[0]) / 2 + jitter(rng) / 3, (a[1] + b[1]) / 2 + jitter(rng) / 3};
+      ring.insert(ring.begin() + static_cast<std::ptrdiff_t>(k + 1), p);
+      change.added.push_back(p);
+    } else if (kind == 2 && ring.size() > 3) {  // remove
+      change.removed.push_back(ring[k]);
+      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
+    } else if (kind == 3) {  // a new ring (a pond): every triangle is classified again
+      edited.rings.push_back(Ring{{{0.2, 0.2}, {0.3, 0.2}, {0.25, 0.3}}, RingRole::Shore});
+    }
+    change.added_input_count = change.added.size();
+    for (const Point2& p : change.removed) erase_point(p);
+    points.insert(points.end(), change.added.begin(), change.added.end());
+
+    const auto before = corner_list(mesh);
+    const MeshDelta<2> delta = mesh.apply(change, edited);
+    domain = edited;
+    mesh.check_valid();
+    const auto after = corner_list(mesh);
+    ASSERT_EQ(after, corner_list(Mesh2(points, 0, domain))) << "step " << step << " (edit kind " << kind << ")";
+    std::set<ElementCorners<2>> expected(before.begin(), before.end());
+    for (const auto& e : delta.removed) ASSERT_EQ(expected.erase(e), 1u) << "step " << step;
+    for (const auto& e : delta.added) ASSERT_TRUE(expected.insert(e).second) << "step " << step;
+    ASSERT_EQ(std::vector<ElementCorners<2>>(expected.begin(), expected.end()), after) << "step " << step;
+  }
+}
+
 // Inserting one point changes only the triangles whose circumcircle contained it: all new triangles
 // have it as a corner.
 TEST(MeshIncremental, InsertionChangesOnlyTheCavity) {

@@ -62,12 +62,18 @@ class Mesh {
 
   // The elements inside the water (all finite Delaunay elements without a domain), positively oriented.
   std::vector<Element<D>> elements() const;
-  std::size_t element_count() const;
+  // Their number, kept up to date by apply (O(1): an edit's reply asks for it).
+  std::size_t element_count() const { return element_count_; }
 
   // Applies a change of the point set with CGAL's incremental removal and insertion; afterwards the mesh
   // is the Delaunay mesh of the new point set. Throws InputError (and changes nothing) when a removed
   // point is not in the mesh or an added point already is (or is given twice).
   MeshDelta<D> apply(const PointChange<D>& change);
+  // The same, and the rings become those of `domain` (a shore point moved, added or removed): only the
+  // elements near the rings' changed stretches are classified again, and the mesh equals a fresh one on
+  // the new points and domain.
+  MeshDelta<D> apply(const PointChange<D>& change, const Domain2& domain)
+    requires(D == 2);
 
   // Element quality against the bound that rho-well-spacedness guarantees. The guarantee covers the
   // elements whose circumcentre lies in `box` (the engine's box; the points' bounding box by default).
@@ -83,9 +89,12 @@ class Mesh {
 
  private:
   void build(std::span<const Point<D>> points, std::size_t input_count);
+  std::size_t count_elements() const;  // by visiting every element
+  MeshDelta<D> apply_with_water(const PointChange<D>& change, const Domain2* domain);
 
   std::vector<Point<D>> points_;
   std::vector<PointKind> kinds_;
+  std::size_t element_count_ = 0;
   Domain2 domain_;
   std::unique_ptr<MeshTriangulation<D>> triangulation_;
 };

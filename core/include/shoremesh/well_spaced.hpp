@@ -125,6 +125,7 @@ class DynamicWellSpaced {
   Point<D> input_point(std::size_t id) const;
   std::vector<std::size_t> input_ids() const { return set_.input_ids(); }
   std::size_t input_count() const { return set_.input_count(); }
+  std::size_t steiner_count() const { return set_.steiner_count(); }
   // Live input points by increasing id (exactly as given), then the Steiner points.
   std::vector<Point<D>> points() const;
   const WellSpacedSet<D>& set() const { return set_; }
