@@ -83,12 +83,17 @@ TEST(MeshIncremental, RemovalChangesOnlyTheStar) {
   for (const auto& e : d.removed) EXPECT_NE(std::find(e.begin(), e.end(), Point2{0.5, 0.5}), e.end());
 }
 
+// A square lake with a triangular island, its sides cut into pieces of 0.05 (the ring points).
+Domain2 square_lake_with_island() {
+  return mesh_test::subdivide({{Ring{{{0.1, 0.1}, {0.9, 0.1}, {0.9, 0.9}, {0.1, 0.9}}, RingRole::Shore},
+                                Ring{{{0.4, 0.4}, {0.6, 0.45}, {0.5, 0.6}}, RingRole::Island}}},
+                              0.05);
+}
+
 // With a domain, updates keep classifying the new triangles: after random changes of the Steiner points
 // the kept triangles are those of a mesh of the new points built from scratch with the same rings.
 TEST(MeshIncremental, RandomChangesWithDomainEqualFromScratch) {
-  const Domain2 domain = mesh_test::subdivide({{Ring{{{0.1, 0.1}, {0.9, 0.1}, {0.9, 0.9}, {0.1, 0.9}}, RingRole::Shore},
-                                                Ring{{{0.4, 0.4}, {0.6, 0.45}, {0.5, 0.6}}, RingRole::Island}}},
-                                               0.05);
+  const Domain2 domain = square_lake_with_island();
   std::size_t input_count = 0;
   std::vector<Point2> points = mesh_test::sample_domain(domain, 0.05, 0.02, 31, input_count);
   Mesh2 mesh(points, input_count, domain);
@@ -119,9 +124,7 @@ TEST(MeshIncremental, RandomChangesWithDomainEqualFromScratch) {
 // apply. Only the triangles near the changed stretch are classified again; the kept triangles must still
 // be those of a mesh built from scratch on the new points and rings, and the delta exactly the change.
 TEST(MeshIncremental, RingEditsEqualFromScratch) {
-  Domain2 domain = mesh_test::subdivide({{Ring{{{0.1, 0.1}, {0.9, 0.1}, {0.9, 0.9}, {0.1, 0.9}}, RingRole::Shore},
-                                          Ring{{{0.4, 0.4}, {0.6, 0.45}, {0.5, 0.6}}, RingRole::Island}}},
-                                         0.05);
+  Domain2 domain = square_lake_with_island();
   std::size_t input_count = 0;
   std::vector<Point2> points = mesh_test::sample_domain(domain, 0.05, 0.02, 41, input_count);
   Mesh2 mesh(points, input_count, domain);
