@@ -134,6 +134,7 @@ io::InputOptions input_options(const InputArgs& a) {
     o.track.spacing = *a.spacing;
     o.poly.spacing = *a.spacing;
     o.geojson.spacing = *a.spacing;
+    o.ring_spacing = *a.spacing;
   }
   return o;
 }

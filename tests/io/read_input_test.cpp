@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "io_test_names.hpp"
 
 TEST(ReadInput, DetectsEverySampleFormat) {
@@ -63,4 +65,26 @@ TEST(ReadInput, GpxAndPointFilesInLonLat) {
   const auto map_units = dir.write("map.txt", "0 0\n1 0\n");
   const auto e = expect_input_error([&] { read_inputs({samples("cerknica/cerknicko-jezero.gpx"), map_units}, opt); });
   EXPECT_THAT(e.message(), HasSubstr("cannot merge"));
+}
+
+// --spacing reaches ring files too: every ring segment longer than it is cut into equal pieces, and each
+// inserted point names the line of the ring vertex before it.
+TEST(ReadInput, RingFileSegmentsAreCutToTheSpacing) {
+  shoremesh::io::test::ScratchDir dir;
+  const auto path = dir.write("square.txt", "0 0\n10 0\n10 10\n0 10\n0 0\n");
+  ASSERT_EQ(detect_input_format(path), InputFormat::RingFile);
+  InputOptions opt;
+  EXPECT_EQ(read_input(path, opt).points.size(), 4u);  // as given without a spacing
+  opt.ring_spacing = 2.5;
+  const auto set = read_input(path, opt);
+  ASSERT_EQ(set.domain.rings.size(), 1u);
+  const auto& ring = set.domain.rings[0].points;
+  ASSERT_EQ(ring.size(), 16u);  // each side of 10 in four pieces
+  ASSERT_EQ(set.points.size(), 16u);
+  for (std::size_t k = 0; k < ring.size(); ++k) {
+    const auto& a = ring[k];
+    const auto& b = ring[(k + 1) % ring.size()];
+    EXPECT_NEAR(std::hypot(b[0] - a[0], b[1] - a[1]), 2.5, 1e-12) << "segment " << k;
+    EXPECT_EQ(set.origins[k].location, k / 4 + 1) << "point " << k;  // vertex j is on line j + 1
+  }
 }

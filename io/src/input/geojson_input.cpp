@@ -201,23 +201,6 @@ std::optional<CoordinateSystem> legacy_crs(const json& root, const std::string& 
   return CoordinateSystem{CoordinateSystem::Kind::Unknown, 0, true, s};
 }
 
-std::vector<Point2> subdivide(const std::vector<Point2>& pts, bool closed, double spacing) {
-  if (spacing <= 0) return pts;
-  std::vector<Point2> out;
-  const std::size_t n = pts.size(), edges = closed ? n : n - 1;
-  for (std::size_t i = 0; i < n; ++i) {
-    out.push_back(pts[i]);
-    if (i >= edges) break;
-    const Point2& a = pts[i];
-    const Point2& b = pts[(i + 1) % n];
-    const auto pieces = static_cast<std::size_t>(std::ceil(std::hypot(b[0] - a[0], b[1] - a[1]) / spacing));
-    for (std::size_t k = 1; k < pieces; ++k) {
-      const double t = static_cast<double>(k) / static_cast<double>(pieces);
-      out.push_back({a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])});
-    }
-  }
-  return out;
-}
 
 }  // namespace
 
@@ -278,16 +261,12 @@ InputSet parse_geojson_text(std::string_view text, const std::string& name, cons
   detail::InputBuilder builder(set, name, Source::Location::Element);
   for (const auto& r : g.rings) {
     std::vector<Point2> pts;
-    for (const auto& p : r) pts.push_back(convert(p));
-    // Inserted points take the element of the vertex before them.
-    std::vector<Point2> sub = subdivide(pts, true, options.spacing);
     std::vector<std::size_t> elements;
-    std::size_t k = 0;
-    for (const auto& q : sub) {
-      if (k < pts.size() && q == pts[k]) ++k;
-      elements.push_back(r[k == 0 ? 0 : k - 1].element);
+    for (const auto& p : r) {
+      pts.push_back(convert(p));
+      elements.push_back(p.element);
     }
-    builder.add_ring(std::move(sub), RingRole::Shore, elements);
+    builder.add_ring(pts, RingRole::Shore, elements, options.spacing);
   }
   assign_roles_by_nesting(set.domain);
   check_rings(set);
@@ -300,7 +279,7 @@ InputSet parse_geojson_text(std::string_view text, const std::string& name, cons
   for (const auto& l : g.lines) {
     std::vector<Point2> pts;
     for (const auto& p : l) pts.push_back(convert(p));
-    const auto sub = subdivide(pts, false, options.spacing);
+    const auto sub = detail::subdivide(pts, false, options.spacing);
     std::size_t k = 0;
     for (const auto& q : sub) {
       if (k < pts.size() && q == pts[k]) ++k;

@@ -1,5 +1,7 @@
 #pragma once
 // Internal: assembling an InputSet (sources, points with origins, rings stored contiguously in points).
+#include <cmath>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -24,10 +26,46 @@ class InputBuilder {
     for (std::size_t k = 0; k < pts.size(); ++k) add_point(pts[k], locations.empty() ? 0 : locations[k], r);
     set_.domain.rings.push_back({std::move(pts), role});
   }
+  // The same, with points inserted along every segment longer than `spacing` (0: none), evenly; each
+  // inserted point takes the location of the vertex before it.
+  void add_ring(const std::vector<Point2>& pts, RingRole role, const std::vector<std::size_t>& locations,
+                double spacing);
 
  private:
   InputSet& set_;
   std::uint32_t source_ = 0;
 };
+
+// `pts` with points inserted evenly along every segment longer than `spacing` (none when spacing <= 0), so
+// that no piece is longer; `closed`: the last point connects to the first.
+inline std::vector<Point2> subdivide(const std::vector<Point2>& pts, bool closed, double spacing) {
+  if (spacing <= 0 || pts.empty()) return pts;
+  std::vector<Point2> out;
+  const std::size_t n = pts.size(), edges = closed ? n : n - 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    out.push_back(pts[i]);
+    if (i >= edges) break;
+    const Point2& a = pts[i];
+    const Point2& b = pts[(i + 1) % n];
+    const auto pieces = static_cast<std::size_t>(std::ceil(std::hypot(b[0] - a[0], b[1] - a[1]) / spacing));
+    for (std::size_t k = 1; k < pieces; ++k) {
+      const double t = static_cast<double>(k) / static_cast<double>(pieces);
+      out.push_back({a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])});
+    }
+  }
+  return out;
+}
+
+inline void InputBuilder::add_ring(const std::vector<Point2>& pts, RingRole role,
+                                   const std::vector<std::size_t>& locations, double spacing) {
+  std::vector<Point2> sub = subdivide(pts, true, spacing);
+  std::vector<std::size_t> sub_locations;
+  std::size_t k = 0;  // the next original vertex
+  for (const Point2& q : sub) {
+    if (k < pts.size() && q == pts[k]) ++k;
+    sub_locations.push_back(locations.empty() ? 0 : locations[k == 0 ? 0 : k - 1]);
+  }
+  add_ring(std::move(sub), role, sub_locations);
+}
 
 }  // namespace shoremesh::io::detail

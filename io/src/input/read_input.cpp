@@ -125,7 +125,8 @@ InputSet read_input(const std::string& path, const InputOptions& options) {
       return gps_to_input(data, path, o);
     }
     case InputFormat::RingFile:
-      return ring_file_to_input(parse_ring_file_text(text, path), path, options.lonlat, projection, choice);
+      return ring_file_to_input(parse_ring_file_text(text, path), path, options.lonlat, projection, choice,
+                                options.ring_spacing);
     case InputFormat::PointFile:
       return points_to_input(parse_point_file_text(text, path), path, options);
     case InputFormat::Node:

@@ -74,7 +74,7 @@ bool looks_like_ring_file(std::string_view text) {
 }
 
 InputSet ring_file_to_input(const RingFile& rf, const std::string& file, bool lonlat,
-                            const std::optional<Projection>& projection, ProjectionChoice choice) {
+                            const std::optional<Projection>& projection, ProjectionChoice choice, double spacing) {
   InputSet set;
   set.units = lonlat ? Units::Metres : Units::MapUnits;
   if (lonlat) {
@@ -100,7 +100,7 @@ InputSet ring_file_to_input(const RingFile& rf, const std::string& file, bool lo
         }
       }
     }
-    builder.add_ring(std::move(pts), RingRole::Shore, rf.lines[r]);
+    builder.add_ring(pts, RingRole::Shore, rf.lines[r], spacing);
   }
   assign_roles_by_nesting(set.domain);
   check_rings(set);

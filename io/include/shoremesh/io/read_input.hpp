@@ -32,6 +32,7 @@ struct InputOptions {
   std::optional<Projection> projection;
   ProjectionChoice projection_choice = ProjectionChoice::Utm;
   bool lonlat = false;  // plain point files and ring files hold lon, lat (degrees) in their first two columns
+  double ring_spacing = 0;  // ring files: largest segment length, in the input's units (0: the vertices as given)
   TrackOptions track;
   ImageTraceOptions image;
   PslgOptions poly;

@@ -26,10 +26,12 @@ RingFile read_ring_file(const std::string& path);
 bool looks_like_ring_file(std::string_view text);
 
 // Rings to an InputSet. `lonlat`: the columns are lon, lat in degrees (projected with `projection`, or one
-// chosen by `choice`); otherwise map units. Roles come from nesting (even-odd); rings are validated
-// (fewer than three points, self-intersections: shoremesh::InputError with file and line).
+// chosen by `choice`); otherwise map units. `spacing` > 0: points are inserted along every ring segment
+// longer than it (after projecting, so in metres for lon/lat), each with the line of the vertex before it.
+// Roles come from nesting (even-odd); rings are validated (fewer than three points, self-intersections:
+// shoremesh::InputError with file and line).
 InputSet ring_file_to_input(const RingFile& rings, const std::string& file, bool lonlat,
                             const std::optional<Projection>& projection = std::nullopt,
-                            ProjectionChoice choice = ProjectionChoice::Utm);
+                            ProjectionChoice choice = ProjectionChoice::Utm, double spacing = 0);
 
 }  // namespace shoremesh::io
