@@ -201,7 +201,6 @@ std::optional<CoordinateSystem> legacy_crs(const json& root, const std::string& 
   return CoordinateSystem{CoordinateSystem::Kind::Unknown, 0, true, s};
 }
 
-
 }  // namespace
 
 InputSet parse_geojson_text(std::string_view text, const std::string& name, const GeoJsonOptions& options) {
