@@ -245,7 +245,7 @@ void EditSession<D>::update_mesh(const UpdateReport<D>& report, std::vector<Poin
   const auto start = Clock::now();
   bool rebuilt = false;
   try {
-    // A shore point moved, added or removed changes the rings too: the mesh takes them with the points
+    // A shore point moved or removed changes the rings too: the mesh takes them with the points
     // and classifies again only the triangles near the changed stretch.
     if constexpr (D == 2) last_delta_ = new_domain ? mesh_.apply(change, *new_domain) : mesh_.apply(change);
     else last_delta_ = mesh_.apply(change);
