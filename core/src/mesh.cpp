@@ -353,24 +353,26 @@ class MeshTriangulation {
     }
   }
 
-  // Classifies every face again, recording those that changed side.
+  // Classifies face f again (the rings changed); if it changed side, it left or joined the mesh.
+  void reclassify(Face f, Accumulator& acc) {
+    const bool was = in_water(f);
+    classify(f);
+    if (was == in_water(f)) return;
+    if (was) acc.remove(key(f));
+    else acc.add(key(f));
+  }
+
+  // Classifies every face again.
   void reclassify_all(Accumulator& acc) {
     if (triangulation.dimension() < D) return;
-    C::for_each_finite_face(triangulation, [&](Face f) {
-      const bool was = in_water(f);
-      classify(f);
-      if (was != in_water(f)) {
-        if (was) acc.remove(key(f));
-        else acc.add(key(f));
-      }
-    });
+    C::for_each_finite_face(triangulation, [&](Face f) { reclassify(f, acc); });
   }
 
   // The water becomes that of `domain`: new faces are classified against it from now on.
   void set_water(const Domain2& domain) { water_ = WaterTest(domain); }
 
   // Classifies again the faces whose bounding box meets [lo, hi] (a walk from the face at `seed`, a point
-  // in that box and in the mesh's hull), and records those that changed side. Outside that box the
+  // in that box and in the mesh's hull). Outside that box the
   // change of the rings changed no face's side (Mesh::apply with a domain says why).
   void reclassify_within(const Point2& lo, const Point2& hi, const Point2& seed, Accumulator& acc)
     requires(D == 2)
@@ -400,12 +402,7 @@ class MeshTriangulation {
       const Face f = todo.back();
       todo.pop_back();
       if (!meets(f)) continue;  // the walk stops at the first faces outside the box
-      const bool was = in_water(f);
-      classify(f);
-      if (was != in_water(f)) {
-        if (was) acc.remove(key(f));
-        else acc.add(key(f));
-      }
+      reclassify(f, acc);
       for (int i = 0; i < 3; ++i)
         if (seen.insert(f->neighbor(i)).second) todo.push_back(f->neighbor(i));
     }
