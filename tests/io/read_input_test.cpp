@@ -88,3 +88,22 @@ TEST(ReadInput, RingFileSegmentsAreCutToTheSpacing) {
     EXPECT_EQ(set.origins[k].location, k / 4 + 1) << "point " << k;  // vertex j is on line j + 1
   }
 }
+
+// A spacing far below the input's scale is refused with a message, before it fills the memory (a ring
+// file at 1e-9 asked for about 10^10 points) or overflows the piece count (1e-300).
+TEST(ReadInput, SpacingThatWouldCutTooManyPointsIsRefused) {
+  shoremesh::io::test::ScratchDir dir;
+  const auto path = dir.write("square.txt", "0 0\n10 0\n10 10\n0 10\n0 0\n");
+  for (const double spacing : {1e-9, 1e-300}) {
+    InputOptions opt;
+    opt.ring_spacing = spacing;
+    const auto e = expect_input_error([&] { read_input(path, opt); });
+    EXPECT_THAT(e.message(), HasSubstr("choose a larger --spacing")) << spacing;
+    EXPECT_THAT(e.message(), HasSubstr(spacing == 1e-9 ? "spacing 1e-09 " : "spacing 1e-300 "));
+    EXPECT_THAT(e.file(), HasSubstr("square.txt")) << spacing;
+  }
+  InputOptions poly;
+  poly.poly.spacing = 1e-12;
+  const auto e = expect_input_error([&] { read_input(samples("pslg/double_hex.poly"), poly); });
+  EXPECT_THAT(e.message(), HasSubstr("choose a larger --spacing"));
+}

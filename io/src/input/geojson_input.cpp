@@ -278,7 +278,7 @@ InputSet parse_geojson_text(std::string_view text, const std::string& name, cons
   for (const auto& l : g.lines) {
     std::vector<Point2> pts;
     for (const auto& p : l) pts.push_back(convert(p));
-    const auto sub = detail::subdivide(pts, false, options.spacing);
+    const auto sub = detail::subdivide(pts, false, options.spacing, name, set.points.size());
     std::size_t k = 0;
     for (const auto& q : sub) {
       if (k < pts.size() && q == pts[k]) ++k;

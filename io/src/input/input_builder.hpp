@@ -2,9 +2,11 @@
 // Internal: assembling an InputSet (sources, points with origins, rings stored contiguously in points).
 #include <cmath>
 #include <cstddef>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "shoremesh/error.hpp"
 #include "shoremesh/io/input_set.hpp"
 
 namespace shoremesh::io::detail {
@@ -30,15 +32,23 @@ class InputBuilder {
   // inserted point takes the location of the vertex before it.
   void add_ring(const std::vector<Point2>& pts, RingRole role, const std::vector<std::size_t>& locations,
                 double spacing);
+  std::size_t point_count() const { return set_.points.size(); }
+  const std::string& file() const { return set_.sources[source_].file; }
 
  private:
   InputSet& set_;
   std::uint32_t source_ = 0;
 };
 
+// At most this many points from one input after sampling its segments: a spacing far below the input's
+// scale would otherwise fill the memory (or overflow the piece count) instead of failing.
+constexpr std::size_t kMaxSampledPoints = 10'000'000;
+
 // `pts` with points inserted evenly along every segment longer than `spacing` (none when spacing <= 0), so
-// that no piece is longer; `closed`: the last point connects to the first.
-inline std::vector<Point2> subdivide(const std::vector<Point2>& pts, bool closed, double spacing) {
+// that no piece is longer; `closed`: the last point connects to the first. Throws InputError (naming
+// `file`) when the input's points, `already` of them before these, would exceed kMaxSampledPoints.
+inline std::vector<Point2> subdivide(const std::vector<Point2>& pts, bool closed, double spacing,
+                                     const std::string& file, std::size_t already = 0) {
   if (spacing <= 0 || pts.empty()) return pts;
   std::vector<Point2> out;
   const std::size_t n = pts.size(), edges = closed ? n : n - 1;
@@ -47,7 +57,14 @@ inline std::vector<Point2> subdivide(const std::vector<Point2>& pts, bool closed
     if (i >= edges) break;
     const Point2& a = pts[i];
     const Point2& b = pts[(i + 1) % n];
-    const auto pieces = static_cast<std::size_t>(std::ceil(std::hypot(b[0] - a[0], b[1] - a[1]) / spacing));
+    const double wanted = std::ceil(std::hypot(b[0] - a[0], b[1] - a[1]) / spacing);
+    if (!(wanted <= double(kMaxSampledPoints - std::min(kMaxSampledPoints, already + out.size())))) {
+      std::ostringstream message;
+      message << "spacing " << spacing << " cuts the segments into more than " << kMaxSampledPoints
+              << " points; choose a larger --spacing";
+      throw InputError(message.str(), file);
+    }
+    const auto pieces = static_cast<std::size_t>(wanted);
     for (std::size_t k = 1; k < pieces; ++k) {
       const double t = static_cast<double>(k) / static_cast<double>(pieces);
       out.push_back({a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])});
@@ -58,7 +75,7 @@ inline std::vector<Point2> subdivide(const std::vector<Point2>& pts, bool closed
 
 inline void InputBuilder::add_ring(const std::vector<Point2>& pts, RingRole role,
                                    const std::vector<std::size_t>& locations, double spacing) {
-  std::vector<Point2> sub = subdivide(pts, true, spacing);
+  std::vector<Point2> sub = subdivide(pts, true, spacing, file(), point_count());
   std::vector<std::size_t> sub_locations;
   std::size_t k = 0;  // the next original vertex
   for (const Point2& q : sub) {

@@ -219,33 +219,16 @@ InputSet pslg_to_input(const PslgFile& p, const PslgOptions& options) {
     } while (v != p.segments[s0][0] && cycle.size() <= group_segments.size());
     if (cycle.size() == group_segments.size()) cycles.push_back(std::move(cycle));
   }
-  // Points inserted along a segment from a to b (excluding a, including neither end).
-  auto subdivide = [&](const Point2& a, const Point2& b) {
-    std::vector<Point2> out;
-    if (options.spacing <= 0) return out;
-    const double len = std::hypot(b[0] - a[0], b[1] - a[1]);
-    const auto pieces = static_cast<std::size_t>(std::ceil(len / options.spacing));
-    for (std::size_t k = 1; k < pieces; ++k) {
-      const double t = static_cast<double>(k) / static_cast<double>(pieces);
-      out.push_back({a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])});
-    }
-    return out;
-  };
   detail::InputBuilder vertices(set, p.vertex_file, Source::Location::Line);
   for (const auto& cycle : cycles) {
     std::vector<Point2> ring;
     std::vector<std::size_t> lines;
-    for (std::size_t k = 0; k < cycle.size(); ++k) {
-      const std::size_t v = cycle[k], w = cycle[(k + 1) % cycle.size()];
+    for (const std::size_t v : cycle) {
       vertex_in_ring[v] = true;
       ring.push_back(p.points[v]);
       lines.push_back(p.point_lines[v]);
-      for (const auto& q : subdivide(p.points[v], p.points[w])) {
-        ring.push_back(q);
-        lines.push_back(p.point_lines[v]);
-      }
     }
-    vertices.add_ring(std::move(ring), RingRole::Shore, lines);
+    vertices.add_ring(ring, RingRole::Shore, lines, options.spacing);
   }
   assign_roles_by_nesting(set.domain);
   check_rings(set);
@@ -256,7 +239,9 @@ InputSet pslg_to_input(const PslgFile& p, const PslgOptions& options) {
     const auto [a, b] = p.segments[s];
     if (vertex_in_ring[a] && vertex_in_ring[b]) continue;  // part of a cycle (a cycle's vertices are all in it)
     ++loose_segments;
-    for (const auto& q : subdivide(p.points[a], p.points[b])) vertices.add_point(q, p.point_lines[a]);
+    // The points inserted along it (its ends are points of their own).
+    const auto sub = detail::subdivide({p.points[a], p.points[b]}, false, options.spacing, p.vertex_file, set.points.size());
+    for (std::size_t k = 1; k + 1 < sub.size(); ++k) vertices.add_point(sub[k], p.point_lines[a]);
   }
   if (!cycles.empty()) set.notes.push_back(std::to_string(cycles.size()) + " closed segment cycles became rings");
   if (loose_segments)
