@@ -14,7 +14,8 @@
 // With --mesh 1, a Delaunay mesh of the output (core's Mesh, a CGAL triangulation) follows every update
 // the way the shoremesh edit session updates it (Mesh::apply: CGAL's incremental removal and insertion
 // of the changed points), and the median and 99th percentile of that step are printed too: what an edit
-// costs after the engine, and a yardstick for the engine's own time (the same change, applied by CGAL).
+// costs after the engine, and a yardstick for the engine's own time (the same change, applied by CGAL, with
+// the elements removed and added worked out).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
