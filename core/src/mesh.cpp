@@ -6,6 +6,7 @@
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
@@ -23,6 +24,7 @@
 #include <utility>
 
 #include "shoremesh/error.hpp"
+#include "shoremesh/mesh_coverage.hpp"
 #include "shoremesh/mesh_water.hpp"
 
 namespace shoremesh {
@@ -31,6 +33,12 @@ namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
+// A face's (cell's) info: where it lies. The mesh keeps it when both hold.
+enum FaceFlag : std::uint8_t {
+  kInWater = 1,  // inside the water (always without a domain, and in 3D)
+  kCovered = 2,  // its circumcentre in the box, or no box to clip to
+};
+
 // Per dimension: the triangulation type and the few calls whose names differ between 2D and 3D.
 template <int D>
 struct Cgal;
@@ -38,7 +46,7 @@ struct Cgal;
 template <>
 struct Cgal<2> {
   using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, Kernel>;
-  using Fb = CGAL::Triangulation_face_base_with_info_2<bool, Kernel>;  // info: inside the water
+  using Fb = CGAL::Triangulation_face_base_with_info_2<std::uint8_t, Kernel>;  // info: FaceFlags
   using Triangulation = CGAL::Delaunay_triangulation_2<Kernel, CGAL::Triangulation_data_structure_2<Vb, Fb>>;
   using Vertex = Triangulation::Vertex_handle;
   using Face = Triangulation::Face_handle;
@@ -78,7 +86,8 @@ struct Cgal<2> {
 template <>
 struct Cgal<3> {
   using Vb = CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, Kernel>;
-  using Cb = CGAL::Delaunay_triangulation_cell_base_3<Kernel>;
+  using Cb = CGAL::Triangulation_cell_base_with_info_3<std::uint8_t, Kernel,
+                                                       CGAL::Delaunay_triangulation_cell_base_3<Kernel>>;  // FaceFlags
   using Triangulation = CGAL::Delaunay_triangulation_3<Kernel, CGAL::Triangulation_data_structure_3<Vb, Cb>>;
   using Vertex = Triangulation::Vertex_handle;
   using Face = Triangulation::Cell_handle;
@@ -190,7 +199,8 @@ class MeshTriangulation {
   static constexpr std::uint32_t kLinkMark = 1u << 31;
   static constexpr std::size_t kMaxPoints = kLinkMark;
 
-  explicit MeshTriangulation(const Domain2& domain) : water_(domain) {}
+  MeshTriangulation(const Domain2& domain, std::optional<BoxTransform<D>> covered_box)
+      : water_(domain), covered_box_(covered_box) {}
 
   Triangulation triangulation;
   std::unordered_map<Point<D>, Vertex, PointHash<D>> vertex_of;
@@ -204,10 +214,9 @@ class MeshTriangulation {
     C::for_each_finite_face(triangulation, [&](Face f) { classify(f); });
   }
 
-  bool in_water(Face f) const {
-    if constexpr (D == 2) return f->info();
-    else return true;
-  }
+  // Whether the mesh keeps f: in the water and covered.
+  bool kept(Face f) const { return f->info() == (kInWater | kCovered); }
+  bool in_water(Face f) const { return f->info() & kInWater; }
 
   Element<D> element(Face f) const {
     Element<D> e;
@@ -222,12 +231,27 @@ class MeshTriangulation {
     return k;
   }
 
+  // A new face: its side of the water and whether the box covers it.
+  void classify(Face f) {
+    std::uint8_t flags = water_side(f);
+    if (!covered_box_) {
+      flags |= kCovered;
+    } else {
+      ElementCorners<D> corners;
+      for (int i = 0; i <= D; ++i) corners[i] = C::from_cgal(f->vertex(i)->point());
+      if (circumcentre_in_box<D>(corners, *covered_box_)) flags |= kCovered;
+    }
+    f->info() = flags;
+  }
+
   // The water side of a triangle is the side of its centroid: the mesh's elements do not cross the rings
   // when the sampling is fine enough (shoreline_crossings says where it is not).
-  void classify(Face f) {
+  std::uint8_t water_side(Face f) const {
     if constexpr (D == 2) {
       const auto c = CGAL::centroid(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
-      f->info() = water_.in_water({c.x(), c.y()});
+      return water_.in_water({c.x(), c.y()}) ? kInWater : 0;
+    } else {
+      return kInWater;
     }
   }
 
@@ -235,7 +259,7 @@ class MeshTriangulation {
     std::set<Key> keys;
     if (triangulation.dimension() < D) return keys;
     C::for_each_finite_face(triangulation, [&](Face f) {
-      if (in_water(f)) keys.insert(key(f));
+      if (kept(f)) keys.insert(key(f));
     });
     return keys;
   }
@@ -273,7 +297,7 @@ class MeshTriangulation {
         for (int i = 0; i <= D; ++i)
           if (!(f->vertex(i)->info() & kLinkMark)) return;
         if (classify_them) classify(f);
-        if (in_water(f)) keys.push_back(key(f));
+        if (kept(f)) keys.push_back(key(f));
       });
     std::sort(keys.begin(), keys.end());
     keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
@@ -295,7 +319,7 @@ class MeshTriangulation {
       const std::vector<Vertex> link = C::adjacent_finite_vertices(triangulation, v);
       for (Vertex u : link) u->info() |= kLinkMark;
       C::for_each_incident_finite_face(triangulation, v, [&](Face f) {
-        if (in_water(f)) acc.remove(key(f));
+        if (kept(f)) acc.remove(key(f));
       });
       const std::vector<Key> kept = keys_within(link, false);  // none has v as a corner
       triangulation.remove(v);
@@ -332,7 +356,7 @@ class MeshTriangulation {
       // (circumsphere) contains p are exactly the ones the insertion destroys.
       start = C::locate(triangulation, cp, hint_);
       for (Face f : C::conflicts(triangulation, cp, start))
-        if (!triangulation.is_infinite(f) && in_water(f)) acc.remove(key(f));
+        if (!triangulation.is_infinite(f) && kept(f)) acc.remove(key(f));
     } else {
       before = all_keys();
     }
@@ -345,7 +369,7 @@ class MeshTriangulation {
     if (full) {
       C::for_each_incident_finite_face(triangulation, v, [&](Face f) {
         classify(f);
-        if (in_water(f)) acc.add(key(f));
+        if (kept(f)) acc.add(key(f));
       });
     } else {
       C::for_each_finite_face(triangulation, [&](Face f) { classify(f); });
@@ -353,11 +377,12 @@ class MeshTriangulation {
     }
   }
 
-  // Classifies face f again (the rings changed); if it changed side, it left or joined the mesh.
+  // Classifies face f's water side again (the rings changed; its circumcentre did not move); if it
+  // changed side, it left or joined the mesh.
   void reclassify(Face f, Accumulator& acc) {
-    const bool was = in_water(f);
-    classify(f);
-    if (was == in_water(f)) return;
+    const bool was = kept(f);
+    f->info() = std::uint8_t((f->info() & ~kInWater) | water_side(f));
+    if (was == kept(f)) return;
     if (was) acc.remove(key(f));
     else acc.add(key(f));
   }
@@ -410,18 +435,21 @@ class MeshTriangulation {
 
  private:
   WaterTest water_;
+  std::optional<BoxTransform<D>> covered_box_;
   Vertex hint_;  // a live vertex near the last change, where the next point location starts
 };
 
 template <int D>
-Mesh<D>::Mesh(std::span<const Point<D>> points, std::size_t input_count) {
+Mesh<D>::Mesh(std::span<const Point<D>> points, std::size_t input_count, std::optional<BoxTransform<D>> covered_box)
+    : covered_box_(covered_box) {
   build(points, input_count);
 }
 
 template <int D>
-Mesh<D>::Mesh(std::span<const Point2> points, std::size_t input_count, const Domain2& domain)
+Mesh<D>::Mesh(std::span<const Point2> points, std::size_t input_count, const Domain2& domain,
+              std::optional<BoxTransform<2>> covered_box)
   requires(D == 2)
-    : domain_(domain) {
+    : domain_(domain), covered_box_(covered_box) {
   build(points, input_count);
 }
 
@@ -447,7 +475,8 @@ void Mesh<D>::build(std::span<const Point<D>> points, std::size_t input_count) {
   points_.assign(points.begin(), points.end());
   kinds_.assign(points.size(), PointKind::Steiner);
   std::fill_n(kinds_.begin(), input_count, PointKind::Input);
-  triangulation_ = std::make_unique<MeshTriangulation<D>>(domain_);
+  if (covered_box_ && !(covered_box_->side > 0)) throw InputError("the box to clip the mesh to has no size");
+  triangulation_ = std::make_unique<MeshTriangulation<D>>(domain_, covered_box_);
   triangulation_->build(points_);
   element_count_ = count_elements();
 }
@@ -458,7 +487,7 @@ std::vector<Element<D>> Mesh<D>::elements() const {
   const auto& t = *triangulation_;
   if (t.triangulation.dimension() < D) return out;
   Cgal<D>::for_each_finite_face(t.triangulation, [&](auto f) {
-    if (t.in_water(f)) out.push_back(t.element(f));
+    if (t.kept(f)) out.push_back(t.element(f));
   });
   return out;
 }
@@ -468,7 +497,16 @@ std::size_t Mesh<D>::count_elements() const {
   const auto& t = *triangulation_;
   if (t.triangulation.dimension() < D) return 0;
   std::size_t n = 0;
-  Cgal<D>::for_each_finite_face(t.triangulation, [&](auto f) { n += t.in_water(f); });
+  Cgal<D>::for_each_finite_face(t.triangulation, [&](auto f) { n += t.kept(f); });
+  return n;
+}
+
+template <int D>
+std::size_t Mesh<D>::uncovered_count() const {
+  const auto& t = *triangulation_;
+  if (t.triangulation.dimension() < D) return 0;
+  std::size_t n = 0;
+  Cgal<D>::for_each_finite_face(t.triangulation, [&](auto f) { n += t.in_water(f) && !t.kept(f); });
   return n;
 }
 
@@ -647,7 +685,7 @@ ShorelineReport Mesh<D>::shoreline_crossings() const
       std::sort(passed.begin(), passed.end());
       passed.erase(std::unique(passed.begin(), passed.end()), passed.end());
       for (C::Face f : passed)
-        if (t.in_water(f)) issue.crossing_elements.push_back(t.element(f));
+        if (t.kept(f)) issue.crossing_elements.push_back(t.element(f));
       report.issues.push_back(std::move(issue));
     }
   }

@@ -1,5 +1,7 @@
 #include "shoremesh/mesh_quality.hpp"
 
+#include "shoremesh/mesh_coverage.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -135,11 +137,6 @@ QualityReport<D> quality_report(std::span<const Point<D>> points, std::span<cons
     for (const auto& p : points)
       for (int i = 0; i < D; ++i) low[i] = std::min(low[i], p[i]), high[i] = std::max(high[i], p[i]);
   }
-  auto in_box = [&](const Point<D>& p) {
-    for (int i = 0; i < D; ++i)
-      if (!(low[i] <= p[i] && p[i] <= high[i])) return false;
-    return true;
-  };
 
   // A radius-edge ratio a few ulps above rho is rounding in the construction, not a broken guarantee.
   const double tolerance = rho * (1 + 1e-12);
@@ -155,7 +152,7 @@ QualityReport<D> quality_report(std::span<const Point<D>> points, std::span<cons
     r.min_radius_edge = std::min(r.min_radius_edge, s.radius_edge);
     r.max_radius_edge = std::max(r.max_radius_edge, s.radius_edge);
     const bool meets = s.radius_edge <= tolerance;
-    const bool covered = in_box(s.circumcentre);
+    const bool covered = circumcentre_in_box<D>(corners, low, high);  // exact, as the mesh clips
     r.meeting_bound += meets;
     if (covered) {
       ++r.covered;

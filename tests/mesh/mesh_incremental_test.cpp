@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <set>
 
@@ -18,11 +19,16 @@ namespace {
 using mesh_test::corner_list;
 using mesh_test::random_points;
 
+// With `box`, the mesh keeps only the elements whose circumcentre lies in it, before and after each change.
 template <int D>
-void check_random_changes(std::size_t n, int steps, std::uint32_t seed) {
+void check_random_changes(std::size_t n, int steps, std::uint32_t seed, std::optional<BoxTransform<D>> box = {}) {
   std::vector<Point<D>> points = random_points<D>(n, seed);
-  Mesh<D> mesh(points, n / 2);
+  Mesh<D> mesh(points, n / 2, box);
   mesh.check_valid();
+  if (box) {
+    ASSERT_GT(mesh.uncovered_count(), 0u);
+    ASSERT_EQ(mesh.element_count() + mesh.uncovered_count(), Mesh<D>(points, n / 2).element_count());
+  }
   std::mt19937 rng(seed + 1);
   for (int step = 0; step < steps; ++step) {
     // Remove up to 5 current points and add up to 5 new ones (some far outside, growing the hull).
@@ -41,7 +47,7 @@ void check_random_changes(std::size_t n, int steps, std::uint32_t seed) {
     const MeshDelta<D> delta = mesh.apply(change);
     mesh.check_valid();
     const auto after = corner_list(mesh);
-    ASSERT_EQ(after, corner_list(Mesh<D>(points, 0))) << "step " << step << ": not the Delaunay mesh of the points";
+    ASSERT_EQ(after, corner_list(Mesh<D>(points, 0, box))) << "step " << step << ": not the Delaunay mesh of the points";
 
     // before - removed + added == after, with removed a subset of before and added disjoint from it.
     std::set<ElementCorners<D>> expected(before.begin(), before.end());
@@ -54,6 +60,13 @@ void check_random_changes(std::size_t n, int steps, std::uint32_t seed) {
 
 TEST(MeshIncremental, RandomChangesEqualFromScratch2D) { check_random_changes<2>(400, 60, 7); }
 TEST(MeshIncremental, RandomChangesEqualFromScratch3D) { check_random_changes<3>(300, 40, 11); }
+// A box inside the points' spread, so that many elements change sides of it as points come and go.
+TEST(MeshIncremental, RandomChangesClippedToABoxEqualFromScratch2D) {
+  check_random_changes<2>(400, 60, 13, BoxTransform<2>{{0.2, 0.25}, 0.5});
+}
+TEST(MeshIncremental, RandomChangesClippedToABoxEqualFromScratch3D) {
+  check_random_changes<3>(300, 40, 17, BoxTransform<3>{{0.2, 0.25, 0.3}, 0.5});
+}
 
 TEST(MeshIncremental, GrowsFromFewPointsThroughLowerDimensions2D) {
   Mesh2 mesh(std::vector<Point2>{{0.1, 0.2}}, 1);
@@ -123,11 +136,13 @@ TEST(MeshIncremental, RandomChangesWithDomainEqualFromScratch) {
 // Shore edits change the rings too: a ring point moved, inserted or removed, with the rings passed to
 // apply. Only the triangles near the changed stretch are classified again; the kept triangles must still
 // be those of a mesh built from scratch on the new points and rings, and the delta exactly the change.
-TEST(MeshIncremental, RingEditsEqualFromScratch) {
+// With `box`, also clipped to it: a face's side of the water changes, its circumcentre does not.
+void check_ring_edits(std::optional<BoxTransform<2>> box) {
   Domain2 domain = square_lake_with_island();
   std::size_t input_count = 0;
   std::vector<Point2> points = mesh_test::sample_domain(domain, 0.05, 0.02, 41, input_count);
-  Mesh2 mesh(points, input_count, domain);
+  Mesh2 mesh(points, input_count, domain, box);
+  if (box) ASSERT_GT(mesh.uncovered_count(), 0u);
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> jitter(-0.03, 0.03);
   auto erase_point = [&](const Point2& p) { points.erase(std::find(points.begin(), points.end(), p)); };
@@ -162,13 +177,17 @@ TEST(MeshIncremental, RingEditsEqualFromScratch) {
     domain = edited;
     mesh.check_valid();
     const auto after = corner_list(mesh);
-    ASSERT_EQ(after, corner_list(Mesh2(points, 0, domain))) << "step " << step << " (edit kind " << kind << ")";
+    ASSERT_EQ(after, corner_list(Mesh2(points, 0, domain, box))) << "step " << step << " (edit kind " << kind << ")";
     std::set<ElementCorners<2>> expected(before.begin(), before.end());
     for (const auto& e : delta.removed) ASSERT_EQ(expected.erase(e), 1u) << "step " << step;
     for (const auto& e : delta.added) ASSERT_TRUE(expected.insert(e).second) << "step " << step;
     ASSERT_EQ(std::vector<ElementCorners<2>>(expected.begin(), expected.end()), after) << "step " << step;
   }
 }
+
+TEST(MeshIncremental, RingEditsEqualFromScratch) { check_ring_edits(std::nullopt); }
+// A box across the lake, so that the water and the box both cut the mesh.
+TEST(MeshIncremental, RingEditsClippedToABoxEqualFromScratch) { check_ring_edits(BoxTransform<2>{{0.3, 0.25}, 0.5}); }
 
 // Inserting one point changes only the triangles whose circumcircle contained it: all new triangles
 // have it as a corner.

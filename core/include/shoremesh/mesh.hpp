@@ -1,7 +1,9 @@
 #pragma once
 // The Delaunay mesh of the engine's output points: triangles (2D) or tetrahedra (3D), kept alive in a CGAL
 // triangulation so that a dynamic update of the point set changes the mesh only where the points changed.
-// In 2D, a domain (a lake shore and its islands) keeps only the elements inside the water.
+// In 2D, a domain (a lake shore and its islands) keeps only the elements inside the water. A box (the
+// engine's) keeps only the elements whose circumcentre lies in it: those whose quality rho-well-spacing
+// guarantees (mesh_coverage.hpp); the rest are slivers along the box's edge.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -47,9 +49,12 @@ class Mesh {
  public:
   // The Delaunay mesh of `points`, of which the first `input_count` are input points and the rest Steiner
   // points. Points must be finite and pairwise distinct (InputError naming the first duplicate otherwise).
-  Mesh(std::span<const Point<D>> points, std::size_t input_count);
+  // With `covered_box`, only the elements whose circumcentre lies in that box (closed) are kept.
+  Mesh(std::span<const Point<D>> points, std::size_t input_count,
+       std::optional<BoxTransform<D>> covered_box = {});
   // The same, keeping only the triangles inside the water of `domain` (even-odd rule over its rings).
-  Mesh(std::span<const Point2> points, std::size_t input_count, const Domain2& domain)
+  Mesh(std::span<const Point2> points, std::size_t input_count, const Domain2& domain,
+       std::optional<BoxTransform<2>> covered_box = {})
     requires(D == 2);
   ~Mesh();
   Mesh(Mesh&&) noexcept;
@@ -59,11 +64,15 @@ class Mesh {
   const std::vector<Point<D>>& points() const { return points_; }
   const std::vector<PointKind>& kinds() const { return kinds_; }
   const Domain2& domain() const { return domain_; }
+  const std::optional<BoxTransform<D>>& covered_box() const { return covered_box_; }
 
   // The elements inside the water (all finite Delaunay elements without a domain), positively oriented.
   std::vector<Element<D>> elements() const;
   // Their number, kept up to date by apply (O(1): an edit's reply asks for it).
   std::size_t element_count() const { return element_count_; }
+  // The Delaunay elements in the water left out because their circumcentre lies outside the covered box
+  // (by visiting every element).
+  std::size_t uncovered_count() const;
 
   // Applies a change of the point set with CGAL's incremental removal and insertion; afterwards the mesh
   // is the Delaunay mesh of the new point set. Throws InputError (and changes nothing) when a removed
@@ -96,6 +105,7 @@ class Mesh {
   std::vector<PointKind> kinds_;
   std::size_t element_count_ = 0;
   Domain2 domain_;
+  std::optional<BoxTransform<D>> covered_box_;
   std::unique_ptr<MeshTriangulation<D>> triangulation_;
 };
 
