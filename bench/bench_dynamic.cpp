@@ -81,7 +81,8 @@ void run(const Options& opt) {
     output += double(set.input_count() + set.steiner_count());
     const shoremesh::Counters after_build = set.counters();
     std::optional<shoremesh::Mesh<D>> mesh;
-    if (opt.mesh) mesh.emplace(set.output_points(), set.input_count());
+    // Clipped to the engine's box (the unit box here), as the edit session's mesh is.
+    if (opt.mesh) mesh.emplace(set.output_points(), set.input_count(), shoremesh::BoxTransform<D>{});
     // The engine's report of one update, as the mesh takes it (the input point first, as the edit
     // session passes it), and the time Mesh::apply took.
     auto follow = [&](const shoremesh::UpdateReport<D>& report, const shoremesh::Point<D>* input_removed,

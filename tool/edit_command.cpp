@@ -35,7 +35,8 @@ int run_edit(const EditOptions& opt, const io::InputSet& set, Progress& progress
     throw InputError("--lonlat-edits needs 2D lon/lat input (GPS, GeoJSON, a geographic image, --lonlat files)");
   progress.stage("StableWS and mesh of " + std::to_string(set.size()) + " points");
   const auto start = std::chrono::steady_clock::now();
-  EditSession<D> session(set, opt.engine.rho, parse_box<D>(opt.engine.box), opt.preview, opt.lonlat_edits);
+  EditSession<D> session(set, opt.engine.rho, parse_box<D>(opt.engine.box), opt.engine.keep_hull, opt.preview,
+                         opt.lonlat_edits);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   progress.finish();
   if (!opt.json) std::cout << describe_input(set);

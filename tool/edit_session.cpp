@@ -81,11 +81,12 @@ Domain2 initial_domain(const io::InputSet& set) {
 }  // namespace
 
 template <int D>
-EditSession<D>::EditSession(const io::InputSet& set, double rho, std::optional<BoxTransform<D>> box, PreviewArgs preview,
-                            bool lonlat_edits)
+EditSession<D>::EditSession(const io::InputSet& set, double rho, std::optional<BoxTransform<D>> box, bool keep_hull,
+                            PreviewArgs preview, bool lonlat_edits)
     : frame_(UserFrame::of(set)),
       lonlat_edits_(lonlat_edits),
       rho_(rho),
+      keep_hull_(keep_hull),
       preview_(std::move(preview)),
       set_([&] {
         try {
@@ -95,7 +96,7 @@ EditSession<D>::EditSession(const io::InputSet& set, double rho, std::optional<B
         }
       }()),
       domain_(initial_domain<D>(set)),
-      mesh_(make_mesh<D>(set_.points(), set_.input_count(), domain_)),
+      mesh_(make_mesh<D>(set_.points(), set_.input_count(), domain_, set_.box(), keep_hull_)),
       next_id_(set.size()) {
   preview_.rho = rho;
   for (std::size_t r = 0; r < domain_.rings.size(); ++r) {
@@ -255,7 +256,7 @@ void EditSession<D>::update_mesh(const UpdateReport<D>& report, std::vector<Poin
   if (new_domain) domain_ = std::move(*new_domain);
   if (rebuilt) {
     const auto before = sorted_corners<D>(mesh_);
-    mesh_ = make_mesh<D>(set_.points(), set_.input_count(), domain_);
+    mesh_ = make_mesh<D>(set_.points(), set_.input_count(), domain_, set_.box(), keep_hull_);
     last_delta_ = diff<D>(before, sorted_corners<D>(mesh_));
   }
   reply["elements_removed"] = last_delta_.removed.size();
@@ -410,6 +411,7 @@ json EditSession<D>::stats() const {
   r["covered_meeting_bound"] = q.covered_meeting_bound;
   r["covered_max_radius_edge"] = q.covered_max_radius_edge;
   r["rho"] = q.rho;
+  if (q.left_out_at_box_edge) r["left_out_at_box_edge"] = *q.left_out_at_box_edge;
   if (q.shore_segments) {
     r["shore_segments"] = *q.shore_segments;
     r["shore_covered"] = *q.shore_covered;

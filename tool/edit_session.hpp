@@ -23,11 +23,12 @@ namespace shoremesh::tool {
 template <int D>
 class EditSession {
  public:
-  // Builds the set and the mesh of `set`'s points (ids 0..n-1 in reading order).
+  // Builds the set and the mesh of `set`'s points (ids 0..n-1 in reading order). `keep_hull`: the mesh
+  // keeps the elements along the box's edge (make_mesh).
   // `lonlat_edits`: edit lines give lon lat (degrees), projected like the input (2D lon/lat input only:
   // the caller checks).
-  EditSession(const io::InputSet& set, double rho, std::optional<BoxTransform<D>> box, PreviewArgs preview,
-              bool lonlat_edits = false);
+  EditSession(const io::InputSet& set, double rho, std::optional<BoxTransform<D>> box, bool keep_hull,
+              PreviewArgs preview, bool lonlat_edits = false);
 
   // The reply to the initial build (op "build", line 0): counts, the box, and `ms`, the time it took.
   nlohmann::json build_reply(double ms) const;
@@ -62,6 +63,7 @@ class EditSession {
   UserFrame frame_;
   bool lonlat_edits_ = false;
   double rho_;
+  bool keep_hull_ = false;
   PreviewArgs preview_;
   DynamicWellSpaced<D> set_;
   Domain2 domain_;

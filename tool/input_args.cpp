@@ -19,6 +19,9 @@ void add_engine_options(CLI::App* cmd, EngineArgs& args) {
   cmd->add_option("--box", args.box, "Fix the box: X0 Y0 [Z0] SIDE (default: the input's bounding box + 5%)")
       ->expected(3, 4);
   cmd->add_option("--dim", args.dim, "Dimension: 2 or 3 (default: the input's; 2 drops z)")->check(CLI::IsMember({2, 3}));
+  cmd->add_flag("--keep-hull", args.keep_hull,
+                "Keep the mesh elements whose circumcentre lies outside the box (slivers along its edge, which the "
+                "quality bound does not cover; dropped by default)");
 }
 
 void add_preview_options(CLI::App* cmd, PreviewArgs& args) {

@@ -32,11 +32,12 @@ struct InputArgs {
 
 // Registers INPUT... and the reading options on `cmd`. `several`: more than one input file allowed.
 void add_input_options(CLI::App* cmd, InputArgs& args, bool several = true);
-// The engine's options: --rho, --box, --dim.
+// The engine's options: --rho, --box, --dim, and --keep-hull for the mesh of its output.
 struct EngineArgs {
   double rho = 1.4142135623730951;
   std::vector<double> box;
-  int dim = 0;  // 0: the input's
+  int dim = 0;             // 0: the input's
+  bool keep_hull = false;  // the mesh keeps the slivers along the box's edge (make_mesh)
 };
 void add_engine_options(CLI::App* cmd, EngineArgs& args);
 

@@ -45,7 +45,7 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
     rethrow_with_origin(e, set);
   }
   progress.stage("meshing " + std::to_string(result.points.size()) + " points");
-  const Mesh<D> mesh = make_mesh<D>(result.points, result.input_count, set.domain);
+  const Mesh<D> mesh = make_mesh<D>(result.points, result.input_count, set.domain, result.box, opt.engine.keep_hull);
 
   progress.stage("writing " + output.filename().string());
   if (point_set) {

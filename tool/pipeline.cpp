@@ -72,10 +72,12 @@ void rethrow_with_origin(const PointInputError& e, const io::InputSet& set) {
 }
 
 template <int D>
-Mesh<D> make_mesh(std::span<const Point<D>> points, std::size_t input_count, const Domain2& domain) {
+Mesh<D> make_mesh(std::span<const Point<D>> points, std::size_t input_count, const Domain2& domain,
+                  const BoxTransform<D>& box, bool keep_hull) {
+  const std::optional<BoxTransform<D>> covered = keep_hull ? std::nullopt : std::optional(box);
   if constexpr (D == 2)
-    if (!domain.empty()) return Mesh<2>(points, input_count, domain);
-  return Mesh<D>(points, input_count);
+    if (!domain.empty()) return Mesh<2>(points, input_count, domain, covered);
+  return Mesh<D>(points, input_count, covered);
 }
 
 template <int D>
@@ -133,6 +135,7 @@ QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransfo
   q.covered = r.covered;
   q.covered_meeting_bound = r.covered_meeting_bound;
   q.meeting_bound = r.meeting_bound;
+  if (mesh.covered_box()) q.left_out_at_box_edge = mesh.uncovered_count();
   if (!r.worst.empty()) q.worst_at = frame.point(r.worst.front().shape.centroid);
   if constexpr (D == 2) {
     if (!mesh.domain().empty()) {
@@ -159,8 +162,13 @@ std::string quality_text(const QualityNumbers& q, int dimension) {
   if (dimension == 2) out << " (guaranteed >= " << approx(q.min_angle_bound, 4) << " deg for rho = " << approx(q.rho) << ")";
   out << "; radius-edge <= " << approx(q.max_radius_edge, 4) << ", covered <= " << approx(q.covered_max_radius_edge, 4)
       << " (bound " << approx(q.rho, 4) << ")\n";
-  out << "  covered: " << elements << " whose circumcentre lies in the box, where rho-well-spacing guarantees the bound; "
-      << q.meeting_bound << " of " << q.elements << " meet it overall\n";
+  if (q.left_out_at_box_edge)
+    out << "  clipped to the box: " << *q.left_out_at_box_edge << ' ' << elements
+        << " whose circumcentre lies outside it left out (slivers along its edge, which the bound does not cover; "
+           "--keep-hull keeps them)\n";
+  else
+    out << "  covered: " << elements << " whose circumcentre lies in the box, where rho-well-spacing guarantees the "
+        << "bound; " << q.meeting_bound << " of " << q.elements << " meet it overall\n";
   if (!q.worst_at.empty()) out << "  worst " << (dimension == 2 ? "triangle" : "tetrahedron") << " near " << q.worst_at << "\n";
   if (q.shore_segments) {
     out << "  shoreline: " << *q.shore_covered << " of " << *q.shore_segments << " shore segments are mesh edges";
@@ -196,8 +204,8 @@ template std::optional<BoxTransform<2>> parse_box<2>(const std::vector<double>&)
 template std::optional<BoxTransform<3>> parse_box<3>(const std::vector<double>&);
 template std::vector<Point<2>> input_points<2>(const io::InputSet&);
 template std::vector<Point<3>> input_points<3>(const io::InputSet&);
-template Mesh<2> make_mesh<2>(std::span<const Point<2>>, std::size_t, const Domain2&);
-template Mesh<3> make_mesh<3>(std::span<const Point<3>>, std::size_t, const Domain2&);
+template Mesh<2> make_mesh<2>(std::span<const Point<2>>, std::size_t, const Domain2&, const BoxTransform<2>&, bool);
+template Mesh<3> make_mesh<3>(std::span<const Point<3>>, std::size_t, const Domain2&, const BoxTransform<3>&, bool);
 template void export_mesh_file<2>(const Mesh<2>&, const std::filesystem::path&, std::optional<io::ExportFormat>,
                                   const UserFrame&);
 template void export_mesh_file<3>(const Mesh<3>&, const std::filesystem::path&, std::optional<io::ExportFormat>,

@@ -42,9 +42,11 @@ std::vector<Point<D>> input_points(const io::InputSet& set);
 [[noreturn]] void rethrow_with_origin(const PointInputError& e, const io::InputSet& set);
 
 // The Delaunay mesh of `points` (the first `input_count` are input points); in 2D only the water of
-// `domain` when it has rings.
+// `domain` when it has rings. Only the elements whose circumcentre lies in the engine's `box` (those
+// rho-well-spacing covers), unless `keep_hull`: the others are slivers along the box's edge.
 template <int D>
-Mesh<D> make_mesh(std::span<const Point<D>> points, std::size_t input_count, const Domain2& domain);
+Mesh<D> make_mesh(std::span<const Point<D>> points, std::size_t input_count, const Domain2& domain,
+                  const BoxTransform<D>& box, bool keep_hull);
 
 // Exports `mesh` to `path` (format from the extension unless given); GeoJSON and fort.14 in lon/lat when
 // the input was projected.
@@ -68,6 +70,7 @@ struct QualityNumbers {
   double min_angle = 0, max_angle = 0, min_angle_bound = 0, rho = 0;
   double max_radius_edge = 0, covered_max_radius_edge = 0;
   std::size_t covered = 0, covered_meeting_bound = 0, meeting_bound = 0;
+  std::optional<std::size_t> left_out_at_box_edge;  // when the mesh is clipped to the box (not --keep-hull)
   std::string worst_at;                 // the worst element's centroid in the user's frame
   std::optional<std::size_t> shore_segments, shore_covered;
   double shore_worst_depth = 0;

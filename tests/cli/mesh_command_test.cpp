@@ -63,6 +63,40 @@ TEST(MeshCommand, PointFileToCsvEqualsTheLibrary) {
   EXPECT_EQ(read_file(dir / "box.csv").rfind("# box -10 -10 130\n", 0), 0u);
 }
 
+// A point file has no shore: the mesh is clipped to the box, and every element meets the bound (the
+// slivers along the box's edge are left out and counted); --keep-hull keeps them, and then some fail it.
+TEST(MeshCommand, MeshIsClippedToTheBoxUnlessKeepHull) {
+  TempDir dir;
+  write_file(dir / "p.csv", random_points(300, 100, 60, 11));
+  for (const std::string dim : {"2", "3"}) {
+    if (dim == "3") {
+      std::string text;
+      for (int i = 0; i < 150; ++i)
+        text += std::to_string((i * 37) % 101) + " " + std::to_string((i * 17) % 53) + " " + std::to_string((i * 29) % 47) + "\n";
+      write_file(dir / "p.csv", text);
+    }
+    const RunResult clipped = shoremesh(dir, "mesh p.csv -o clipped.vtu");
+    ASSERT_EQ(clipped.code, 0) << clipped.err;
+    const Summary c = parse_summary(clipped.out);
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(clipped.out, m, std::regex(R"(clipped to the box: (\d+) \w+ whose circumcentre)")))
+        << clipped.out;
+    const std::size_t left_out = std::stoul(m[1]);
+    EXPECT_GT(left_out, 0u) << dim << "D";
+    EXPECT_EQ(c.met, c.elements) << dim << "D";
+    EXPECT_EQ(c.covered, c.elements) << dim << "D";
+    if (dim == "2") EXPECT_GE(c.min_angle, c.bound);
+
+    const RunResult whole = shoremesh(dir, "mesh p.csv -o whole.vtu --keep-hull");
+    ASSERT_EQ(whole.code, 0) << whole.err;
+    const Summary w = parse_summary(whole.out);
+    EXPECT_EQ(w.elements, c.elements + left_out) << dim << "D";
+    EXPECT_EQ(w.covered, c.elements) << dim << "D";
+    EXPECT_THAT(whole.out, HasSubstr("meet it overall"));
+    EXPECT_LT(read_file(dir / "clipped.vtu").size(), read_file(dir / "whole.vtu").size());
+  }
+}
+
 TEST(MeshCommand, ThreeColumnPointFileIn3DAnd2D) {
   TempDir dir;
   std::string text;
