@@ -162,7 +162,7 @@ std::string quality_text(const QualityNumbers& q, int dimension) {
   if (dimension == 2) out << " (guaranteed >= " << approx(q.min_angle_bound, 4) << " deg for rho = " << approx(q.rho) << ")";
   out << "; radius-edge <= " << approx(q.max_radius_edge, 4) << ", covered <= " << approx(q.covered_max_radius_edge, 4)
       << " (bound " << approx(q.rho, 4) << ")\n";
-  if (q.left_out_at_box_edge)
+  if (q.left_out_at_box_edge.value_or(0) > 0)
     out << "  clipped to the box: " << *q.left_out_at_box_edge << ' ' << elements
         << " whose circumcentre lies outside it left out (slivers along its edge, which the bound does not cover; "
            "--keep-hull keeps them)\n";

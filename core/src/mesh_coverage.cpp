@@ -1,18 +1,36 @@
 #include "shoremesh/mesh_coverage.hpp"
 
+#include <cmath>
+
 #include "shoremesh/engine/predicates.hpp"
 
 namespace shoremesh {
 
+// The circumcentre enclosed in intervals decides unless an interval meets a side of the box (or the
+// determinant's may be zero); then it is computed exactly.
 template <int D>
 bool circumcentre_in_box(const ElementCorners<D>& corners, const Point<D>& lo, const Point<D>& hi) {
-  const engine::RoundingGuard upwards;  // the interval filter needs it
-  engine::PredicateCounters counters;
-  for (int axis = 0; axis < D; ++axis) {
-    const int below = engine::circumcentre_side<D>(counters, corners, axis, lo[axis]);
-    if (below == engine::kUndecided || below < 0) return false;  // degenerate, or below the box
-    if (engine::circumcentre_side<D>(counters, corners, axis, hi[axis]) > 0) return false;
+  for (int k = 0; k < D; ++k)
+    if (std::isnan(lo[k]) || std::isnan(hi[k])) return false;  // no box
+  {
+    const engine::RoundingGuard upwards;  // the intervals need it
+    std::array<engine::Interval, D> c;
+    if (engine::circumcentre<engine::Interval, D>(corners, c)) {
+      bool certain = true;
+      for (int k = 0; k < D; ++k) {
+        if (c[k].sup() < lo[k] || c[k].inf() > hi[k]) return false;
+        certain = certain && lo[k] <= c[k].inf() && c[k].sup() <= hi[k];
+      }
+      if (certain) return true;
+    }
   }
+  std::array<engine::Exact, D> c;
+  if (!engine::circumcentre<engine::Exact, D>(corners, c)) return false;  // flat: no circumcentre
+  // An infinite side (a half-open box) is compared as such: rationals have no infinity.
+  auto below = [](const engine::Exact& x, double side) { return std::isinf(side) ? side > 0 : x < engine::Exact(side); };
+  auto above = [](const engine::Exact& x, double side) { return std::isinf(side) ? side < 0 : x > engine::Exact(side); };
+  for (int k = 0; k < D; ++k)
+    if (below(c[k], lo[k]) || above(c[k], hi[k])) return false;
   return true;
 }
 

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <type_traits>
 
 #include "shoremesh/point.hpp"
 
@@ -108,50 +109,43 @@ int compare_squared_distance_to(PredicateCounters& counters, const Point<D>& a, 
   });
 }
 
-// sign(c[axis] - bound) for the circumcentre c of the simplex `corners` (D + 1 points), exact; kUndecided
-// for a degenerate simplex, which has none. With u_i = corners[i] - corners[0], c - corners[0] = n / (2 det),
-// where det = det(u_1 .. u_D) and n is a polynomial in the u_i (Cramer's rule), so the sign is that of
-// ((corners[0][axis] - bound) 2 det + n[axis]) times that of det.
-template <int D>
-int circumcentre_side(PredicateCounters& counters, const std::array<Point<D>, D + 1>& corners, int axis,
-                      double bound) {
+// The circumcentre of the simplex `corners` (D + 1 points) in number type NT: exact in Exact, an
+// enclosure in Interval (under a RoundingGuard). With u_i = corners[i] - corners[0], it is
+// corners[0] + n / (2 det), det = det(u_1 .. u_D) and n a polynomial in the u_i (Cramer's rule).
+// False, with c unset, when det is zero (a flat simplex has none) or, in intervals, may be.
+template <class NT, int D>
+bool circumcentre(const std::array<Point<D>, D + 1>& corners, std::array<NT, D>& c) {
   static_assert(D == 2 || D == 3);
-  auto offset_and_det = [&](auto zero, auto& n_axis) {
-    using NT = decltype(zero);
-    std::array<std::array<NT, D>, D> u;
-    std::array<NT, D> uu;
-    for (int i = 0; i < D; ++i) {
-      uu[i] = NT(0);
-      for (int k = 0; k < D; ++k) {
-        u[i][k] = NT(corners[i + 1][k]) - NT(corners[0][k]);
-        uu[i] += u[i][k] * u[i][k];
-      }
+  std::array<std::array<NT, D>, D> u;
+  std::array<NT, D> uu;
+  for (int i = 0; i < D; ++i) {
+    uu[i] = NT(0);
+    for (int k = 0; k < D; ++k) {
+      u[i][k] = NT(corners[i + 1][k]) - NT(corners[0][k]);
+      uu[i] += u[i][k] * u[i][k];
     }
-    if constexpr (D == 2) {
-      const std::array<NT, 2> n = {u[1][1] * uu[0] - u[0][1] * uu[1], u[0][0] * uu[1] - u[1][0] * uu[0]};
-      n_axis = n[axis];
-      return u[0][0] * u[1][1] - u[0][1] * u[1][0];
-    } else {
-      auto cross = [](const std::array<NT, 3>& a, const std::array<NT, 3>& b) {
-        return std::array<NT, 3>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-      };
-      const auto vw = cross(u[1], u[2]), wu = cross(u[2], u[0]), uv = cross(u[0], u[1]);
-      n_axis = uu[0] * vw[axis] + uu[1] * wu[axis] + uu[2] * uv[axis];
-      return u[0][0] * vw[0] + u[0][1] * vw[1] + u[0][2] * vw[2];
-    }
-  };
-  const int det_sign = filtered_sign(counters, [&](auto zero) {
-    decltype(zero) unused(0);
-    return offset_and_det(zero, unused);
-  });
-  if (det_sign == 0) return kUndecided;
-  const int numerator_sign = filtered_sign(counters, [&](auto zero) {
-    using NT = decltype(zero);
-    NT n_axis(0);
-    const NT det = offset_and_det(zero, n_axis);
-    return (NT(corners[0][axis]) - NT(bound)) * NT(2) * det + n_axis;
-  });
-  return numerator_sign * det_sign;
+  }
+  std::array<NT, D> n;
+  NT det;
+  if constexpr (D == 2) {
+    n = {u[1][1] * uu[0] - u[0][1] * uu[1], u[0][0] * uu[1] - u[1][0] * uu[0]};
+    det = u[0][0] * u[1][1] - u[0][1] * u[1][0];
+  } else {
+    auto cross = [](const std::array<NT, 3>& a, const std::array<NT, 3>& b) {
+      return std::array<NT, 3>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    };
+    const auto vw = cross(u[1], u[2]), wu = cross(u[2], u[0]), uv = cross(u[0], u[1]);
+    for (int k = 0; k < 3; ++k) n[k] = uu[0] * vw[k] + uu[1] * wu[k] + uu[2] * uv[k];
+    det = u[0][0] * vw[0] + u[0][1] * vw[1] + u[0][2] * vw[2];
+  }
+  if constexpr (std::is_same_v<NT, Interval>) {
+    if (interval_sign(det) == 0 || interval_sign(det) == kUndecided) return false;
+  } else {
+    if (CGAL::sign(det) == CGAL::ZERO) return false;
+  }
+  const NT twice = NT(2) * det;
+  for (int k = 0; k < D; ++k) c[k] = NT(corners[0][k]) + n[k] / twice;
+  return true;
 }
 
 }  // namespace shoremesh::engine
