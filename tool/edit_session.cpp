@@ -329,7 +329,8 @@ json EditSession<D>::export_to(const std::vector<std::string>& words) {
     io::write_point_set_csv<D>(path, set_.box(), points);
     reply["points"] = points.size();
   } else {
-    export_mesh_file<D>(mesh_, path, std::nullopt, frame_);
+    // Numbered like a fresh run's export on the current input: its canonical point list.
+    export_mesh_file<D>(mesh_, path, std::nullopt, frame_, set_.points());
     reply["elements"] = mesh_.element_count();
   }
   reply["ms"] = ms_since(start);

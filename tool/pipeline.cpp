@@ -82,8 +82,8 @@ Mesh<D> make_mesh(std::span<const Point<D>> points, std::size_t input_count, con
 
 template <int D>
 void export_mesh_file(const Mesh<D>& mesh, const std::filesystem::path& path, std::optional<io::ExportFormat> format,
-                      const UserFrame& frame) {
-  const io::MeshSnapshot<D> snapshot(mesh);
+                      const UserFrame& frame, std::span<const Point<D>> order) {
+  const io::MeshSnapshot<D> snapshot(mesh, order);
   if (D == 2 && !frame.projection.is_none()) {
     const io::Projection projection = frame.projection;
     io::export_mesh<D>(path, snapshot.view([projection](const Point2& p) {
@@ -207,9 +207,9 @@ template std::vector<Point<3>> input_points<3>(const io::InputSet&);
 template Mesh<2> make_mesh<2>(std::span<const Point<2>>, std::size_t, const Domain2&, const BoxTransform<2>&, bool);
 template Mesh<3> make_mesh<3>(std::span<const Point<3>>, std::size_t, const Domain2&, const BoxTransform<3>&, bool);
 template void export_mesh_file<2>(const Mesh<2>&, const std::filesystem::path&, std::optional<io::ExportFormat>,
-                                  const UserFrame&);
+                                  const UserFrame&, std::span<const Point<2>>);
 template void export_mesh_file<3>(const Mesh<3>&, const std::filesystem::path&, std::optional<io::ExportFormat>,
-                                  const UserFrame&);
+                                  const UserFrame&, std::span<const Point<3>>);
 template void write_preview<2>(const Mesh<2>&, const std::filesystem::path&, const PreviewArgs&);
 template void write_preview<3>(const Mesh<3>&, const std::filesystem::path&, const PreviewArgs&);
 template QualityNumbers quality_numbers<2>(const Mesh<2>&, double, const BoxTransform<2>&, const UserFrame&);

@@ -49,10 +49,10 @@ Mesh<D> make_mesh(std::span<const Point<D>> points, std::size_t input_count, con
                   const BoxTransform<D>& box, bool keep_hull);
 
 // Exports `mesh` to `path` (format from the extension unless given); GeoJSON and fort.14 in lon/lat when
-// the input was projected.
+// the input was projected. Points numbered in `order` when given (io::MeshSnapshot).
 template <int D>
 void export_mesh_file(const Mesh<D>& mesh, const std::filesystem::path& path, std::optional<io::ExportFormat> format,
-                      const UserFrame& frame);
+                      const UserFrame& frame, std::span<const Point<D>> order = {});
 
 struct PreviewArgs {
   std::string colouring = "none";  // none | quality | size

@@ -57,7 +57,10 @@ TEST(EditCommand, SessionEqualsAFreshRunOnTheFinalInput) {
       "move 300 11 12\n"
       "remove 17\n"
       "stats\n"
-      "export final.csv\n";
+      "export final.csv\n"
+      "export final.msh\n"
+      "export final.vtu\n"
+      "export final.node\n";
   const RunResult r = shoremesh(dir, "edit p.csv --edits -", edits);
   ASSERT_EQ(r.code, 0) << r.err << r.out;
   input[300] = {11, 12};
@@ -69,6 +72,15 @@ TEST(EditCommand, SessionEqualsAFreshRunOnTheFinalInput) {
   const RunResult fresh = shoremesh(dir, "mesh final_input.csv --box " + box_of(dir / "final.csv") + " -o fresh.csv");
   ASSERT_EQ(fresh.code, 0) << fresh.err;
   EXPECT_EQ(read_file(dir / "final.csv"), read_file(dir / "fresh.csv"));
+  // The mesh exports too, byte for byte: the same points and elements, numbered the same way, although
+  // the session's mesh went through the edits (its points renumbered, its elements stored anew).
+  for (const std::string ext : {".msh", ".vtu", ".node", ".ele"}) {
+    if (ext != ".ele") {
+      const RunResult m = shoremesh(dir, "mesh -q final_input.csv --box " + box_of(dir / "final.csv") + " -o fresh" + ext);
+      ASSERT_EQ(m.code, 0) << m.err;
+    }
+    EXPECT_EQ(read_file(dir / ("final" + ext)), read_file(dir / ("fresh" + ext))) << ext;
+  }
 
   // Text replies: one per edit line, naming the line, with the change and its time.
   EXPECT_THAT(r.out, HasSubstr("line 2: added id 300 at (10, 10): +"));

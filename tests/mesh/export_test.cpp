@@ -321,5 +321,60 @@ TEST_F(MeshExport, FormatFromPath) {
   EXPECT_EQ(io::export_format_from_path("m.ply"), ExportFormat::Ply);
 }
 
+// A snapshot numbers points in the order asked for and lists each element from its smallest index, with
+// its orientation kept, in sorted order: what makes an export independent of the mesh's history.
+template <int D>
+void check_canonical_snapshot(std::uint32_t seed) {
+  const auto points = mesh_test::random_points<D>(200, seed);
+  const Mesh<D> mesh(points, 50);
+  std::vector<Point<D>> order = mesh.points();
+  std::reverse(order.begin(), order.end());
+  const MeshSnapshot<D> snap(mesh, order);
+  const io::MeshView<D> v = snap.view();
+  ASSERT_EQ(v.points.size(), order.size());
+  EXPECT_TRUE(std::equal(v.points.begin(), v.points.end(), order.begin()));
+  for (std::size_t i = 0; i < order.size(); ++i)  // kinds follow their points: the first 50 are inputs
+    EXPECT_EQ(v.kinds[i], (std::find(points.begin(), points.begin() + 50, order[i]) != points.begin() + 50)
+                              ? PointKind::Input
+                              : PointKind::Steiner);
+  ASSERT_EQ(v.elements.size(), mesh.element_count());
+  EXPECT_TRUE(std::is_sorted(v.elements.begin(), v.elements.end()));
+  auto corners = [](const auto& pts, const Element<D>& e) {
+    ElementCorners<D> c;
+    for (int k = 0; k <= D; ++k) c[k] = pts[e[k]];
+    std::sort(c.begin(), c.end());
+    return c;
+  };
+  std::vector<ElementCorners<D>> expected, got;
+  for (const auto& e : mesh.elements()) expected.push_back(corners(mesh.points(), e));
+  for (const auto& e : v.elements) {
+    EXPECT_EQ(*std::min_element(e.begin(), e.end()), e[0]);
+    // Positively oriented, as the mesh lists them (random points: the double determinant is far from 0).
+    const Point<D>& a = v.points[e[0]];
+    double det = 0;
+    if constexpr (D == 2) {
+      const Point2 &b = v.points[e[1]], &c = v.points[e[2]];
+      det = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    } else {
+      Point3 u, w, x;
+      for (int k = 0; k < 3; ++k) u[k] = v.points[e[1]][k] - a[k], w[k] = v.points[e[2]][k] - a[k], x[k] = v.points[e[3]][k] - a[k];
+      det = u[0] * (w[1] * x[2] - w[2] * x[1]) - u[1] * (w[0] * x[2] - w[2] * x[0]) + u[2] * (w[0] * x[1] - w[1] * x[0]);
+    }
+    EXPECT_GT(det, 0);
+    got.push_back(corners(v.points, e));
+  }
+  std::sort(expected.begin(), expected.end());
+  std::sort(got.begin(), got.end());
+  EXPECT_EQ(got, expected);
+
+  order.pop_back();
+  EXPECT_THROW(MeshSnapshot<D>(mesh, order), std::logic_error);
+  order.push_back(Point<D>{});
+  EXPECT_THROW(MeshSnapshot<D>(mesh, order), std::logic_error);
+}
+
+TEST(MeshSnapshot, NumbersInTheOrderAskedAndListsElementsCanonically2D) { check_canonical_snapshot<2>(3); }
+TEST(MeshSnapshot, NumbersInTheOrderAskedAndListsElementsCanonically3D) { check_canonical_snapshot<3>(4); }
+
 }  // namespace
 }  // namespace shoremesh

@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cctype>
 #include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include "shoremesh/error.hpp"
 
@@ -33,18 +36,71 @@ void drop_unused_points(std::vector<Point<D>>& points, std::vector<Element<D>>& 
     for (auto& i : e) i = renumber[i];
 }
 
+// Renumbers the points to the order of `order` (a permutation of them): matched by sorting both.
 template <int D>
-MeshSnapshot<D> snapshot_of(const Mesh<D>& mesh) {
+void renumber_to(std::vector<Point<D>>& points, std::vector<Element<D>>& elements, std::vector<PointKind>& kinds,
+                 std::span<const Point<D>> order) {
+  if (order.size() != points.size())
+    throw std::logic_error("export order names " + std::to_string(order.size()) + " points, the mesh has " +
+                           std::to_string(points.size()));
+  auto sorted_indices = [](auto list) {
+    std::vector<std::uint32_t> idx(list.size());
+    std::iota(idx.begin(), idx.end(), 0u);
+    std::sort(idx.begin(), idx.end(), [&](std::uint32_t a, std::uint32_t b) { return list[a] < list[b]; });
+    return idx;
+  };
+  const auto by_place = sorted_indices(std::span<const Point<D>>(points));
+  const auto order_by_place = sorted_indices(order);
+  std::vector<std::uint32_t> new_index(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    if (points[by_place[k]] != order[order_by_place[k]])
+      throw std::logic_error("export order is not a permutation of the mesh's points");
+    new_index[by_place[k]] = order_by_place[k];
+  }
+  std::vector<PointKind> new_kinds(kinds.size());
+  for (std::size_t i = 0; i < kinds.size(); ++i) new_kinds[new_index[i]] = kinds[i];
+  points.assign(order.begin(), order.end());
+  kinds = std::move(new_kinds);
+  for (auto& e : elements)
+    for (auto& i : e) i = new_index[i];
+}
+
+// Turns an element to start at its smallest index, keeping its orientation: a rotation of a triangle; for
+// a tetrahedron, an even permutation (two swaps), then a rotation of the last three.
+template <int D>
+Element<D> canonical(Element<D> e) {
+  const auto first = std::min_element(e.begin(), e.end()) - e.begin();
+  if constexpr (D == 2) {
+    std::rotate(e.begin(), e.begin() + first, e.end());
+  } else {
+    if (first != 0) {
+      std::swap(e[0], e[std::size_t(first)]);
+      // A second swap of two of the other three keeps the permutation even.
+      if (first == 1) std::swap(e[2], e[3]);
+      else if (first == 2) std::swap(e[1], e[3]);
+      else std::swap(e[1], e[2]);
+    }
+    std::rotate(e.begin() + 1, std::min_element(e.begin() + 1, e.end()), e.end());
+  }
+  return e;
+}
+
+template <int D>
+MeshSnapshot<D> snapshot_of(const Mesh<D>& mesh, std::span<const Point<D>> order) {
   std::vector<Point<D>> points = mesh.points();
   std::vector<Element<D>> elements = mesh.elements();
   std::vector<PointKind> kinds = mesh.kinds();
+  if (!order.empty()) renumber_to<D>(points, elements, kinds, order);
+  for (auto& e : elements) e = canonical<D>(e);
+  std::sort(elements.begin(), elements.end());
   drop_unused_points<D>(points, elements, kinds);
   return MeshSnapshot<D>(std::move(points), std::move(elements), std::move(kinds));
 }
 }  // namespace
 
 template <int D>
-MeshSnapshot<D>::MeshSnapshot(const Mesh<D>& mesh) : MeshSnapshot(snapshot_of(mesh)) {}
+MeshSnapshot<D>::MeshSnapshot(const Mesh<D>& mesh, std::span<const Point<D>> order)
+    : MeshSnapshot(snapshot_of<D>(mesh, order)) {}
 
 template <int D>
 MeshSnapshot<D>::MeshSnapshot(std::vector<Point<D>> points, std::vector<Element<D>> elements,

@@ -33,7 +33,13 @@ struct MeshView {
 template <int D>
 class MeshSnapshot {
  public:
-  explicit MeshSnapshot(const Mesh<D>& mesh);
+  // The points in `order` when given (the mesh's points, each once, in the order to number them; else
+  // the mesh's own order), and the elements each turned to start at its smallest index (orientation
+  // kept) and sorted. A dynamic update renumbers the mesh's points, and CGAL visits its elements in
+  // storage order: with the edit session's canonical point list as `order`, an export after edits is
+  // byte-identical to one from a fresh run on the edited input. std::logic_error when `order` is not a
+  // permutation of the mesh's points.
+  explicit MeshSnapshot(const Mesh<D>& mesh, std::span<const Point<D>> order = {});
   MeshSnapshot(std::vector<Point<D>> points, std::vector<Element<D>> elements, std::vector<PointKind> kinds = {});
   MeshView<D> view() const;
   MeshView<D> view(std::function<Point2(const Point2&)> to_lonlat) const;
