@@ -3,37 +3,41 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
-#include <map>
-#include <unordered_map>
+#include <utility>
 
 namespace shoremesh {
 
 std::vector<BoundaryLoop> boundary_loops(std::span<const Point2> points, std::span<const Element<2>> elements) {
   // A directed edge (a, b) of a counter-clockwise triangle is on the boundary iff no triangle has (b, a).
-  std::map<std::pair<std::uint32_t, std::uint32_t>, bool> directed;  // edge -> used by a loop already
+  // Sorted vectors, not maps: a mesh of a million triangles has three million directed edges.
+  using Edge = std::pair<std::uint32_t, std::uint32_t>;
+  std::vector<Edge> directed;
+  directed.reserve(3 * elements.size());
   for (const auto& e : elements)
-    for (int i = 0; i < 3; ++i) directed.emplace(std::pair{e[i], e[(i + 1) % 3]}, false);
-  std::unordered_multimap<std::uint32_t, std::uint32_t> outgoing;
-  for (const auto& [edge, used] : directed)
-    if (!directed.count({edge.second, edge.first})) outgoing.emplace(edge.first, edge.second);
+    for (int i = 0; i < 3; ++i) directed.emplace_back(e[i], e[(i + 1) % 3]);
+  std::sort(directed.begin(), directed.end());
+  std::vector<Edge> outgoing;  // the boundary edges, sorted: those leaving a node are a range
+  for (const Edge& e : directed)
+    if (!std::binary_search(directed.begin(), directed.end(), Edge{e.second, e.first})) outgoing.push_back(e);
+  std::vector<bool> used(outgoing.size(), false);
+  auto index_of = [&](const Edge& e) { return std::size_t(std::lower_bound(outgoing.begin(), outgoing.end(), e) - outgoing.begin()); };
 
   std::vector<BoundaryLoop> loops;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> starts;
-  for (const auto& [a, b] : outgoing) starts.emplace_back(a, b);
-  std::sort(starts.begin(), starts.end());  // deterministic loop order
-  for (const auto& [a0, b0] : starts) {
-    if (directed.at({a0, b0})) continue;
+  for (std::size_t start = 0; start < outgoing.size(); ++start) {  // in sorted order: deterministic loops
+    if (used[start]) continue;
     BoundaryLoop loop;
-    std::uint32_t a = a0, b = b0;
+    const std::uint32_t a0 = outgoing[start].first;
+    std::size_t edge = start;
     while (true) {
-      directed.at({a, b}) = true;
-      loop.nodes.push_back(a);
+      used[edge] = true;
+      loop.nodes.push_back(outgoing[edge].first);
+      const std::uint32_t b = outgoing[edge].second;
       if (b == a0) break;
-      auto [lo, hi] = outgoing.equal_range(b);
-      auto next = std::find_if(lo, hi, [&](const auto& kv) { return !directed.at({kv.first, kv.second}); });
-      if (next == hi) break;  // cannot happen for a manifold boundary; ends the loop defensively
-      a = b;
-      b = next->second;
+      // The first unused edge leaving b.
+      std::size_t next = index_of({b, 0});
+      while (next < outgoing.size() && outgoing[next].first == b && used[next]) ++next;
+      if (next == outgoing.size() || outgoing[next].first != b) break;  // cannot happen for a closed boundary
+      edge = next;
     }
     // The lowest-leftmost node is a convex corner, so the turn there is the loop's orientation.
     const std::size_t n = loop.nodes.size();
@@ -56,17 +60,25 @@ std::vector<BoundaryLoop> boundary_loops(std::span<const Point2> points, std::sp
 std::vector<std::array<std::uint32_t, 3>> boundary_faces(std::span<const Element<3>> elements) {
   // Face opposite corner i of a positive tetrahedron, ordered so that its normal points away from corner i.
   static constexpr int face[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-  std::map<std::array<std::uint32_t, 3>, std::array<std::uint32_t, 3>> seen;  // sorted corners -> oriented face
+  using Face = std::array<std::uint32_t, 3>;
+  std::vector<std::pair<Face, Face>> faces;  // sorted corners, oriented face
+  faces.reserve(4 * elements.size());
   for (const auto& t : elements)
     for (const auto& f : face) {
-      const std::array<std::uint32_t, 3> oriented{t[f[0]], t[f[1]], t[f[2]]};
-      auto key = oriented;
+      const Face oriented{t[f[0]], t[f[1]], t[f[2]]};
+      Face key = oriented;
       std::sort(key.begin(), key.end());
-      if (!seen.erase(key)) seen.emplace(key, oriented);  // a shared face is interior
+      faces.emplace_back(key, oriented);
     }
-  std::vector<std::array<std::uint32_t, 3>> out;
-  out.reserve(seen.size());
-  for (const auto& [key, f] : seen) out.push_back(f);
+  std::sort(faces.begin(), faces.end());
+  // A face two tetrahedra share is interior; the others, in the order of their sorted corners.
+  std::vector<Face> out;
+  for (std::size_t i = 0; i < faces.size();) {
+    std::size_t j = i + 1;
+    while (j < faces.size() && faces[j].first == faces[i].first) ++j;
+    if (j - i == 1) out.push_back(faces[i].second);
+    i = j;
+  }
   return out;
 }
 
