@@ -321,13 +321,13 @@ class MeshTriangulation {
       C::for_each_incident_finite_face(triangulation, v, [&](Face f) {
         if (kept(f)) acc.remove(key(f));
       });
-      const std::vector<Key> kept = keys_within(link, false);  // none has v as a corner
+      const std::vector<Key> link_faces = keys_within(link, false);  // none has v as a corner
       triangulation.remove(v);
       if (!link.empty()) hint_ = link.front();
       if (triangulation.dimension() == D) {
         const std::vector<Key> after = keys_within(link, true);
         std::vector<Key> created;
-        std::set_difference(after.begin(), after.end(), kept.begin(), kept.end(), std::back_inserter(created));
+        std::set_difference(after.begin(), after.end(), link_faces.begin(), link_faces.end(), std::back_inserter(created));
         for (const Key& k : created) acc.add(k);
       }
       for (Vertex u : link) u->info() &= ~kLinkMark;
