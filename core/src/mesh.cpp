@@ -492,22 +492,27 @@ std::vector<Element<D>> Mesh<D>::elements() const {
   return out;
 }
 
+namespace {
+// The finite faces (cells) of t for which counts(f) holds, visiting every one.
+template <int D, class F>
+std::size_t count_faces(const MeshTriangulation<D>& t, F&& counts) {
+  if (t.triangulation.dimension() < D) return 0;
+  std::size_t n = 0;
+  Cgal<D>::for_each_finite_face(t.triangulation, [&](auto f) { n += counts(f); });
+  return n;
+}
+}  // namespace
+
 template <int D>
 std::size_t Mesh<D>::count_elements() const {
   const auto& t = *triangulation_;
-  if (t.triangulation.dimension() < D) return 0;
-  std::size_t n = 0;
-  Cgal<D>::for_each_finite_face(t.triangulation, [&](auto f) { n += t.kept(f); });
-  return n;
+  return count_faces<D>(t, [&](auto f) { return t.kept(f); });
 }
 
 template <int D>
 std::size_t Mesh<D>::uncovered_count() const {
   const auto& t = *triangulation_;
-  if (t.triangulation.dimension() < D) return 0;
-  std::size_t n = 0;
-  Cgal<D>::for_each_finite_face(t.triangulation, [&](auto f) { n += t.in_water(f) && !t.kept(f); });
-  return n;
+  return count_faces<D>(t, [&](auto f) { return t.in_water(f) && !t.kept(f); });
 }
 
 template <int D>

@@ -63,18 +63,21 @@ TEST(MeshCommand, PointFileToCsvEqualsTheLibrary) {
   EXPECT_EQ(read_file(dir / "box.csv").rfind("# box -10 -10 130\n", 0), 0u);
 }
 
+// n distinct integer points, one "x y z" line each: i -> (37 i mod x_cells, 17 i mod 53, 29 i mod 47).
+std::string scrambled_lattice_3d(int n, int x_cells) {
+  std::string text;
+  for (int i = 0; i < n; ++i)
+    text += std::to_string((i * 37) % x_cells) + " " + std::to_string((i * 17) % 53) + " " + std::to_string((i * 29) % 47) + "\n";
+  return text;
+}
+
 // A point file has no shore: the mesh is clipped to the box, and every element meets the bound (the
 // slivers along the box's edge are left out and counted); --keep-hull keeps them, and then some fail it.
 TEST(MeshCommand, MeshIsClippedToTheBoxUnlessKeepHull) {
   TempDir dir;
   write_file(dir / "p.csv", random_points(300, 100, 60, 11));
   for (const std::string dim : {"2", "3"}) {
-    if (dim == "3") {
-      std::string text;
-      for (int i = 0; i < 150; ++i)
-        text += std::to_string((i * 37) % 101) + " " + std::to_string((i * 17) % 53) + " " + std::to_string((i * 29) % 47) + "\n";
-      write_file(dir / "p.csv", text);
-    }
+    if (dim == "3") write_file(dir / "p.csv", scrambled_lattice_3d(150, 101));
     const RunResult clipped = shoremesh(dir, "mesh p.csv -o clipped.vtu");
     ASSERT_EQ(clipped.code, 0) << clipped.err;
     const Summary c = parse_summary(clipped.out);
@@ -99,10 +102,7 @@ TEST(MeshCommand, MeshIsClippedToTheBoxUnlessKeepHull) {
 
 TEST(MeshCommand, ThreeColumnPointFileIn3DAnd2D) {
   TempDir dir;
-  std::string text;
-  for (int i = 0; i < 60; ++i)
-    text += std::to_string((i * 37) % 61) + " " + std::to_string((i * 17) % 53) + " " + std::to_string((i * 29) % 47) + "\n";
-  write_file(dir / "p3.xyz", text);
+  write_file(dir / "p3.xyz", scrambled_lattice_3d(60, 61));
   const RunResult r = shoremesh(dir, "mesh p3.xyz -o p3.vtu");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("tetrahedra"));
