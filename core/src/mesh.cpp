@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <optional>
@@ -288,19 +289,20 @@ class MeshTriangulation {
     }
   };
 
-  // The keys of the water elements whose corners are all in `link` (each once, sorted), classifying them
-  // first when `classify_them`. The link's vertices carry kLinkMark meanwhile.
-  std::vector<Key> keys_within(const std::vector<Vertex>& link, bool classify_them) {
+  // The keys of the kept elements whose corners are all in `link` (sorted). With `known` (the kept ones
+  // before a removal, sorted), the others are new or were not kept: they are classified first. The
+  // link's vertices carry kLinkMark meanwhile; each face is taken once, from its first corner in memory.
+  std::vector<Key> keys_within(const std::vector<Vertex>& link, const std::vector<Key>* known) {
     std::vector<Key> keys;
     for (Vertex u : link)
       C::for_each_incident_finite_face(triangulation, u, [&](Face f) {
         for (int i = 0; i <= D; ++i)
-          if (!(f->vertex(i)->info() & kLinkMark)) return;
-        if (classify_them) classify(f);
-        if (kept(f)) keys.push_back(key(f));
+          if (!(f->vertex(i)->info() & kLinkMark) || std::less<const void*>{}(&*f->vertex(i), &*u)) return;
+        Key k = key(f);
+        if (known && !std::binary_search(known->begin(), known->end(), k)) classify(f);
+        if (kept(f)) keys.push_back(std::move(k));
       });
     std::sort(keys.begin(), keys.end());
-    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
     return keys;
   }
 
@@ -321,11 +323,11 @@ class MeshTriangulation {
       C::for_each_incident_finite_face(triangulation, v, [&](Face f) {
         if (kept(f)) acc.remove(key(f));
       });
-      const std::vector<Key> link_faces = keys_within(link, false);  // none has v as a corner
+      const std::vector<Key> link_faces = keys_within(link, nullptr);  // none has v as a corner
       triangulation.remove(v);
       if (!link.empty()) hint_ = link.front();
       if (triangulation.dimension() == D) {
-        const std::vector<Key> after = keys_within(link, true);
+        const std::vector<Key> after = keys_within(link, &link_faces);
         std::vector<Key> created;
         std::set_difference(after.begin(), after.end(), link_faces.begin(), link_faces.end(), std::back_inserter(created));
         for (const Key& k : created) acc.add(k);
