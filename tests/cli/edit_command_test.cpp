@@ -93,7 +93,7 @@ TEST(EditCommand, SessionEqualsAFreshRunOnTheFinalInput) {
 TEST(EditCommand, JsonRepliesIdsAndBadLinesThatKeepTheState) {
   TempDir dir;
   write_file(dir / "p.csv", random_points(120, 40, 40, 5));
-  const std::string good = "add 1 1\nremove 120\nadd 2 2\nmove 0 20 20\nexport good.csv\n";
+  const std::string good = "add 1 1\nremove 120\nadd 2 2\nmove 0 20 20\nexport good.csv\nstats\n";
   const std::string bad_mixed =
       "add 1 1\n"
       "remove 999\n"        // no such id
@@ -109,7 +109,13 @@ TEST(EditCommand, JsonRepliesIdsAndBadLinesThatKeepTheState) {
       "move 0 20 20\n"
       "export good.csv.d/none.csv\n"  // cannot write there
       "export mixed.csv\n";
-  ASSERT_EQ(shoremesh(dir, "edit p.csv --json --edits -", good).code, 0);
+  const RunResult g = shoremesh(dir, "edit p.csv --json --edits -", good);
+  ASSERT_EQ(g.code, 0) << g.err;
+  // A point file has no shore: the session's mesh is clipped to the box, every element within the bound.
+  const json stats = json_lines(g.out).back();
+  EXPECT_GT(stats["left_out_at_box_edge"].get<std::size_t>(), 0u) << stats;
+  EXPECT_EQ(stats["covered"], stats["elements"]);
+  EXPECT_EQ(stats["covered_meeting_bound"], stats["elements"]);
   fs::rename(dir / "good.csv", dir / "expected.csv");
   write_file(dir / "edits.txt", bad_mixed);
   const RunResult r = shoremesh(dir, "edit p.csv --json --edits edits.txt");
