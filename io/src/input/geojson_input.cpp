@@ -279,11 +279,8 @@ InputSet parse_geojson_text(std::string_view text, const std::string& name, cons
     std::vector<Point2> pts;
     for (const auto& p : l) pts.push_back(convert(p));
     const auto sub = detail::subdivide(pts, false, options.spacing, name, set.points.size());
-    std::size_t k = 0;
-    for (const auto& q : sub) {
-      if (k < pts.size() && q == pts[k]) ++k;
-      loose(q, l[k == 0 ? 0 : k - 1].element);
-    }
+    const auto from = detail::subdivided_from(pts, sub);
+    for (std::size_t i = 0; i < sub.size(); ++i) loose(sub[i], l[from[i]].element);
   }
   for (const auto& p : g.points) loose(convert(p), p.element);
   if (repeats) set.notes.push_back("dropped " + std::to_string(repeats) + " repeated position(s)");

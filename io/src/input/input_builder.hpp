@@ -73,15 +73,24 @@ inline std::vector<Point2> subdivide(const std::vector<Point2>& pts, bool closed
   return out;
 }
 
+// For each point of `sub` (subdivide's output for `pts`), the index in `pts` of the vertex it is, or of
+// the vertex before it for an inserted point: where each point came from.
+inline std::vector<std::size_t> subdivided_from(const std::vector<Point2>& pts, const std::vector<Point2>& sub) {
+  std::vector<std::size_t> from;
+  from.reserve(sub.size());
+  std::size_t k = 0;  // the next original vertex
+  for (const Point2& q : sub) {
+    if (k < pts.size() && q == pts[k]) ++k;
+    from.push_back(k == 0 ? 0 : k - 1);
+  }
+  return from;
+}
+
 inline void InputBuilder::add_ring(const std::vector<Point2>& pts, RingRole role,
                                    const std::vector<std::size_t>& locations, double spacing) {
   std::vector<Point2> sub = subdivide(pts, true, spacing, file(), point_count());
   std::vector<std::size_t> sub_locations;
-  std::size_t k = 0;  // the next original vertex
-  for (const Point2& q : sub) {
-    if (k < pts.size() && q == pts[k]) ++k;
-    sub_locations.push_back(locations.empty() ? 0 : locations[k == 0 ? 0 : k - 1]);
-  }
+  for (const std::size_t v : subdivided_from(pts, sub)) sub_locations.push_back(locations.empty() ? 0 : locations[v]);
   add_ring(std::move(sub), role, sub_locations);
 }
 
