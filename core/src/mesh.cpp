@@ -464,6 +464,8 @@ Mesh<D>& Mesh<D>::operator=(Mesh&&) noexcept = default;
 
 template <int D>
 void Mesh<D>::build(std::span<const Point<D>> points, std::size_t input_count) {
+  if (covered_box_ && !(finite<D>(covered_box_->origin) && std::isfinite(covered_box_->side) && covered_box_->side > 0))
+    throw InputError("the box to clip the mesh to needs a finite corner and a finite positive side");
   if (input_count > points.size()) throw InputError("input_count exceeds the number of points");
   if (points.size() >= MeshTriangulation<D>::kMaxPoints) throw InputError("too many points for a mesh");
   std::unordered_map<Point<D>, std::size_t, PointHash<D>> seen;
@@ -477,7 +479,6 @@ void Mesh<D>::build(std::span<const Point<D>> points, std::size_t input_count) {
   points_.assign(points.begin(), points.end());
   kinds_.assign(points.size(), PointKind::Steiner);
   std::fill_n(kinds_.begin(), input_count, PointKind::Input);
-  if (covered_box_ && !(covered_box_->side > 0)) throw InputError("the box to clip the mesh to has no size");
   triangulation_ = std::make_unique<MeshTriangulation<D>>(domain_, covered_box_);
   triangulation_->build(points_);
   element_count_ = count_elements();

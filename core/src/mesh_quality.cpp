@@ -1,12 +1,12 @@
 #include "shoremesh/mesh_quality.hpp"
 
-#include "shoremesh/mesh_coverage.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <sstream>
+
+#include "shoremesh/mesh_coverage.hpp"
 
 namespace shoremesh {
 

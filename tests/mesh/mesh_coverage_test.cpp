@@ -9,6 +9,7 @@
 #include <limits>
 #include <random>
 
+#include "shoremesh/error.hpp"
 #include "shoremesh/families.hpp"
 #include "shoremesh/mesh.hpp"
 #include "shoremesh/mesh_coverage.hpp"
@@ -121,6 +122,16 @@ void check_clipped_mesh_meets_the_bound(std::size_t n, std::uint64_t seed) {
   const QualityReport<D> w = whole.quality(rho, result.box);
   EXPECT_EQ(w.covered, q.elements);  // the report's covered elements are the ones the mesh keeps
   EXPECT_GT(w.max_radius_edge, 10 * rho) << "the whole mesh has no sliver along the box: a weak test";
+}
+
+// A box that clips nothing sensibly (no size, infinite, NaN) is refused, not turned into an empty mesh.
+TEST(MeshCoverage, ABoxWithoutAFiniteSizeIsRefused) {
+  const std::vector<Point2> points = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const BoxTransform<2>& box : {BoxTransform<2>{{0, 0}, 0}, BoxTransform<2>{{0, 0}, -1}, BoxTransform<2>{{0, 0}, kInf},
+                                     BoxTransform<2>{{nan, 0}, 1}, BoxTransform<2>{{0, -kInf}, 1}})
+    EXPECT_THROW(Mesh2(points, 4, box), InputError) << box.origin[0] << " " << box.origin[1] << " " << box.side;
+  EXPECT_EQ(Mesh2(points, 4, BoxTransform<2>{{0, 0}, 1}).element_count(), 2u);
 }
 
 TEST(MeshCoverage, ClippedMeshOfAWellSpacedSetMeetsTheBound2D) { check_clipped_mesh_meets_the_bound<2>(500, 3); }
