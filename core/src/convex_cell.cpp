@@ -534,6 +534,24 @@ double ConvexCell<D>::max_vertex_distance2() const {
   return best;
 }
 
+template <int D>
+bool ConvexCell<D>::surely_uncut_by_box(const Point<D>& lo, const Point<D>& hi) const {
+  // Differences of coordinates in [0, 1] err by at most an ulp of 1: the box is widened by four.
+  constexpr double slack = 0x1p-50;
+  for (const Vertex& vtx : verts_) {
+    double gap2 = 0;  // the squared distance from the box to the vertex's interval box
+    for (int i = 0; i < D; ++i) {
+      const double above = (lo[i] - slack) - vtx.y[i].sup();
+      const double below = vtx.y[i].inf() - (hi[i] + slack);
+      const double gap = std::max({0.0, above, below});
+      gap2 += gap * gap;
+    }
+    // Rounded upward, gap2 may exceed the true distance by a few ulps: far inside the margin.
+    if (!(gap2 > vtx.r2 * (1 + 1e-3))) return false;
+  }
+  return true;
+}
+
 // 2D: the constraints of the edges. 3D: the planes of the triangles; where a clip met a vertex exactly,
 // only those planes that meet the cell in three or more distinct points (a face, not an edge or a point).
 template <int D>

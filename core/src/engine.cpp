@@ -554,8 +554,24 @@ bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill) {
     hood_.nearest = u;
     best_d2 = d2;
   };
+  // Once the cell exists among many candidates (or the operation is crowded, see Op::crowded),
+  // searches skip what cannot cut it (ConvexCell::surely_uncut_by_box): the cell only shrinks, so such
+  // a vertex never cuts it, now or at a later time that reuses the cell (cell_cache.cpp), and it is not
+  // nearer than NN (a vertex nearer cuts the ball of radius NN / 2 about v, which the cell holds).
+  // Along a dense shore seen from far out on the water, nearly all of a large cell's box is such
+  // vertices. Among few (uniform inputs) the tests would cost more than they save.
+  bool has_cell = false, pruning = false;
+  auto cannot_cut = [&](const Point<D>& lo, const Point<D>& hi) {
+    Point<D> a, b;
+    for (int i = 0; i < D; ++i) {
+      a[i] = lo[i] - p[i];
+      b[i] = hi[i] - p[i];
+    }
+    return cell_.surely_uncut_by_box(a, b);
+  };
   // A vertex of the tree other than v: a candidate if born before now, else remembered for the cache.
   auto consider = [&](VertexId u, const Point<D>& q, std::uint64_t birth) {
+    if (pruning && cannot_cut(q, q)) return;
     if (birth >= now) {
       if (caching_) unborn_.push_back({q, birth, u});
       return;
@@ -581,25 +597,42 @@ bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill) {
   };
   auto search = [&](double half) {
     const Box box = box_of(half);
+    pruning = has_cell && (ops_[o].crowded || pool.size() > kCrowdedPool);
     ++counters_.neighbour_searches;
-    counters_.leaves_visited += tree_.for_each_occupied_leaf(box, seen, [&](NodeId, std::span<const LeafVertex<D>> leaf) {
+    const auto visit = [&](NodeId, std::span<const LeafVertex<D>> leaf) {
       for (const LeafVertex<D>& e : leaf)
         if (e.id != v) consider(e.id, e.position, e.tag);
-    });
+    };
+    if (pruning) {
+      counters_.leaves_visited += tree_.for_each_occupied_leaf(box, seen, visit, [&](int level, const auto& cell) {
+        const Box node = Quadtree<D>::cell_box(level, cell);
+        return !cannot_cut(node.lo, node.hi);
+      });
+    } else {
+      counters_.leaves_visited += tree_.for_each_occupied_leaf(box, seen, visit);
+    }
     seen = box;
   };
   // Grow the box until it holds a vertex no farther than its half-side: no vertex outside is nearer.
   // The first box spans v's leaf and a leaf-side margin (NN(v) is about 1.15 leaf sides in uniform 2D
   // inputs): a box of one leaf side mostly had to grow again, which cost 5 % more instructions per
-  // update in 2D and 3 % in 3D. The result does not depend on the first box, only the work does.
-  double half = 2 * tree_.side(vertices_[v].leaf);
+  // update in 2D and 3 % in 3D. The result does not depend on the first box, only the work does. A
+  // crowded operation's starts at half a side: the tree is refined for the input points only, so a
+  // large leaf out on the water can hold many Steiner vertices near a shore, and a box of two of its
+  // sides thousands.
+  double half = (ops_[o].crowded ? 0.5 : 2.0) * tree_.side(vertices_[v].leaf);
   // An operation run again (inconsistent) mostly needs the box it needed last time: starting from its
   // previous dependency radius saves most of the searches that grow the box step by step (2.4 -> 1.5
-  // per 2D cell). Bounded, so that a vertex alone before does not search the whole domain. (A fresh
-  // fill starting from the radius of its vertex's cell computed earlier in the propagation searched
-  // more leaves than it saved: that cell is stale because a vertex came near, so it shrank.)
+  // per 2D cell). Bounded, so that a vertex alone before does not search the whole domain. Not for an
+  // operation whose cell was crowded: a search before the cell exists cannot skip what the cell will
+  // not need, and such a radius can hold a whole dense shore; its box grows there once the cell exists,
+  // skipping what cannot cut it. (A fresh fill starting from the radius of its vertex's cell computed
+  // earlier in the propagation searched more leaves than it saved: that cell is stale because a vertex
+  // came near, so it shrank.)
   const double previous2 = ops_[o].depends2;
-  if (previous2 > half * half && previous2 < 16 * half * half) half = std::sqrt(previous2) * (1 + 1e-6);
+  const bool jump_first = !ops_[o].crowded && previous2 > half * half && previous2 < 16 * half * half;
+  if (jump_first) half = std::sqrt(previous2) * (1 + 1e-6);
+  const double previous = ops_[o].crowded ? std::sqrt(previous2) * (1 + 1e-6) : 0.0;
   // With a stale entry (its cell computed earlier in this propagation): it lists what the leaves of
   // its box held then and what arrived there since, which is what they hold now, as a search would
   // find it (cell_cache.cpp). Only growing that box searches.
@@ -660,11 +693,13 @@ bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill) {
     incremental = false;
     cell_.reset(p, cube_lo, cube_hi);
     next = 0;
+    has_cell = true;
   };
   if (incremental) {
     cell_.assign_geometry(earlier->cell);
     cell_.begin_out_of_order_cuts();
     next = known;
+    has_cell = true;
     ++counters_.cells_updated;
   } else {
     start_afresh();
@@ -673,15 +708,29 @@ bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill) {
     double reach2 = std::min(4 * cell_.max_vertex_distance2() * (1 + 1e-9), cap2);
     // Only the vertices within the reach and the box searched can cut the cell, and the cell only
     // shrinks: sort just those (in 3D about a third of the candidates); the others wait unsorted.
-    const double bound2 = std::min(reach2, searched * searched);
-    const auto sorted = std::partition(pool.begin() + long(next), pool.end(), [&](const Candidate& c) { return c.d2 <= bound2; });
-    std::sort(pool.begin() + long(next), sorted, by_distance);
-    const std::size_t sorted_end = std::size_t(sorted - pool.begin());
-    while (next < sorted_end && pool[next].d2 <= std::min(reach2, searched * searched)) {
-      ++counters_.clips;
-      if (cell_.clip(pool[next].id, pool[next].position, pool[next].d2))
-        reach2 = std::min(4 * cell_.max_vertex_distance2() * (1 + 1e-9), cap2);
-      ++next;
+    // Among many, in bands of distance each twice as far out as the last: a band's candidates that
+    // surely cannot cut the cell as the nearer ones left it count as done, unsorted and unclipped. Seen
+    // from far out on the water, most of a large box is a dense shore that nearer vertices hide.
+    for (double band2 = 4 * best_d2;; band2 *= 4) {
+      const bool crowded = pool.size() - next > kCrowdedPool;
+      const double bound2 = std::min(reach2, searched * searched);
+      const double limit2 = crowded ? std::min(bound2, band2) : bound2;
+      const auto band_end = std::partition(pool.begin() + long(next), pool.end(), [&](const Candidate& c) { return c.d2 <= limit2; });
+      if (crowded)
+        next = std::size_t(std::partition(pool.begin() + long(next), band_end, [&](const Candidate& c) {
+                 return cannot_cut(c.position, c.position);
+               }) - pool.begin());
+      std::sort(pool.begin() + long(next), band_end, by_distance);
+      const std::size_t sorted_end = std::size_t(band_end - pool.begin());
+      while (next < sorted_end && pool[next].d2 <= std::min(reach2, searched * searched)) {
+        if (!crowded || !cannot_cut(pool[next].position, pool[next].position)) {
+          ++counters_.clips;
+          if (cell_.clip(pool[next].id, pool[next].position, pool[next].d2))
+            reach2 = std::min(4 * cell_.max_vertex_distance2() * (1 + 1e-9), cap2);
+        }
+        ++next;
+      }
+      if (limit2 >= std::min(reach2, searched * searched)) break;
     }
     // The box searched ends up holding the whole dependency ball (depends2 below, with its margin),
     // which the cell cache needs: it then knows every vertex, born or not, that could change the cell.
@@ -698,8 +747,18 @@ bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill) {
       break;
     }
     // Grow gently: the vertices found next usually shrink the cell, and with it the reach.
-    searched = std::min(std::sqrt(need2) * (1 + 1e-9), 1.5 * searched);
+    searched = std::min(std::sqrt(need2) * (1 + 1e-9), std::max(1.5 * searched, previous));
     search(searched);
+  }
+  // Many candidates (a large cell among dense ones): the operation is crowded from now on, and keeps
+  // only the candidates that may cut its cell. The cell cache lists them, and a fill checks its Steiner
+  // point against each (pick_steiner: a point inside the cell is nearer v than any of the others).
+  if (pool.size() > kCrowdedPool) {
+    ops_[o].crowded = true;
+    const double reach_final2 = 4 * cell_.max_vertex_distance2() * (1 + 1e-6);
+    pool.erase(std::remove_if(pool.begin(), pool.end(), [&](const Candidate& c) {
+                 return c.d2 > reach_final2 || cannot_cut(c.position, c.position);
+               }), pool.end());
   }
   record_reads(o, p, searched);
   // Only a vertex that could cut the cell or be nearer than NN can change what this operation decides:
@@ -746,7 +805,7 @@ void WellSpacedEngine<D>::register_reads(OpId o, std::span<const NodeId> nodes) 
 }
 
 template <int D>
-void WellSpacedEngine<D>::request_fill(VertexId w, int rank) {
+void WellSpacedEngine<D>::request_fill(VertexId w, int rank, bool crowded) {
   for (OpId f = vertices_[w].first_fill; f != kNoOp; f = ops_[f].next_fill)
     if (ops_[f].rank == rank && !(ops_[f].flags & kDead)) {
       ++ops_[f].requesters;
@@ -755,6 +814,7 @@ void WellSpacedEngine<D>::request_fill(VertexId w, int rank) {
       return;
     }
   const OpId f = new_op(OpKind::Fill, w, rank, ranks_.color(positions_[w], rank));
+  ops_[f].crowded = crowded;  // a neighbour's: the places are near
   ops_[f].requesters = 1;
   ops_[f].next_fill = vertices_[w].first_fill;
   vertices_[w].first_fill = f;
@@ -782,14 +842,14 @@ void WellSpacedEngine<D>::dispatch(OpId o) {
   // vertex z come nearer first, v's fill at the new rank is the business of z's dispatch (Lemma 4.1).
   const int r = ranks_.rank_of(p, positions_[hood_.nearest], pc);
   const bool well_spaced = cell_.within_scaled_distance(params_.rho_squared, positions_[hood_.nearest]);
-  if (r >= op_rank && (params_.literal_stable_ws || !well_spaced)) request_fill(v, r);
+  if (r >= op_rank && (params_.literal_stable_ws || !well_spaced)) request_fill(v, r, ops_[o].crowded);
   const double limit2 = 4 * params_.beta_squared * squared_distance(v, hood_.nearest) * (1 + 1e-9);
   cell_.bisector_neighbours(neighbours_);
   for (VertexId w : neighbours_) {
     if (squared_distance(v, w) > limit2) continue;
     const int rw = ranks_.rank_of(p, positions_[w], pc);
     if (rw < op_rank || (!params_.literal_stable_ws && already_below_rank(w, rw, pc))) continue;
-    request_fill(w, rw);
+    request_fill(w, rw, ops_[o].crowded);
   }
   store_children(o);
   record_facets(o);
@@ -857,6 +917,7 @@ void WellSpacedEngine<D>::fill(OpId o) {
     // sqrt(2) (for sqrt(2) the table is exact and it never applies).
     const int rank = std::max(ranks_.rank_of(w, positions_[v], pc), op_rank + 1);
     const OpId d = new_op(OpKind::Dispatch, id, rank, 0);
+    ops_[d].crowded = ops_[o].crowded;
     vertices_[id].dispatch = d;
     new_children_.push_back(d);
     mark_fresh(d);

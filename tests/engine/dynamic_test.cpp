@@ -308,6 +308,74 @@ TEST(Dynamic, UserCoordinatesAndBoxRefusal) {
   EXPECT_EQ(dyn.input_point(id), (Point<2>{1250, 50}));
 }
 
+// A dense shore seen from far out on the water: points on a circle (a round lake) or a sphere. The
+// cells of the coarse vertices inside reach the shore, whose points the nearer vertices hide from
+// them; the searches skip those (compute_cell). Edits of shore points equal fresh runs.
+template <int D>
+void shore_edits_equal_fresh_runs(std::size_t n, int edits, double step, std::uint64_t seed) {
+  WellSpacedSet<D> set;
+  set.build(families::on_circle<D>(n));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  auto near = [&](const Point<D>& p) {
+    Point<D> q;
+    for (int i = 0; i < D; ++i) q[i] = p[i] + step * u(rng);
+    return q;
+  };
+  for (int k = 0; k < edits; ++k) {
+    const auto ids = set.input_ids();
+    const std::size_t pick = ids[rng() % ids.size()];
+    std::string what;
+    switch (k % 3) {
+      case 0:
+        set.move(pick, near(set.input_point(pick)));
+        what = "move a shore point";
+        break;
+      case 1:
+        set.add(near(set.input_point(pick)));
+        what = "add next to a shore point";
+        break;
+      default:
+        set.remove(pick);
+        what = "remove a shore point";
+    }
+    expect_equal_to_fresh_run(set, "edit " + std::to_string(k) + ": " + what);
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+  ASSERT_NO_THROW(set.check_valid());
+}
+
+TEST(Dynamic, DenseShoreEditsEqualFreshRuns2D) { shore_edits_equal_fresh_runs<2>(800, edits(45, 15, 300), 5e-4, 5); }
+
+TEST(Dynamic, DenseShoreEditsEqualFreshRuns3D) { shore_edits_equal_fresh_runs<3>(800, edits(15, 6, 60), 4e-3, 6); }
+
+// Work per computed cell stays bounded next to a dense shore: moving shore points of a round lake of
+// 800 points, the cells the updates computed looked at 128 candidates each and clipped 47 before the
+// searches skipped what cannot cut a cell (most of a coarse cell's box is shore), 49 and 21 since.
+TEST(Dynamic, CellsNearADenseShoreLookAtFewCandidates) {
+  WellSpacedSet<2> set;
+  set.build(families::on_circle<2>(800));
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-0.5, 0.5);
+  const Counters before = set.counters();
+  for (int k = 0; k < 40; ++k) {
+    const auto ids = set.input_ids();
+    const std::size_t pick = ids[rng() % ids.size()];
+    Point<2> p = set.input_point(pick);
+    for (double& x : p) x += 5e-4 * u(rng);
+    set.move(pick, p);
+  }
+  const Counters& after = set.counters();
+  const double cells = double(after.clipped_voronoi_calls - before.clipped_voronoi_calls);
+  ASSERT_GT(cells, 0);
+  const double candidates = double(after.candidates - before.candidates) / cells;
+  const double clips = double(after.clips - before.clips) / cells;
+  ::testing::Test::RecordProperty("candidates_per_cell", std::to_string(candidates));
+  ::testing::Test::RecordProperty("clips_per_cell", std::to_string(clips));
+  EXPECT_LT(candidates, 70);
+  EXPECT_LT(clips, 30);
+}
+
 // Work per update grows with log(spread), not with n: operations touched per unit change (remove a
 // random input point, then add a random point) stay bounded from n = 1e3 to 1e4 (1e5 in bench/).
 TEST(Dynamic, OperationsPerUpdateBoundedInN) {

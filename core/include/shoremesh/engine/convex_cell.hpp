@@ -74,6 +74,13 @@ class ConvexCell {
   // An upper bound on max |c - v|^2 over the cell's vertices: a bisector farther than twice this from v
   // cannot cut the cell.
   double max_vertex_distance2() const;
+  // Whether no vertex w with w - v in the box [lo, hi] can cut the cell, with room to spare. w cuts the
+  // cell iff some vertex c of it is nearer w than v, that is iff w lies in the ball about c through v;
+  // the test asks that the box keep clear of every such ball by a thousandth of its radius squared
+  // (and of rounding: the box is widened by a few ulps of the unit box). The cell only shrinks as it is
+  // cut, so what cannot cut it now never will. Far cheaper than a clip, and decides no vertex on a
+  // plane: a vertex whose bisector passes exactly through a corner of the cell is never let off.
+  bool surely_uncut_by_box(const Point<D>& lo, const Point<D>& hi) const;
   // Whether some clip found a live vertex exactly on its plane (grids: co-circular, co-spherical
   // points). Without that, every vertex of the cell lies on exactly D of its planes, so the cell is a
   // function of its geometry alone, whatever other half-spaces that contain it were offered on the way.

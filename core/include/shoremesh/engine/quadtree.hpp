@@ -145,7 +145,13 @@ class Quadtree {
   // not `seen`. A search that grows its box passes the previous box as `seen`: it then visits only the
   // new leaves, and no node entirely inside `seen` is read. Returns the number of leaves reported.
   template <class F>
-  std::size_t for_each_occupied_leaf(const Box& box, const Box& seen, F&& f) const;
+  std::size_t for_each_occupied_leaf(const Box& box, const Box& seen, F&& f) const {
+    return for_each_occupied_leaf(box, seen, std::forward<F>(f), [](int, const std::array<std::int64_t, D>&) { return true; });
+  }
+  // The same, skipping every node that `keep(level, cell)` turns down, with its subtree (cell_box
+  // gives its closed box).
+  template <class F, class Keep>
+  std::size_t for_each_occupied_leaf(const Box& box, const Box& seen, F&& f, Keep&& keep) const;
   // Whether a search of the box [center - half, center + half] that already searched it counts `leaf`
   // as seen (the test for_each_occupied_leaf applies to its `seen` box).
   bool leaf_meets_box(NodeId leaf, const Point<D>& center, double half) const {
@@ -173,6 +179,16 @@ class Quadtree {
   void check_valid(std::span<const Point<D>> positions) const;
 
   static Coords cell_of(const Point<D>& p, int level);
+  // The closed box of the cell of that level (exact: a power of two times an integer).
+  static Box cell_box(int level, const std::array<std::int64_t, D>& c) {
+    const double side = power_of_two(-level);
+    Box b;
+    for (int i = 0; i < D; ++i) {
+      b.lo[i] = double(c[i]) * side;
+      b.hi[i] = double(c[i] + 1) * side;
+    }
+    return b;
+  }
   // Along one axis, at the level of cells 1 / scale wide: the indices j whose closed cell
   // [j, j + 1] / scale meets [lo, hi]. Scaling by a power of two, floor and ceil are exact, so this equals
   // the test on the boxes. The interval may be empty (lo > hi) or reach outside the unit box: it is
@@ -230,8 +246,8 @@ class Quadtree {
 };
 
 template <int D>
-template <class F>
-std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen, F&& f) const {
+template <class F, class Keep>
+std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen, F&& f, Keep&& keep) const {
   Point<D> lo, hi;
   const int level = box_level(box.lo, box.hi, lo, hi);
   // Per level L and axis i, the cell indices j whose closed cell [j, j+1] 2^-L meets the box
@@ -298,6 +314,7 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
     stack[top++] = Item{top_node, top_level, ci};
     while (top > 0) {
       const Item it = stack[--top];
+      if (!keep(it.level, it.c)) continue;
       const SearchEntry& e = search_[it.node];
       const Ranges& r = ranges_at(it.level);
       if (e.first_child == kNoNode) {
@@ -324,7 +341,7 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
         std::array<std::int64_t, D> cc;
         for (int i = 0; i < D; ++i) cc[i] = 2 * it.c[i] + ((k >> i) & 1);
         if (search_[child_node].first_child == kNoNode) {
-          if (!meets_seen(rc, cc)) report(child_node);
+          if (!meets_seen(rc, cc) && keep(it.level + 1, cc)) report(child_node);
         } else {
           stack[top++] = Item{child_node, it.level + 1, cc};
         }
