@@ -205,6 +205,9 @@ std::optional<Domain2> EditSession<D>::domain_with(std::size_t id, const std::op
     const auto [r, k] = it->second;
     Domain2 d = domain_;
     auto& ring = d.rings[r].points;
+    // The rings were valid before: only the edges at the changed vertex (or across the gap the removed
+    // one leaves, from the vertex before it) are new, and only they need a look.
+    std::size_t changed = k;
     if (to) {
       ring[k] = *to;
     } else {
@@ -212,8 +215,9 @@ std::optional<Domain2> EditSession<D>::domain_with(std::size_t id, const std::op
         throw InputError("input point " + std::to_string(id) + " is one of the last three points of ring " +
                          std::to_string(r + 1) + "; it cannot be removed");
       ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
+      changed = (k + ring.size() - 1) % ring.size();
     }
-    if (const auto defect = io::find_ring_defect(d))
+    if (const auto defect = io::find_ring_defect_at(d, r, changed))
       throw InputError(std::string(to ? "moving" : "removing") + " input point " + std::to_string(id) +
                        " would break the shoreline: " + defect->describe());
     return d;

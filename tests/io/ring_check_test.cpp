@@ -112,6 +112,45 @@ TEST(RingCheck, ManyEdgesSweepIsFast) {
   EXPECT_FALSE(find_ring_defect(domain_of({ring})).has_value());
 }
 
+// The check of one edited vertex finds a defect exactly when the whole check does, for moves (small and
+// large, so that many cross) and removals of vertices of a wavy lake with two islands.
+TEST(RingCheck, CheckAtAnEditedVertexAgreesWithTheWholeCheck) {
+  std::vector<Point2> shore, island, islet;
+  for (int i = 0; i < 60; ++i) {
+    const double t = 2 * 3.141592653589793 * i / 60, r = 100 + 15 * std::sin(5 * t);
+    shore.push_back({r * std::cos(t), r * std::sin(t)});
+  }
+  for (int i = 0; i < 12; ++i) {
+    const double t = -2 * 3.141592653589793 * i / 12;
+    island.push_back({30 + 15 * std::cos(t), 10 * std::sin(t)});
+    islet.push_back({-40 + 8 * std::cos(t), 20 + 8 * std::sin(t)});
+  }
+  const Domain2 lake = domain_of({shore, island, islet});
+  ASSERT_FALSE(find_ring_defect(lake).has_value());
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int defects = 0, valid = 0;
+  for (int k = 0; k < 3000; ++k) {
+    Domain2 d = lake;
+    const std::size_t r = rng() % 3;
+    auto& ring = d.rings[r].points;
+    const std::size_t v = rng() % ring.size();
+    std::size_t changed = v;
+    if (k % 4 == 3) {
+      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(v));
+      changed = (v + ring.size() - 1) % ring.size();
+    } else {
+      const double reach = k % 4 == 0 ? 80 : 8;
+      ring[v] = {ring[v][0] + reach * u(rng), ring[v][1] + reach * u(rng)};
+    }
+    const bool whole = find_ring_defect(d).has_value();
+    ASSERT_EQ(find_ring_defect_at(d, r, changed).has_value(), whole) << "edit " << k;
+    (whole ? defects : valid) += 1;
+  }
+  EXPECT_GT(defects, 300);  // both outcomes were really tried
+  EXPECT_GT(valid, 300);
+}
+
 TEST(InputSetMerge, SameProjectionRequiredAndOriginsRenumbered) {
   InputSet a, b;
   a.units = b.units = Units::Metres;

@@ -104,6 +104,44 @@ std::optional<RingDefect> find_ring_defect(const Domain2& domain) {
   return std::nullopt;
 }
 
+std::optional<RingDefect> find_ring_defect_at(const Domain2& domain, std::size_t ring, std::size_t vertex) {
+  const auto& pts = domain.rings.at(ring).points;
+  const std::size_t n = pts.size();
+  if (n < 3) return RingDefect{RingDefect::Kind::TooFewPoints, ring, 0, ring, 0};
+  const std::size_t before = (vertex + n - 1) % n, after = (vertex + 1) % n;
+  for (const std::size_t i : {before, vertex}) {
+    const std::size_t j = (i + 1) % n;
+    if (pts[i] == pts[j]) return RingDefect{RingDefect::Kind::RepeatedVertex, ring, i, ring, j};
+  }
+  for (const std::size_t i : {(before + n - 1) % n, before, vertex})  // folds at before, vertex, after
+    if (adjacent_edges_overlap(pts[i], pts[(i + 1) % n], pts[(i + 2) % n]))
+      return RingDefect{RingDefect::Kind::Intersection, ring, i, ring, (i + 1) % n};
+  for (const std::size_t e : {before, vertex}) {  // the edges e -> e + 1 that are new
+    const Point2 &a = pts[e], &b = pts[(e + 1) % n];
+    const double xmin = std::min(a[0], b[0]), xmax = std::max(a[0], b[0]);
+    const double ymin = std::min(a[1], b[1]), ymax = std::max(a[1], b[1]);
+    for (std::size_t r = 0; r < domain.rings.size(); ++r) {
+      const auto& other = domain.rings[r].points;
+      const std::size_t m = other.size();
+      for (std::size_t i = 0; i < m; ++i) {
+        const Point2 &c = other[i], &d = other[(i + 1) % m];
+        if (std::max(c[0], d[0]) < xmin || std::min(c[0], d[0]) > xmax || std::max(c[1], d[1]) < ymin ||
+            std::min(c[1], d[1]) > ymax)
+          continue;
+        if (r == ring && (i == e || (i + 1) % n == e || (e + 1) % n == i)) continue;  // itself, its neighbours
+        if (!segments_meet(a, b, c, d)) continue;
+        RingDefect defect{RingDefect::Kind::Intersection, ring, e, r, i};
+        if (std::make_pair(r, i) < std::make_pair(ring, e)) {
+          std::swap(defect.ring_a, defect.ring_b);
+          std::swap(defect.vertex_a, defect.vertex_b);
+        }
+        return defect;
+      }
+    }
+  }
+  return std::nullopt;
+}
+
 bool ring_contains(const std::vector<Point2>& ring, const Point2& p) {
   bool inside = false;
   const std::size_t n = ring.size();
