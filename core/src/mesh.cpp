@@ -150,6 +150,10 @@ bool finite(const Point<D>& p) {
 struct ChangedWater {
   bool changed = false;
   Point2 lo{}, hi{}, seed{};
+  struct Stretch {
+    std::size_t ring, prefix, suffix;  // the ring's vertices other than its first prefix and last suffix
+  };
+  std::vector<Stretch> stretches;
 };
 
 std::optional<ChangedWater> changed_water(const Domain2& before, const Domain2& after) {
@@ -180,6 +184,7 @@ std::optional<ChangedWater> changed_water(const Domain2& before, const Domain2& 
     }
     w.seed = o[(prefix + o.size() - 1) % o.size()];
     w.changed = true;
+    w.stretches.push_back({r, prefix, suffix});
   }
   return w;
 }
@@ -397,6 +402,11 @@ class MeshTriangulation {
 
   // The water becomes that of `domain`: new faces are classified against it from now on.
   void set_water(const Domain2& domain) { water_ = WaterTest(domain); }
+  // The same after a change of stretches of its rings (changed_water), without a rebuild.
+  void update_water(const Domain2& before, const Domain2& after, const ChangedWater& change) {
+    for (const auto& s : change.stretches)
+      water_.replace_stretch(s.ring, before.rings[s.ring].points, after.rings[s.ring].points, s.prefix, s.suffix);
+  }
 
   // Classifies again the faces whose bounding box meets [lo, hi] (a walk from the face at `seed`, a point
   // in that box and in the mesh's hull). Outside that box the
@@ -560,8 +570,10 @@ MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domai
   std::optional<ChangedWater> water;
   if constexpr (D == 2) {
     if (domain) {
+      // The faces the change creates are classified against the new rings.
       water = changed_water(domain_, *domain);
-      t.set_water(*domain);  // the faces the change creates are classified against the new rings
+      if (water) t.update_water(domain_, *domain, *water);
+      else t.set_water(*domain);
       domain_ = *domain;
     }
   }

@@ -17,18 +17,22 @@ CGAL::Orientation orientation(const Point2& a, const Point2& b, const Point2& c)
 
 WaterTest::WaterTest(const Domain2& domain) {
   double y_high = 0;
-  for (const Ring& ring : domain.rings) {
+  ring_edges_.resize(domain.rings.size());
+  for (std::size_t r = 0; r < domain.rings.size(); ++r) {
+    const Ring& ring = domain.rings[r];
     const std::size_t n = ring.points.size();
     for (std::size_t i = 0; i < n; ++i) {
       const Point2& a = ring.points[i];
       const Point2& b = ring.points[(i + 1) % n];
-      if (a == b) continue;
       if (empty_) {
         y_low_ = y_high = a[1];
         empty_ = false;
       }
       y_low_ = std::min({y_low_, a[1], b[1]});
       y_high = std::max({y_high, a[1], b[1]});
+      // A degenerate edge (a == b) is kept for the numbering: it crosses no ray, and a point on it is a
+      // ring vertex, on the ring anyway.
+      ring_edges_[r].push_back(static_cast<std::uint32_t>(edges_.size()));
       edges_.push_back({a, b});
     }
   }
@@ -38,10 +42,56 @@ WaterTest::WaterTest(const Domain2& domain) {
   slab_height_ = (y_high - y_low_) / static_cast<double>(slab_count);
   if (!(slab_height_ > 0)) slab_height_ = 1;
   slabs_.resize(slab_count);
-  for (std::uint32_t e = 0; e < edges_.size(); ++e) {
-    const auto [lo, hi] = std::minmax(edges_[e].a[1], edges_[e].b[1]);
-    for (std::size_t s = slab_of(lo); s <= slab_of(hi); ++s) slabs_[s].push_back(e);
+  for (std::uint32_t e = 0; e < edges_.size(); ++e) add_to_slabs(e);
+}
+
+void WaterTest::add_to_slabs(std::uint32_t e) {
+  const auto [lo, hi] = std::minmax(edges_[e].a[1], edges_[e].b[1]);
+  for (std::size_t s = slab_of(lo); s <= slab_of(hi); ++s) slabs_[s].push_back(e);
+}
+
+void WaterTest::remove_from_slabs(std::uint32_t e) {
+  const auto [lo, hi] = std::minmax(edges_[e].a[1], edges_[e].b[1]);
+  for (std::size_t s = slab_of(lo); s <= slab_of(hi); ++s) {
+    auto& slab = slabs_[s];
+    slab.erase(std::find(slab.begin(), slab.end(), e));
   }
+}
+
+// Edge k of a ring of n vertices touches the changed vertices [prefix, n - suffix) iff it lies in the
+// cyclic run of edges from prefix - 1 to n - suffix - 1: those are replaced, the others keep their place
+// counted from the start (before the run) or from the end (after it).
+void WaterTest::replace_stretch(std::size_t r, const std::vector<Point2>& before, const std::vector<Point2>& after,
+                                std::size_t prefix, std::size_t suffix) {
+  const std::size_t m = before.size(), n = after.size();
+  auto changed = [&](std::size_t k, std::size_t size) {
+    return prefix == 0 ? (k == size - 1 || k + suffix + 1 <= size) : (k + 1 >= prefix && k + suffix + 1 <= size);
+  };
+  std::vector<std::uint32_t>& old_ids = ring_edges_.at(r);
+  std::vector<std::uint32_t> ids(n);
+  for (std::size_t k = 0; k < m; ++k)
+    if (changed(k, m)) {
+      remove_from_slabs(old_ids[k]);
+      free_edges_.push_back(old_ids[k]);
+    }
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!changed(k, n)) {
+      ids[k] = old_ids[k + 1 < prefix ? k : k + m - n];
+      continue;
+    }
+    std::uint32_t e;
+    if (free_edges_.empty()) {
+      e = static_cast<std::uint32_t>(edges_.size());
+      edges_.push_back({});
+    } else {
+      e = free_edges_.back();
+      free_edges_.pop_back();
+    }
+    edges_[e] = {after[k], after[(k + 1) % n]};
+    add_to_slabs(e);
+    ids[k] = e;
+  }
+  old_ids = std::move(ids);
 }
 
 // Monotone in y, so an edge spanning [lo, hi] is found from any query height inside that range.

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <map>
+#include <random>
 #include <set>
 #include <utility>
 
@@ -56,6 +57,47 @@ TEST(MeshDomain, WaterTestUsesEvenOddRuleAndSeesTheRing) {
   EXPECT_EQ(w.classify({6, 4}), WaterSide::OnRing);  // a ring corner
   EXPECT_EQ(w.classify({1e-300, 5}), WaterSide::Water);
   EXPECT_EQ(w.classify({-1e-300, 5}), WaterSide::Land);
+}
+
+// A stretch of a ring replaced in place (a shore point moved, removed or added, the first and the last
+// vertex included) answers every query as a test built afresh on the new rings does.
+TEST(MeshDomain, WaterTestWithAStretchReplacedEqualsAFreshOne) {
+  std::vector<Point2> shore, island;
+  for (int i = 0; i < 40; ++i) {
+    const double t = 2 * 3.141592653589793 * i / 40, r = 10 + 2 * std::sin(3 * t);
+    shore.push_back({r * std::cos(t), r * std::sin(t)});
+  }
+  for (int i = 0; i < 8; ++i) island.push_back({3 + std::cos(-0.785 * i), std::sin(-0.785 * i)});
+  Domain2 domain{{{shore, RingRole::Shore}, {island, RingRole::Island}}};
+  WaterTest kept(domain);
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int k = 0; k < 300; ++k) {
+    Domain2 next = domain;
+    auto& ring = next.rings[0].points;
+    // Vertices 0 and n - 1 often: the stretch then wraps around the ring's start.
+    const std::size_t v = k % 5 == 0 ? 0 : k % 5 == 1 ? ring.size() - 1 : rng() % ring.size();
+    std::size_t prefix = v, suffix = ring.size() - v - 1;
+    if (k % 3 == 0 && ring.size() > 10) {
+      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(v));
+      suffix = ring.size() - v;
+    } else if (k % 3 == 1) {
+      ring.insert(ring.begin() + static_cast<std::ptrdiff_t>(v), {ring[v][0] + 0.3 * u(rng), ring[v][1] + 0.3 * u(rng)});
+      suffix = ring.size() - v - 2;
+      prefix = v;
+      if (v + 2 > ring.size()) suffix = 0;
+    } else {
+      ring[v] = {ring[v][0] + 0.5 * u(rng), ring[v][1] + 0.5 * u(rng)};
+    }
+    kept.replace_stretch(0, domain.rings[0].points, ring, prefix, suffix);
+    domain = next;
+    const WaterTest fresh(domain);
+    for (int q = 0; q < 200; ++q) {
+      const Point2 p = q < 40 ? domain.rings[0].points[std::size_t(q) % ring.size()]  // on the ring
+                              : Point2{13 * u(rng), 13 * u(rng)};
+      ASSERT_EQ(kept.classify(p), fresh.classify(p)) << "edit " << k << ", query " << q;
+    }
+  }
 }
 
 TEST(MeshDomain, KeepsOnlyTheWaterBetweenShoreAndIsland) {

@@ -21,13 +21,24 @@ class WaterTest {
   WaterSide classify(const Point2& p) const;
   bool in_water(const Point2& p) const { return classify(p) == WaterSide::Water; }
 
+  // Ring r changed from `before` to `after` between a common prefix and a common suffix of vertices
+  // (prefix + suffix <= both sizes): only the edges touching the changed stretch are replaced, in
+  // O(stretch + the slabs they span), so that a shore edit does not rebuild the test. The test then
+  // answers as WaterTest(new domain) does.
+  void replace_stretch(std::size_t r, const std::vector<Point2>& before, const std::vector<Point2>& after,
+                       std::size_t prefix, std::size_t suffix);
+
  private:
   struct Edge {
     Point2 a, b;
   };
   std::size_t slab_of(double y) const;
+  void add_to_slabs(std::uint32_t e);
+  void remove_from_slabs(std::uint32_t e);
 
-  std::vector<Edge> edges_;
+  std::vector<Edge> edges_;  // with the edges replaced since the build (no slab lists them)
+  std::vector<std::vector<std::uint32_t>> ring_edges_;  // per ring: edge k, from vertex k to k + 1
+  std::vector<std::uint32_t> free_edges_;               // replaced edges, to reuse
   bool empty_ = true;
   double y_low_ = 0, slab_height_ = 1;
   std::vector<std::vector<std::uint32_t>> slabs_;  // edge indices whose y-range meets each slab
