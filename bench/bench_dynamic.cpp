@@ -2,8 +2,12 @@
 // A unit change removes a random input point and updates, then adds a new random point and updates.
 //
 //   bench_dynamic --dim 2|3 --n N --changes C --inputs K --seed S [--window W] [--mesh 1]
+//   bench_dynamic --input FILE [--lonlat 1] [--spacing S] [--step H] --changes C --seed S ...
 //
-// Input k (0 <= k < K) is families::uniform(N, S + k). Prints one line of key=value fields: the
+// Input k (0 <= k < K) is families::uniform(N, S + k). With --input, the one input is a 2D file read as
+// `shoremesh` reads it (--lonlat, --spacing as there; a ring file of a lake shore, say), in the box the
+// tool fits to it, and a change moves a random input point by up to H (in the file's units, default
+// the spacing, else a thousandth of the box) along each axis: one update, a shore edit. Prints one line of key=value fields: the
 // from-scratch run (operations, seconds), the unit changes (mean operations and seconds), the single
 // updates (median and 99th percentile latency, median and maximum operations touched), the speedups in
 // operations and in time, and the work per clipped cell during the build and the updates. Input
@@ -25,7 +29,10 @@
 #include <string>
 #include <vector>
 
+#include "shoremesh/box_transform.hpp"
+#include "shoremesh/error.hpp"
 #include "shoremesh/families.hpp"
+#include "shoremesh/io/read_input.hpp"
 #include "shoremesh/mesh.hpp"
 #include "shoremesh/well_spaced.hpp"
 
@@ -39,7 +46,24 @@ struct Options {
   std::size_t n = 1000, changes = 100, inputs = 1, window = 0;
   std::uint64_t seed = 1;
   bool mesh = false;
+  std::string input;  // a file instead of the uniform family (2D)
+  bool lonlat = false;
+  double spacing = 0, step = 0;
 };
+
+// The file's points in the unit box (the box `shoremesh` fits), and the step of a move in unit lengths.
+std::vector<shoremesh::Point<2>> read_file_points(const Options& opt, double& step) {
+  shoremesh::io::InputOptions options;
+  options.lonlat = opt.lonlat;
+  options.ring_spacing = opt.spacing;
+  const shoremesh::io::InputSet set = shoremesh::io::read_input(opt.input, options);
+  if (set.dimension != 2) throw shoremesh::InputError(opt.input + ": bench_dynamic --input reads 2D inputs only");
+  const auto box = shoremesh::BoxTransform<2>::fit(set.points);
+  std::vector<shoremesh::Point<2>> unit;
+  for (const auto& p : set.points) unit.push_back(box.to_unit(p));
+  step = opt.step > 0 ? opt.step / box.side : opt.spacing > 0 ? opt.spacing / box.side : 1e-3;
+  return unit;
+}
 
 // Cells computed and taken from the cache; box searches, leaves searched, candidate vertices looked at
 // and half-spaces clipped, summed over the cells computed.
@@ -71,8 +95,16 @@ void run(const Options& opt) {
   double first_update_seconds = 0;
   std::vector<double> latencies, update_ops, steiner_changes, mesh_latencies;
   CellWork build_work, update_work;
+  const std::size_t updates_per_change = opt.input.empty() ? 2 : 1;
+  std::size_t n = opt.n;
   for (std::size_t input = 0; input < opt.inputs; ++input) {
-    const auto points = shoremesh::families::uniform<D>(opt.n, opt.seed + input);
+    double step = 0;  // a move's largest offset along an axis, with --input
+    std::vector<shoremesh::Point<D>> points;
+    if constexpr (D == 2) {
+      if (!opt.input.empty()) points = read_file_points(opt, step);
+    }
+    if (opt.input.empty()) points = shoremesh::families::uniform<D>(opt.n, opt.seed + input);
+    n = points.size();
     shoremesh::WellSpacedSet<D> set;
     auto t0 = Clock::now();
     set.build(points);
@@ -106,40 +138,57 @@ void run(const Options& opt) {
     // would also flush the caches before every removal.
     std::vector<std::size_t> ids = set.input_ids();
     for (std::size_t c = 0; c < opt.changes; ++c) {
-      shoremesh::UpdateReport<D> removed, added;
-      const std::size_t k = rng() % ids.size();
-      const shoremesh::Point<D> gone = set.input_point(ids[k]);
-      auto t1 = Clock::now();
-      set.remove(ids[k], &removed);
-      const double a = seconds_since(t1);
-      shoremesh::Point<D> p;
-      for (auto& x : p) x = u(rng);
-      auto t2 = Clock::now();
-      const std::size_t id = set.add(p, &added);
-      const double b = seconds_since(t2);
-      ids[k] = id;
-      follow(removed, &gone, nullptr);
-      follow(added, nullptr, &p);
-      if (c == 0) first_update_seconds = std::max({first_update_seconds, a, b});
-      latencies.push_back(a);
-      latencies.push_back(b);
-      update_ops.push_back(double(removed.operations_touched()));
-      update_ops.push_back(double(added.operations_touched()));
-      unit_seconds += a + b;
+      if (!opt.input.empty()) {  // a shore edit: one point moved a little, one update
+        shoremesh::UpdateReport<D> moved;
+        const std::size_t id = ids[rng() % ids.size()];
+        const shoremesh::Point<D> from = set.input_point(id);
+        shoremesh::Point<D> to;
+        for (int i = 0; i < D; ++i) to[i] = std::clamp(from[i] + step * (2 * u(rng) - 1), 0.0, 1.0);
+        auto t = Clock::now();
+        set.move(id, to, &moved);
+        const double a = seconds_since(t);
+        follow(moved, &from, &to);
+        if (c == 0) first_update_seconds = std::max(first_update_seconds, a);
+        latencies.push_back(a);
+        update_ops.push_back(double(moved.operations_touched()));
+        unit_seconds += a;
+        unit_ops += double(moved.operations_touched());
+      } else {  // the paper's unit change: a random input point removed, a random point added
+        shoremesh::UpdateReport<D> removed, added;
+        const std::size_t k = rng() % ids.size();
+        const shoremesh::Point<D> gone = set.input_point(ids[k]);
+        auto t1 = Clock::now();
+        set.remove(ids[k], &removed);
+        const double a = seconds_since(t1);
+        shoremesh::Point<D> p;
+        for (auto& x : p) x = u(rng);
+        auto t2 = Clock::now();
+        const std::size_t id = set.add(p, &added);
+        const double b = seconds_since(t2);
+        ids[k] = id;
+        follow(removed, &gone, nullptr);
+        follow(added, nullptr, &p);
+        if (c == 0) first_update_seconds = std::max({first_update_seconds, a, b});
+        latencies.push_back(a);
+        latencies.push_back(b);
+        update_ops.push_back(double(removed.operations_touched()));
+        update_ops.push_back(double(added.operations_touched()));
+        unit_seconds += a + b;
+        unit_ops += double(removed.operations_touched() + added.operations_touched());
+      }
       if (opt.window > 0 && (c + 1) % opt.window == 0) {
-        const std::vector<double> last(latencies.end() - long(2 * opt.window), latencies.end());
+        const std::vector<double> last(latencies.end() - long(updates_per_change * opt.window), latencies.end());
         std::printf("window=%zu input=%zu changes=%zu..%zu update_median_seconds=%.6g update_p99_seconds=%.6g "
                     "update_max_seconds=%.6g engine_memory_bytes=%zu\n",
                     (c + 1) / opt.window, input, c + 1 - opt.window, c + 1, quantile(last, 0.5), quantile(last, 0.99),
                     *std::max_element(last.begin(), last.end()), set.memory_bytes());
         std::fflush(stdout);
       }
-      unit_ops += double(removed.operations_touched() + added.operations_touched());
     }
     update_work.add(set.counters(), after_build);
   }
   const double k = double(opt.inputs), changes = double(opt.inputs * opt.changes);
-  const double updates = 2 * changes;
+  const double updates = double(updates_per_change) * changes;
   char mesh_fields[128] = "";
   if (opt.mesh)
     std::snprintf(mesh_fields, sizeof mesh_fields, " mesh_update_median_seconds=%.6g mesh_update_p99_seconds=%.6g",
@@ -150,15 +199,16 @@ void run(const Options& opt) {
       "update_median_ops=%.0f update_max_ops=%.0f first_update_seconds=%.6g speedup_ops=%.1f speedup_time=%.1f "
       "build_leaves_per_cell=%.1f build_candidates_per_cell=%.1f build_clips_per_cell=%.1f "
       "update_cells=%.1f update_leaves_per_cell=%.1f update_candidates_per_cell=%.1f update_clips_per_cell=%.1f build_searches_per_cell=%.2f update_searches_per_cell=%.2f update_cells_reused=%.1f update_cells_from_lists=%.1f update_cells_updated=%.1f "
-      "update_steiner_changes_median=%.0f%s\n",
-      D, opt.n, opt.inputs, opt.changes, output / k, build_seconds / k, build_ops / k, unit_seconds / changes,
+      "update_steiner_changes_median=%.0f%s points=%s\n",
+      D, n, opt.inputs, opt.changes, output / k, build_seconds / k, build_ops / k, unit_seconds / changes,
       unit_ops / changes, quantile(latencies, 0.5), quantile(latencies, 0.99), quantile(update_ops, 0.5),
       quantile(update_ops, 1.0), first_update_seconds, (build_ops / k) / (unit_ops / changes), (build_seconds / k) / (unit_seconds / changes),
       build_work.leaves / build_work.cells, build_work.candidates / build_work.cells, build_work.clips / build_work.cells,
       update_work.cells / updates, update_work.leaves / update_work.cells, update_work.candidates / update_work.cells,
       update_work.clips / update_work.cells, build_work.searches / build_work.cells,
       update_work.searches / update_work.cells, update_work.reused / updates, update_work.listed / updates,
-      update_work.updated / updates, quantile(steiner_changes, 0.5), mesh_fields);
+      update_work.updated / updates, quantile(steiner_changes, 0.5), mesh_fields,
+      opt.input.empty() ? "uniform" : opt.input.c_str());
 }
 
 }  // namespace
@@ -175,16 +225,28 @@ int main(int argc, char** argv) {
     else if (value && key == "--seed") opt.seed = std::uint64_t(std::atoll(value));
     else if (value && key == "--window") opt.window = std::size_t(std::atof(value));
     else if (value && key == "--mesh") opt.mesh = std::atoi(value) != 0;
+    else if (value && key == "--input") opt.input = value;
+    else if (value && key == "--lonlat") opt.lonlat = std::atoi(value) != 0;
+    else if (value && key == "--spacing") opt.spacing = std::atof(value);
+    else if (value && key == "--step") opt.step = std::atof(value);
     else {
-      std::fprintf(stderr, "usage: bench_dynamic --dim 2|3 --n N --changes C --inputs K --seed S [--window W] [--mesh 1]\n");
+      std::fprintf(stderr,
+                   "usage: bench_dynamic --dim 2|3 --n N --changes C --inputs K --seed S [--window W] [--mesh 1]\n"
+                   "       bench_dynamic --input FILE [--lonlat 1] [--spacing S] [--step H] --changes C --seed S ...\n");
       return 2;
     }
   }
-  if ((opt.dim != 2 && opt.dim != 3) || opt.n < 2 || opt.changes < 1 || opt.inputs < 1) {
-    std::fprintf(stderr, "bench_dynamic: need --dim 2 or 3, --n >= 2, --changes >= 1, --inputs >= 1\n");
+  if ((opt.dim != 2 && opt.dim != 3) || opt.n < 2 || opt.changes < 1 || opt.inputs < 1 || opt.spacing < 0 ||
+      (!opt.input.empty() && (opt.dim != 2 || opt.inputs != 1))) {
+    std::fprintf(stderr, "bench_dynamic: need --dim 2 or 3, --n >= 2, --changes >= 1, --inputs >= 1 (with --input: 2D, one input)\n");
     return 2;
   }
-  if (opt.dim == 3) run<3>(opt);
-  else run<2>(opt);
+  try {
+    if (opt.dim == 3) run<3>(opt);
+    else run<2>(opt);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_dynamic: %s\n", e.what());
+    return 1;
+  }
   return 0;
 }
