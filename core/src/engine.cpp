@@ -623,16 +623,16 @@ bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill) {
   double half = (ops_[o].crowded ? 0.5 : 2.0) * tree_.side(vertices_[v].leaf);
   // An operation run again (inconsistent) mostly needs the box it needed last time: starting from its
   // previous dependency radius saves most of the searches that grow the box step by step (2.4 -> 1.5
-  // per 2D cell). Bounded, so that a vertex alone before does not search the whole domain. Not for an
-  // operation whose cell was crowded: a search before the cell exists cannot skip what the cell will
-  // not need, and such a radius can hold a whole dense shore; its box grows there once the cell exists,
-  // skipping what cannot cut it. (A fresh fill starting from the radius of its vertex's cell computed
-  // earlier in the propagation searched more leaves than it saved: that cell is stale because a vertex
-  // came near, so it shrank.)
+  // per 2D cell). Bounded, so that a vertex alone before does not search the whole domain. Not for a
+  // crowded operation: a search before the cell exists cannot skip what the cell will not need, and
+  // such a radius can hold a whole dense shore. Its box grows step by step, and each step skips what
+  // the cell, cut by all that the steps before found, cannot need (jumping straight to the previous
+  // radius once the cell existed skipped less: 130 candidates per cell against 40 at 171k Superior
+  // shore points). (A fresh fill starting from the radius of its vertex's cell computed earlier in the
+  // propagation searched more leaves than it saved: that cell is stale because a vertex came near, so
+  // it shrank.)
   const double previous2 = ops_[o].depends2;
-  const bool jump_first = !ops_[o].crowded && previous2 > half * half && previous2 < 16 * half * half;
-  if (jump_first) half = std::sqrt(previous2) * (1 + 1e-6);
-  const double previous = ops_[o].crowded ? std::sqrt(previous2) * (1 + 1e-6) : 0.0;
+  if (!ops_[o].crowded && previous2 > half * half && previous2 < 16 * half * half) half = std::sqrt(previous2) * (1 + 1e-6);
   // With a stale entry (its cell computed earlier in this propagation): it lists what the leaves of
   // its box held then and what arrived there since, which is what they hold now, as a search would
   // find it (cell_cache.cpp). Only growing that box searches.
@@ -747,7 +747,7 @@ bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill) {
       break;
     }
     // Grow gently: the vertices found next usually shrink the cell, and with it the reach.
-    searched = std::min(std::sqrt(need2) * (1 + 1e-9), std::max(1.5 * searched, previous));
+    searched = std::min(std::sqrt(need2) * (1 + 1e-9), 1.5 * searched);
     search(searched);
   }
   // Many candidates (a large cell among dense ones): the operation is crowded from now on, and keeps
