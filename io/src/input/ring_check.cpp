@@ -108,7 +108,7 @@ std::optional<RingDefect> find_ring_defect_at(const Domain2& domain, std::size_t
   const auto& pts = domain.rings.at(ring).points;
   const std::size_t n = pts.size();
   if (n < 3) return RingDefect{RingDefect::Kind::TooFewPoints, ring, 0, ring, 0};
-  const std::size_t before = (vertex + n - 1) % n, after = (vertex + 1) % n;
+  const std::size_t before = (vertex + n - 1) % n;
   for (const std::size_t i : {before, vertex}) {
     const std::size_t j = (i + 1) % n;
     if (pts[i] == pts[j]) return RingDefect{RingDefect::Kind::RepeatedVertex, ring, i, ring, j};
