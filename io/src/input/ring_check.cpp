@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "exact_orient.hpp"
@@ -42,6 +43,18 @@ bool adjacent_edges_overlap(const Point2& a, const Point2& b, const Point2& c) {
   const int sa = a[0] != b[0] ? side(a[0], b[0]) : side(a[1], b[1]);
   const int sc = a[0] != b[0] ? side(c[0], b[0]) : side(c[1], b[1]);
   return sa == sc && sa != 0;
+}
+
+// Edges i and j of a ring of n vertices follow one another (they share a vertex by construction).
+bool consecutive_edges(std::size_t i, std::size_t j, std::size_t n) { return (i + 1) % n == j || (j + 1) % n == i; }
+
+// Edge vertex_a of ring_a meets edge vertex_b of ring_b: the defect, the pair in (ring, edge) order.
+RingDefect crossing(std::size_t ring_a, std::size_t vertex_a, std::size_t ring_b, std::size_t vertex_b) {
+  if (std::make_pair(ring_b, vertex_b) < std::make_pair(ring_a, vertex_a)) {
+    std::swap(ring_a, ring_b);
+    std::swap(vertex_a, vertex_b);
+  }
+  return RingDefect{RingDefect::Kind::Intersection, ring_a, vertex_a, ring_b, vertex_b};
 }
 
 }  // namespace
@@ -85,18 +98,9 @@ std::optional<RingDefect> find_ring_defect(const Domain2& domain) {
       if (f.xmax < e.xmin) continue;  // left behind by the sweep
       active[keep++] = idx;
       if (f.ymax < e.ymin || e.ymax < f.ymin) continue;
-      if (e.ring == f.ring) {
-        const std::size_t n = domain.rings[e.ring].points.size();
-        if ((e.index + 1) % n == f.index || (f.index + 1) % n == e.index) continue;  // neighbours: checked above
-      }
-      if (segments_meet(e.a, e.b, f.a, f.b)) {
-        RingDefect d{RingDefect::Kind::Intersection, f.ring, f.index, e.ring, e.index};
-        if (std::make_pair(d.ring_b, d.vertex_b) < std::make_pair(d.ring_a, d.vertex_a)) {
-          std::swap(d.ring_a, d.ring_b);
-          std::swap(d.vertex_a, d.vertex_b);
-        }
-        return d;
-      }
+      // Neighbours in a ring: checked above.
+      if (e.ring == f.ring && consecutive_edges(e.index, f.index, domain.rings[e.ring].points.size())) continue;
+      if (segments_meet(e.a, e.b, f.a, f.b)) return crossing(f.ring, f.index, e.ring, e.index);
     }
     active.resize(keep);
     active.push_back(k);
@@ -128,14 +132,8 @@ std::optional<RingDefect> find_ring_defect_at(const Domain2& domain, std::size_t
         if (std::max(c[0], d[0]) < xmin || std::min(c[0], d[0]) > xmax || std::max(c[1], d[1]) < ymin ||
             std::min(c[1], d[1]) > ymax)
           continue;
-        if (r == ring && (i == e || (i + 1) % n == e || (e + 1) % n == i)) continue;  // itself, its neighbours
-        if (!segments_meet(a, b, c, d)) continue;
-        RingDefect defect{RingDefect::Kind::Intersection, ring, e, r, i};
-        if (std::make_pair(r, i) < std::make_pair(ring, e)) {
-          std::swap(defect.ring_a, defect.ring_b);
-          std::swap(defect.vertex_a, defect.vertex_b);
-        }
-        return defect;
+        if (r == ring && (i == e || consecutive_edges(i, e, n))) continue;  // itself, its neighbours
+        if (segments_meet(a, b, c, d)) return crossing(ring, e, r, i);
       }
     }
   }
