@@ -236,9 +236,9 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if ((opt.dim != 2 && opt.dim != 3) || opt.n < 2 || opt.changes < 1 || opt.inputs < 1 || opt.spacing < 0 ||
+  if ((opt.dim != 2 && opt.dim != 3) || opt.n < 2 || opt.changes < 1 || opt.inputs < 1 || !(opt.spacing >= 0) || !(opt.step >= 0) ||
       (!opt.input.empty() && (opt.dim != 2 || opt.inputs != 1))) {
-    std::fprintf(stderr, "bench_dynamic: need --dim 2 or 3, --n >= 2, --changes >= 1, --inputs >= 1 (with --input: 2D, one input)\n");
+    std::fprintf(stderr, "bench_dynamic: need --dim 2 or 3, --n >= 2, --changes >= 1, --inputs >= 1 (with --input: 2D, one input; --spacing, --step >= 0)\n");
     return 2;
   }
   try {

@@ -102,6 +102,9 @@ TEST(ReadInput, SpacingThatWouldCutTooManyPointsIsRefused) {
     EXPECT_THAT(e.message(), HasSubstr(spacing == 1e-9 ? "spacing 1e-09 " : "spacing 1e-300 "));
     EXPECT_THAT(e.file(), HasSubstr("square.txt")) << spacing;
   }
+  InputOptions not_a_number;
+  not_a_number.ring_spacing = std::nan("");
+  EXPECT_THAT(expect_input_error([&] { read_input(path, not_a_number); }).message(), HasSubstr("spacing nan is not a number"));
   InputOptions poly;
   poly.poly.spacing = 1e-12;
   const auto e = expect_input_error([&] { read_input(samples("pslg/double_hex.poly"), poly); });

@@ -46,9 +46,11 @@ constexpr std::size_t kMaxSampledPoints = 10'000'000;
 
 // `pts` with points inserted evenly along every segment longer than `spacing` (none when spacing <= 0), so
 // that no piece is longer; `closed`: the last point connects to the first. Throws InputError (naming
-// `file`) when the input's points, `already` of them before these, would exceed kMaxSampledPoints.
+// `file`) for a NaN spacing, and when the input's points, `already` of them before these, would exceed
+// kMaxSampledPoints.
 inline std::vector<Point2> subdivide(const std::vector<Point2>& pts, bool closed, double spacing,
                                      const std::string& file, std::size_t already = 0) {
+  if (std::isnan(spacing)) throw InputError("spacing nan is not a number", file);
   if (spacing <= 0 || pts.empty()) return pts;
   std::vector<Point2> out;
   const std::size_t n = pts.size(), edges = closed ? n : n - 1;
