@@ -64,6 +64,10 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
       ->expected(4);
   group->add_option("--crs", a.crs, "Images: coordinate system of --map-box or of a world file without .prj "
                                     "('EPSG:4326', 'lonlat', 'UTM 16N', WKT)");
+  group->add_option("--track-close-distance", a.track_close_distance,
+                    "GPS tracks: a walk that ends within this many metres of its start is a shore ring (default: "
+                    "twice the spacing, at least 25 m; 0: every walk stays loose points)")
+      ->check(CLI::NonNegativeNumber);
   group->add_flag("--lonlat", a.lonlat, "Point and ring files hold lon,lat degrees (projected to metres)");
   group->add_option("--projection", a.projection,
                     "Projection of lon/lat input: 'utm' (the data's UTM zone, default) or 'local' "
@@ -131,6 +135,7 @@ io::InputOptions input_options(const InputArgs& a) {
   o.image.close_radius = a.close_radius;
   if (!a.map_box.empty()) o.image.georeference.box = io::MapBox{a.map_box[0], a.map_box[1], a.map_box[2], a.map_box[3]};
   o.image.georeference.crs = a.crs;
+  if (a.track_close_distance) o.track.close_tolerance = *a.track_close_distance;
   if (a.spacing) {
     o.image.spacing = *a.spacing;
     o.image.spacing_unit = io::ImageTraceOptions::SpacingUnit::Map;

@@ -25,6 +25,7 @@ struct InputArgs {
   int open_radius = 0, close_radius = 0;
   std::vector<double> map_box;     // images: XMIN YMIN XMAX YMAX of the image's outer edges
   std::string crs;                 // images: coordinate system of --map-box (or of a world file without .prj)
+  std::optional<double> track_close_distance;  // GPS walks ending this near their start become rings
   bool lonlat = false;
   std::string projection = "utm";  // utm | local
   bool quiet = false;

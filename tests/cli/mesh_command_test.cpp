@@ -88,7 +88,9 @@ TEST(MeshCommand, MeshIsClippedToTheBoxUnlessKeepHull) {
     EXPECT_GT(left_out, 0u) << dim << "D";
     EXPECT_EQ(c.met, c.elements) << dim << "D";
     EXPECT_EQ(c.covered, c.elements) << dim << "D";
-    if (dim == "2") EXPECT_GE(c.min_angle, c.bound);
+    if (dim == "2") {
+      EXPECT_GE(c.min_angle, c.bound);
+    }
 
     const RunResult whole = shoremesh(dir, "mesh p.csv -o whole.vtu --keep-hull");
     ASSERT_EQ(whole.code, 0) << whole.err;
@@ -187,6 +189,31 @@ TEST(MeshCommand, ColourMapImageWithAUserBox) {
   EXPECT_GT(s.covered, 500u);
   EXPECT_EQ(s.met, s.covered);
   EXPECT_EQ(read_file(dir / "map.ply").rfind("ply\n", 0), 0u);
+}
+
+TEST(MeshCommand, GpsWalkClosedByGuessCanBeKeptOpen) {
+  TempDir dir;
+  // One Cerknica walk ends within twice the spacing (40 m) of its start, so the reader closes it into a
+  // shore ring, and that ring crosses itself: the error says why the walk was closed and how not to.
+  const std::string gpx = quote(samples("cerknica/cerknicko-jezero.gpx"));
+  const RunResult closed = shoremesh(dir, "mesh -q " + gpx + " --spacing 20 -o walk.msh");
+  EXPECT_EQ(closed.code, 1);
+  EXPECT_THAT(closed.err, HasSubstr("self-intersecting rings"));
+  EXPECT_THAT(closed.err, HasSubstr("--track-close-distance 0 keeps every walk as loose points"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "walk.msh"));
+
+  const RunResult open = shoremesh(dir, "mesh -q " + gpx + " --spacing 20 --track-close-distance 0 -o walk.msh");
+  ASSERT_EQ(open.code, 0) << open.err;
+  const Summary s = parse_summary(open.out);
+  EXPECT_GT(s.covered, 1000u);
+  EXPECT_EQ(s.met, s.covered);
+  // The walks are sampled 20 m apart at most: the gaps between sparse fixes are cut, so there are more
+  // input points than the file's 303 fixes, though the dense stretches are thinned.
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(open.out, m, std::regex(R"(\(([0-9]+) input, )"))) << open.out;
+  EXPECT_GT(std::stoul(m[1]), 303u);
+
+  EXPECT_EQ(shoremesh(dir, "mesh -q " + gpx + " --track-close-distance nan -o walk.msh").code, 1);
 }
 
 }  // namespace

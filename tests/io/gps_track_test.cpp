@@ -182,15 +182,18 @@ TEST(GpxTrack, GpsToInputProjectsAndResamples) {
   opt.spacing = 20;
   // One of these walks ends 20-40 m from its start but crosses itself: as a closed walk it is reported.
   const auto e = expect_input_error([&] { gps_to_input(d, kCerknica, opt); });
-  EXPECT_EQ(e.line(), 1204u);
+  ASSERT_TRUE(e.line().has_value());
+  EXPECT_GT(*e.line(), 1100u);  // in that walk, not at the top of the file
   EXPECT_THAT(e.message(), HasSubstr("self-intersecting rings"));
+  // The reader closed the walk by its own guess: the message says so, and how to keep walks open.
+  EXPECT_THAT(e.message(), HasSubstr("ends within 40 m of its start is closed into a shore ring"));
+  EXPECT_THAT(e.message(), HasSubstr("--track-close-distance 0"));
   opt.close_tolerance = 0;  // keep every walk open
   const auto set = gps_to_input(d, kCerknica, opt);
   EXPECT_TRUE(set.domain.empty());
   EXPECT_EQ(set.units, Units::Metres);
   EXPECT_EQ(set.projection.zone(), 33);
   EXPECT_GT(set.points.size(), 50u);
-  EXPECT_LE(set.points.size(), d.point_count());
   EXPECT_EQ(set.points.size(), set.origins.size());
   for (std::size_t i = 0; i < set.points.size(); ++i) {
     const auto& o = set.origins[i];
@@ -201,8 +204,25 @@ TEST(GpxTrack, GpsToInputProjectsAndResamples) {
   }
 }
 
+namespace {
+
+// Every piece of `pts` (closed: the closing edge too) between `shortest` and `longest` metres long.
+void expect_pieces_between(const std::vector<Point2>& pts, bool closed, double shortest, double longest) {
+  const std::size_t edges = closed ? pts.size() : pts.size() - 1;
+  for (std::size_t i = 0; i < edges; ++i) {
+    const auto& a = pts[i];
+    const auto& b = pts[(i + 1) % pts.size()];
+    const double d = std::hypot(a[0] - b[0], a[1] - b[1]);
+    EXPECT_GE(d, shortest) << "piece " << i << " of " << edges;
+    EXPECT_LE(d, longest) << "piece " << i << " of " << edges;
+  }
+}
+
+}  // namespace
+
 TEST(GpxTrack, ClosedShorelineWalkBecomesARing) {
   shoremesh::io::test::ScratchDir dir;
+  // Fixes 15.7 m apart on a circle of 1 km: thinned to the spacing, none cut.
   const auto path = dir.write("walk.gpx", circle_walk_gpx(1000, 400));
   TrackOptions opt;
   opt.spacing = 100;
@@ -211,14 +231,39 @@ TEST(GpxTrack, ClosedShorelineWalkBecomesARing) {
   ASSERT_EQ(set.domain.rings.size(), 1u);
   const auto& ring = set.domain.rings[0];
   EXPECT_EQ(ring.role, RingRole::Shore);
-  EXPECT_NEAR(static_cast<double>(ring.points.size()), 2 * std::numbers::pi * 1000 / 100, 8.0);
-  for (std::size_t i = 0; i < ring.points.size(); ++i) {
-    const auto& a = ring.points[i];
-    const auto& b = ring.points[(i + 1) % ring.points.size()];
-    const double d = std::hypot(a[0] - b[0], a[1] - b[1]);
-    EXPECT_GE(d, 100.0 - 1e-6) << i;  // the closing edge too: nothing closer than the spacing
-    EXPECT_LE(d, 140.0) << i;
+  // Six fixes a piece (94 m), the farthest within 100 m: about 67 pieces.
+  EXPECT_NEAR(static_cast<double>(ring.points.size()), 2 * std::numbers::pi * 1000 / 94, 4.0);
+  expect_pieces_between(ring.points, true, 50.0, 100.0);
+}
+
+TEST(GpxTrack, SparseFixesAreCutToTheSpacing) {
+  shoremesh::io::test::ScratchDir dir;
+  // Fixes 157 m apart (a log every 30 s from a boat): a spacing of 50 m keeps every fix and cuts each gap
+  // into four, on a closed walk and on an open one alike.
+  const auto path = dir.write("sparse.gpx", circle_walk_gpx(1000, 40));
+  const GpsData data = read_gpx(path);
+  TrackOptions opt;
+  opt.spacing = 50;
+  const auto closed = gps_to_input(data, path, opt);
+  ASSERT_EQ(closed.domain.rings.size(), 1u);
+  const auto& ring = closed.domain.rings[0].points;
+  EXPECT_EQ(ring.size(), 40u * 4);
+  expect_pieces_between(ring, true, 25.0, 50.0);
+  const auto& fixes = data.sequences[0].points;
+  for (std::size_t i = 0; i < ring.size(); i += 4) {
+    const Point2 fix = closed.projection.forward({fixes[i / 4].lon, fixes[i / 4].lat});
+    EXPECT_EQ(ring[i], fix) << i;
   }
+  // The fix each point came from: the one before it along the walk (its line in the file).
+  EXPECT_EQ(closed.origins[1].location, closed.origins[0].location);
+  EXPECT_LT(closed.origins[0].location, closed.origins[4].location);
+
+  opt.close_tolerance = 0;
+  const auto open = gps_to_input(data, path, opt);
+  EXPECT_TRUE(open.domain.empty());
+  // 41 fixes, the last on the first: 40 gaps of four pieces, the last fix an exact repeat of the first.
+  EXPECT_EQ(open.points.size(), 40u * 4);
+  expect_pieces_between(open.points, false, 25.0, 50.0);
 }
 
 TEST(GpxTrack, SelfIntersectingWalkIsReported) {
@@ -286,7 +331,7 @@ TEST(TrackCsv, MalformedRowsNameFileAndLine) {
   EXPECT_EQ(e.message(), "no points");
 }
 
-TEST(GpxTrack, ResampleDropsPointsCloserThanSpacingAndSmoothingReducesNoise) {
+TEST(GpxTrack, FixesAreThinnedToTheSpacingAndSmoothingReducesNoise) {
   // A dense, noisy walk along a straight shore: 2000 fixes 1 m apart eastwards at 46N with +-1.5 m of
   // deterministic lateral noise.
   GpsData d;
@@ -314,16 +359,19 @@ TEST(GpxTrack, ResampleDropsPointsCloserThanSpacingAndSmoothingReducesNoise) {
   opt.spacing = 10;
   opt.close_tolerance = 0;
   const auto raw = gps_to_input(d, "walk.gpx", opt);
-  EXPECT_NEAR(static_cast<double>(raw.points.size()), 2000 / 10, 25);
-  for (std::size_t i = 0; i + 1 < raw.points.size(); ++i)
-    EXPECT_GE(std::hypot(raw.points[i + 1][0] - raw.points[i][0], raw.points[i + 1][1] - raw.points[i][1]), 10.0);
+  // The farthest fix within 10 m of the last kept one: pieces of 8 to 10 m (the noise takes some).
+  EXPECT_NEAR(static_cast<double>(raw.points.size()), 2000 / 9, 25);
+  // The last fix of the walk is kept, however near the one before it.
+  expect_pieces_between({raw.points.begin(), raw.points.end() - 1}, false, 7.0, 10.0);
   opt.smooth_window = 5;
   const auto smooth = gps_to_input(d, "walk.gpx", opt);
   std::printf("lateral RMS noise: %.2f m raw, %.2f m smoothed (window 11)\n", deviation(raw), deviation(smooth));
   EXPECT_LT(deviation(smooth), 0.5 * deviation(raw));
   TrackOptions all;
   all.close_tolerance = 0;
-  EXPECT_EQ(gps_to_input(d, "walk.gpx", all).points.size(), 2000u);  // spacing 0: only the exact repeat goes
+  const auto every_fix = gps_to_input(d, "walk.gpx", all);
+  EXPECT_EQ(every_fix.points.size(), 2000u);  // spacing 0: only the exact repeat goes
+  EXPECT_EQ(raw.points.back(), every_fix.points.back());
 }
 
 TEST(GpxTrack, RoutesAndWaypointsAreRead) {

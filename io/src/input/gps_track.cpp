@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 
 #include "input_builder.hpp"
@@ -294,17 +295,30 @@ void smooth(Projected& p, int w, bool closed) {
   p.xy = std::move(out);
 }
 
-// Keeps points at least `spacing` from the last kept one (and, when closed, from the first).
+// Thins a walk to the spacing. From each kept fix it keeps the last fix of the run that follows within
+// `spacing` of it: a log holds a fix every metre or second, and their jitter would be features the mesh
+// must resolve, while keeping the farthest fix within reach leaves the kept ones about `spacing` apart,
+// not less (the caller then cuts the gaps that are longer, so that no piece exceeds the spacing). A
+// spacing of 0 keeps every fix but exact repeats. Closed: fixes at the end nearer the first than half
+// the spacing go, so that the closing edge is not a sliver.
 Projected resample(const Projected& p, double spacing, bool closed) {
   Projected out;
-  for (std::size_t i = 0; i < p.xy.size(); ++i) {
-    if (!out.xy.empty()) {
-      const double d = dist(p.xy[i], out.xy.back());
-      if (d == 0 || d < spacing) continue;
-      if (closed && (p.xy[i] == out.xy.front() || dist(p.xy[i], out.xy.front()) < spacing)) continue;
-    }
+  auto keep = [&](std::size_t i) {
     out.xy.push_back(p.xy[i]);
     out.lines.push_back(p.lines[i]);
+  };
+  if (p.xy.empty()) return out;
+  keep(0);
+  for (std::size_t i = 1; i < p.xy.size(); ++i) {
+    const Point2 last = out.xy.back();
+    if (spacing > 0)
+      while (i + 1 < p.xy.size() && dist(p.xy[i + 1], last) <= spacing) ++i;
+    if (p.xy[i] != last) keep(i);
+  }
+  while (closed && out.xy.size() > 1 &&
+         (out.xy.back() == out.xy.front() || dist(out.xy.back(), out.xy.front()) < spacing / 2)) {
+    out.xy.pop_back();
+    out.lines.pop_back();
   }
   return out;
 }
@@ -327,6 +341,7 @@ InputSet gps_to_input(const GpsData& data, const std::string& file, const TrackO
   }
   set.notes.push_back("projected lon/lat to metres with " + set.projection.describe());
   detail::InputBuilder builder(set, file, Source::Location::Line);
+  if (std::isnan(options.close_tolerance)) throw InputError("track close distance nan is not a number", file);
   const double tolerance = options.close_tolerance >= 0 ? options.close_tolerance : std::max(2 * options.spacing, 25.0);
 
   struct Loose {
@@ -362,14 +377,24 @@ InputSet gps_to_input(const GpsData& data, const std::string& file, const TrackO
     smooth(p, options.smooth_window, closed);
     Projected r = resample(p, options.spacing, closed);
     if (closed && r.xy.size() >= 3) {
-      builder.add_ring(r.xy, RingRole::Shore, r.lines);
+      builder.add_ring(r.xy, RingRole::Shore, r.lines, options.spacing);
       ++closed_count;
     } else {
-      for (std::size_t i = 0; i < r.xy.size(); ++i) loose.push_back({r.xy[i], r.lines[i]});
+      const auto sub = detail::subdivide(r.xy, false, options.spacing, file, set.points.size() + loose.size());
+      const auto from = detail::subdivided_from(r.xy, sub);
+      for (std::size_t i = 0; i < sub.size(); ++i) loose.push_back({sub[i], r.lines[from[i]]});
     }
   }
   assign_roles_by_nesting(set.domain);
-  check_rings(set);
+  try {
+    check_rings(set);
+  } catch (const InputError& e) {
+    // Closing was this reader's guess: say how to take it back.
+    std::ostringstream message;
+    message << e.message() << " (a walk that ends within " << tolerance
+            << " m of its start is closed into a shore ring; --track-close-distance 0 keeps every walk as loose points)";
+    throw InputError(message.str(), e.file(), e.line());
+  }
   // Loose points: drop exact repeats (of ring vertices or of each other); GPS logs repeat fixes.
   std::set<Point2> seen(set.points.begin(), set.points.end());
   std::size_t repeats = 0;

@@ -53,8 +53,10 @@ struct TrackOptions {
   // Projection: the given one, or one chosen from the data (UTM zone of the data's centre by default).
   std::optional<Projection> projection;
   ProjectionChoice choice = ProjectionChoice::Utm;
-  // Resampling (metres): along each track or route, drop points closer than `spacing` to the last kept point
-  // (0 keeps every point except exact repeats).
+  // Sampling (metres): along each track or route, no piece longer than `spacing`. The fixes are thinned
+  // first (from each kept fix, the last of the fixes that follow within `spacing` of it: GPS jitter stays
+  // out, and the kept fixes lie about `spacing` apart), then longer gaps are cut evenly. 0 keeps every
+  // fix except exact repeats.
   double spacing = 0;
   // Smoothing before resampling: moving average of 2*smooth_window+1 projected points (0: none). The first and
   // last points of an open track are kept in place.
