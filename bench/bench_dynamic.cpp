@@ -121,12 +121,10 @@ void run(const Options& opt) {
                       const shoremesh::Point<D>* input_added) {
       steiner_changes.push_back(double(report.steiner_removed.size() + report.steiner_added.size()));
       if (!mesh) return;
-      shoremesh::PointChange<D> change;
-      if (input_removed) change.removed.push_back(*input_removed);
-      if (input_added) change.added.push_back(*input_added);
-      change.added_input_count = change.added.size();
-      change.removed.insert(change.removed.end(), report.steiner_removed.begin(), report.steiner_removed.end());
-      change.added.insert(change.added.end(), report.steiner_added.begin(), report.steiner_added.end());
+      std::vector<shoremesh::Point<D>> removed, added;
+      if (input_removed) removed.push_back(*input_removed);
+      if (input_added) added.push_back(*input_added);
+      const auto change = shoremesh::PointChange<D>::from_update(report, std::move(removed), std::move(added));
       const auto t = Clock::now();
       mesh->apply(change);
       mesh_latencies.push_back(seconds_since(t));

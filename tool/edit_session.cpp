@@ -243,10 +243,7 @@ void EditSession<D>::update_mesh(const UpdateReport<D>& report, std::vector<Poin
   reply["steiner_added"] = report.steiner_added.size();
   reply["steiner_removed"] = report.steiner_removed.size();
   reply["operations"] = report.operations_touched();
-  PointChange<D> change{std::move(inputs_removed), std::move(inputs_added), 0};
-  change.added_input_count = change.added.size();
-  change.removed.insert(change.removed.end(), report.steiner_removed.begin(), report.steiner_removed.end());
-  change.added.insert(change.added.end(), report.steiner_added.begin(), report.steiner_added.end());
+  const auto change = PointChange<D>::from_update(report, std::move(inputs_removed), std::move(inputs_added));
   const auto start = Clock::now();
   bool rebuilt = false;
   try {

@@ -11,7 +11,9 @@
 
 #include "mesh_test_util.hpp"
 #include "shoremesh/error.hpp"
+#include "shoremesh/families.hpp"
 #include "shoremesh/mesh.hpp"
+#include "shoremesh/well_spaced.hpp"
 
 namespace shoremesh {
 namespace {
@@ -142,7 +144,9 @@ void check_ring_edits(std::optional<BoxTransform<2>> box) {
   std::size_t input_count = 0;
   std::vector<Point2> points = mesh_test::sample_domain(domain, 0.05, 0.02, 41, input_count);
   Mesh2 mesh(points, input_count, domain, box);
-  if (box) ASSERT_GT(mesh.uncovered_count(), 0u);
+  if (box) {
+    ASSERT_GT(mesh.uncovered_count(), 0u);
+  }
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> jitter(-0.03, 0.03);
   auto erase_point = [&](const Point2& p) { points.erase(std::find(points.begin(), points.end(), p)); };
@@ -258,6 +262,35 @@ TEST(MeshIncremental, ScalingByPowersOfTwoKeepsTheMesh) {
     EXPECT_EQ(Mesh2(scaled, scaled.size()).elements(), reference.elements()) << "scale " << scale;
   }
 }
+
+// The mesh follows the engine through PointChange::from_update (as the edit session and bench_dynamic do):
+// after every move it is the mesh of the engine's output, with its input points as such.
+template <int D>
+void check_engine_moves(std::size_t n, int moves, std::uint32_t seed) {
+  WellSpacedSet<D> set;
+  set.build(families::uniform<D>(n, seed));
+  Mesh<D> mesh(set.output_points(), set.input_count());
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const std::vector<std::size_t> ids = set.input_ids();
+  for (int step = 0; step < moves; ++step) {
+    const std::size_t id = ids[rng() % ids.size()];
+    const Point<D> from = set.input_point(id);
+    Point<D> to;
+    for (int i = 0; i < D; ++i) to[i] = u(rng);
+    UpdateReport<D> report;
+    set.move(id, to, &report);
+    ASSERT_FALSE(report.steiner_added.empty() && report.steiner_removed.empty()) << "step " << step;
+    mesh.apply(PointChange<D>::from_update(report, {from}, {to}));
+    const Mesh<D> fresh(set.output_points(), set.input_count());
+    ASSERT_EQ(corner_list(mesh), corner_list(fresh)) << "step " << step;
+    ASSERT_EQ(std::count(mesh.kinds().begin(), mesh.kinds().end(), PointKind::Input), std::ptrdiff_t(set.input_count()))
+        << "step " << step;
+  }
+}
+
+TEST(MeshIncremental, EngineMovesFollowedThroughTheirReportsEqualAFreshMesh2D) { check_engine_moves<2>(300, 30, 3); }
+TEST(MeshIncremental, EngineMovesFollowedThroughTheirReportsEqualAFreshMesh3D) { check_engine_moves<3>(60, 10, 4); }
 
 TEST(MeshIncremental, KeepsInputAndSteinerKinds) {
   Mesh2 mesh(random_points<2>(50, 5), 10);

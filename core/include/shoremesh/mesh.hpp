@@ -18,6 +18,7 @@
 #include "shoremesh/mesh_quality.hpp"
 #include "shoremesh/mesh_shoreline.hpp"
 #include "shoremesh/point.hpp"
+#include "shoremesh/well_spaced.hpp"
 
 namespace shoremesh {
 
@@ -27,6 +28,17 @@ struct PointChange {
   std::vector<Point<D>> removed;
   std::vector<Point<D>> added;
   std::size_t added_input_count = 0;  // the first added_input_count points of `added` are input points
+
+  // What an engine update changed in its output: the input points it removed and added (the caller
+  // knows them: the edit), then the Steiner points of its report.
+  static PointChange from_update(const UpdateReport<D>& report, std::vector<Point<D>> inputs_removed,
+                                 std::vector<Point<D>> inputs_added) {
+    PointChange change{std::move(inputs_removed), std::move(inputs_added), 0};
+    change.added_input_count = change.added.size();
+    change.removed.insert(change.removed.end(), report.steiner_removed.begin(), report.steiner_removed.end());
+    change.added.insert(change.added.end(), report.steiner_added.begin(), report.steiner_added.end());
+    return change;
+  }
 };
 
 // What a change did to the mesh (elements inside the water only): the elements that disappeared and the
