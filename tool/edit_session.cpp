@@ -8,7 +8,7 @@
 
 #include "shoremesh/error.hpp"
 #include "shoremesh/io/point_set_csv.hpp"
-#include "shoremesh/io/ring_check.hpp"
+#include "shoremesh/io/ring_edge_index.hpp"
 
 namespace shoremesh::tool {
 
@@ -99,6 +99,7 @@ EditSession<D>::EditSession(const io::InputSet& set, double rho, std::optional<B
       mesh_(make_mesh<D>(set_.points(), set_.input_count(), domain_, set_.box(), keep_hull_)),
       next_id_(set.size()) {
   preview_.rho = rho;
+  if (!domain_.rings.empty()) ring_index_.emplace(domain_);
   for (std::size_t r = 0; r < domain_.rings.size(); ++r) {
     std::vector<std::size_t> ids;
     for (std::size_t k = 0; k < domain_.rings[r].points.size(); ++k) {
@@ -196,18 +197,17 @@ void EditSession<D>::check_id(std::size_t id) const {
 }
 
 template <int D>
-std::optional<Domain2> EditSession<D>::domain_with(std::size_t id, const std::optional<Point<D>>& to) const {
+std::optional<typename EditSession<D>::RingChange> EditSession<D>::domain_with(std::size_t id, const std::optional<Point<D>>& to) const {
   if constexpr (D != 2) {
     return std::nullopt;
   } else {
     const auto it = ring_of_.find(id);
     if (it == ring_of_.end()) return std::nullopt;
     const auto [r, k] = it->second;
-    Domain2 d = domain_;
-    auto& ring = d.rings[r].points;
+    RingChange change{domain_, {r, k, domain_.rings[r].points[k], !to}};
+    auto& ring = change.domain.rings[r].points;
     // The rings were valid before: only the edges at the changed vertex (or across the gap the removed
     // one leaves, from the vertex before it) are new, and only they need a look.
-    std::size_t changed = k;
     if (to) {
       ring[k] = *to;
     } else {
@@ -215,12 +215,12 @@ std::optional<Domain2> EditSession<D>::domain_with(std::size_t id, const std::op
         throw InputError("input point " + std::to_string(id) + " is one of the last three points of ring " +
                          std::to_string(r + 1) + "; it cannot be removed");
       ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
-      changed = (k + ring.size() - 1) % ring.size();
+      change.edit.vertex = (k + ring.size() - 1) % ring.size();
     }
-    if (const auto defect = io::find_ring_defect_at(d, r, changed))
+    if (const auto defect = ring_index_->defect_at(change.domain, change.edit))
       throw InputError(std::string(to ? "moving" : "removing") + " input point " + std::to_string(id) +
                        " would break the shoreline: " + defect->describe());
-    return d;
+    return change;
   }
 }
 
@@ -237,8 +237,9 @@ void EditSession<D>::commit_ring_removal(std::size_t id) {
 
 template <int D>
 void EditSession<D>::update_mesh(const UpdateReport<D>& report, std::vector<Point<D>> inputs_removed,
-                                 std::vector<Point<D>> inputs_added, std::optional<Domain2> new_domain,
-                                 Clock::time_point engine_start, json& reply) {
+                                 std::vector<Point<D>> inputs_added, std::optional<RingChange> rings,
+                                 Clock::time_point edit_start, Clock::time_point engine_start, json& reply) {
+  reply["rings_ms"] = std::chrono::duration<double, std::milli>(engine_start - edit_start).count();
   reply["engine_ms"] = ms_since(engine_start);
   reply["steiner_added"] = report.steiner_added.size();
   reply["steiner_removed"] = report.steiner_removed.size();
@@ -249,12 +250,15 @@ void EditSession<D>::update_mesh(const UpdateReport<D>& report, std::vector<Poin
   try {
     // A shore point moved or removed changes the rings too: the mesh takes them with the points
     // and classifies again only the triangles near the changed stretch.
-    if constexpr (D == 2) last_delta_ = new_domain ? mesh_.apply(change, *new_domain) : mesh_.apply(change);
+    if constexpr (D == 2) last_delta_ = rings ? mesh_.apply(change, rings->domain) : mesh_.apply(change);
     else last_delta_ = mesh_.apply(change);
   } catch (const InputError&) {
     rebuilt = true;  // the mesh and the engine disagree (nothing was changed): rebuild from the engine's points
   }
-  if (new_domain) domain_ = std::move(*new_domain);
+  if (rings) {
+    ring_index_->commit(rings->domain, rings->edit);
+    domain_ = std::move(rings->domain);
+  }
   if (rebuilt) {
     const auto before = sorted_corners<D>(mesh_);
     mesh_ = make_mesh<D>(set_.points(), set_.input_count(), domain_, set_.box(), keep_hull_);
@@ -267,7 +271,7 @@ void EditSession<D>::update_mesh(const UpdateReport<D>& report, std::vector<Poin
   reply["input_points"] = set_.input_count();
   reply["steiner_points"] = set_.steiner_count();
   reply["mesh_ms"] = ms_since(start);
-  reply["ms"] = ms_since(engine_start);
+  reply["ms"] = ms_since(edit_start);
 }
 
 template <int D>
@@ -283,7 +287,7 @@ json EditSession<D>::add(const std::vector<std::string>& words) {
   const std::size_t id = set_.add(p, &report);
   next_id_ = std::max(next_id_, id + 1);
   json reply = {{"id", id}, {"point", point_json(p)}, {"at", frame_.point(p)}};
-  update_mesh(report, {}, {p}, std::nullopt, start, reply);
+  update_mesh(report, {}, {p}, std::nullopt, start, start, reply);
   return reply;
 }
 
@@ -293,13 +297,14 @@ json EditSession<D>::remove(const std::vector<std::string>& words) {
   const std::size_t id = parse_id(words[1]);
   check_id(id);
   const Point<D> old = set_.input_point(id);
-  std::optional<Domain2> domain = domain_with(id, std::nullopt);
+  const auto edit_start = Clock::now();
+  auto rings = domain_with(id, std::nullopt);
   const auto start = Clock::now();
   UpdateReport<D> report;
   set_.remove(id, &report);
   commit_ring_removal(id);
   json reply = {{"id", id}, {"point", point_json(old)}, {"at", frame_.point(old)}};
-  update_mesh(report, {old}, {}, std::move(domain), start, reply);
+  update_mesh(report, {old}, {}, std::move(rings), edit_start, start, reply);
   return reply;
 }
 
@@ -310,12 +315,13 @@ json EditSession<D>::move(const std::vector<std::string>& words) {
   const Point<D> p = parse_point(words, 2);
   check_id(id);
   const Point<D> old = set_.input_point(id);
-  std::optional<Domain2> domain = domain_with(id, p);
+  const auto edit_start = Clock::now();
+  auto rings = domain_with(id, p);
   const auto start = Clock::now();
   UpdateReport<D> report;
   set_.move(id, p, &report);
   json reply = {{"id", id}, {"point", point_json(p)}, {"at", frame_.point(p)}, {"from", frame_.point(old)}};
-  update_mesh(report, {old}, {p}, std::move(domain), start, reply);
+  update_mesh(report, {old}, {p}, std::move(rings), edit_start, start, reply);
   return reply;
 }
 

@@ -14,6 +14,7 @@
 
 #include "pipeline.hpp"
 #include "shoremesh/io/input_set.hpp"
+#include "shoremesh/io/ring_edge_index.hpp"
 #include "shoremesh/mesh.hpp"
 #include "shoremesh/well_spaced.hpp"
 #include "user_frame.hpp"
@@ -47,16 +48,22 @@ class EditSession {
 
   Point<D> parse_point(const std::vector<std::string>& words, std::size_t first) const;
   std::size_t parse_id(const std::string& word) const;
-  // The domain with input `id` at `to` (nullopt: removed); InputError when the rings would be invalid.
-  // nullopt when `id` is not a ring vertex.
-  std::optional<Domain2> domain_with(std::size_t id, const std::optional<Point<D>>& to) const;
+  // A shore point's edit: the rings after it, and the edit as the ring index takes it.
+  struct RingChange {
+    Domain2 domain;
+    io::RingVertexEdit edit;
+  };
+  // The rings with input `id` at `to` (nullopt: removed); InputError when they would be invalid. nullopt
+  // when `id` is not a ring vertex.
+  std::optional<RingChange> domain_with(std::size_t id, const std::optional<Point<D>>& to) const;
   void commit_ring_removal(std::size_t id);
-  // After an engine update that started at `start`: the mesh takes the engine's Steiner changes plus the
-  // edited input points (and the new rings when a shore point moved or went); the reply gets the counts
-  // and the times.
+  // After an engine update that started at `engine_start`: the mesh takes the engine's Steiner changes
+  // plus the edited input points (and the new rings when a shore point moved or went); the reply gets the
+  // counts and the times (`ms`: the whole edit from `edit_start`, the shoreline check included).
   void update_mesh(const UpdateReport<D>& report, std::vector<Point<D>> inputs_removed,
-                   std::vector<Point<D>> inputs_added, std::optional<Domain2> new_domain,
-                   std::chrono::steady_clock::time_point start, nlohmann::json& reply);
+                   std::vector<Point<D>> inputs_added, std::optional<RingChange> rings,
+                   std::chrono::steady_clock::time_point edit_start,
+                   std::chrono::steady_clock::time_point engine_start, nlohmann::json& reply);
   void check_id(std::size_t id) const;
   nlohmann::json point_json(const Point<D>& p) const;
 
@@ -67,6 +74,7 @@ class EditSession {
   PreviewArgs preview_;
   DynamicWellSpaced<D> set_;
   Domain2 domain_;
+  std::optional<io::RingEdgeIndex> ring_index_;                              // the edges of domain_'s rings
   std::vector<std::vector<std::size_t>> ring_ids_;                          // ring r's vertices as input ids
   std::unordered_map<std::size_t, std::pair<std::size_t, std::size_t>> ring_of_;  // id -> (ring, position)
   Mesh<D> mesh_;

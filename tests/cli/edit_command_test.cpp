@@ -142,7 +142,7 @@ TEST(EditCommand, JsonRepliesIdsAndBadLinesThatKeepTheState) {
   EXPECT_THAT(replies[8]["error"].get<std::string>(), HasSubstr("'x' is not a number"));
   EXPECT_THAT(replies[9]["error"].get<std::string>(), HasSubstr("2D session"));
   EXPECT_THAT(replies[10]["error"].get<std::string>(), HasSubstr("unknown edit 'frob'"));
-  for (const char* key : {"steiner_added", "steiner_removed", "elements_changed", "ms", "engine_ms", "mesh_ms"})
+  for (const char* key : {"steiner_added", "steiner_removed", "elements_changed", "ms", "rings_ms", "engine_ms", "mesh_ms"})
     EXPECT_TRUE(replies[1].contains(key)) << key;
   // The failed lines changed nothing: the same result as the good lines alone.
   EXPECT_EQ(read_file(dir / "mixed.csv"), read_file(dir / "expected.csv"));

@@ -1,4 +1,5 @@
 #include "shoremesh/io/ring_check.hpp"
+#include "shoremesh/io/ring_edge_index.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -114,7 +115,7 @@ TEST(RingCheck, ManyEdgesSweepIsFast) {
 
 // The check of one edited vertex finds a defect exactly when the whole check does, for moves (small and
 // large, so that many cross) and removals of vertices of a wavy lake with two islands.
-TEST(RingCheck, CheckAtAnEditedVertexAgreesWithTheWholeCheck) {
+TEST(RingCheck, IndexedCheckAtAnEditedVertexAgreesWithTheWholeCheckThroughAnEditSequence) {
   std::vector<Point2> shore, island, islet;
   for (int i = 0; i < 60; ++i) {
     const double t = 2 * 3.141592653589793 * i / 60, r = 100 + 15 * std::sin(5 * t);
@@ -125,30 +126,53 @@ TEST(RingCheck, CheckAtAnEditedVertexAgreesWithTheWholeCheck) {
     island.push_back({30 + 15 * std::cos(t), 10 * std::sin(t)});
     islet.push_back({-40 + 8 * std::cos(t), 20 + 8 * std::sin(t)});
   }
-  const Domain2 lake = domain_of({shore, island, islet});
+  // The edits that pass are committed, so the index is checked as an edit session keeps it: through a
+  // sequence of moves and removals, against the whole check of the rings as they are.
+  Domain2 lake = domain_of({shore, island, islet});
   ASSERT_FALSE(find_ring_defect(lake).has_value());
+  RingEdgeIndex index(lake);
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(-1, 1);
-  int defects = 0, valid = 0;
+  int defects = 0, valid = 0, removals = 0;
   for (int k = 0; k < 3000; ++k) {
     Domain2 d = lake;
-    const std::size_t r = rng() % 3;
-    auto& ring = d.rings[r].points;
+    RingVertexEdit edit;
+    edit.ring = rng() % 3;
+    auto& ring = d.rings[edit.ring].points;
     const std::size_t v = rng() % ring.size();
-    std::size_t changed = v;
-    if (k % 4 == 3) {
+    edit.gone = ring[v];
+    edit.vertex = v;
+    if (k % 10 == 9 && ring.size() > 6) {
       ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(v));
-      changed = (v + ring.size() - 1) % ring.size();
+      edit.removed = true;
+      edit.vertex = (v + ring.size() - 1) % ring.size();
     } else {
       const double reach = k % 4 == 0 ? 80 : 8;
       ring[v] = {ring[v][0] + reach * u(rng), ring[v][1] + reach * u(rng)};
     }
-    const bool whole = find_ring_defect(d).has_value();
-    ASSERT_EQ(find_ring_defect_at(d, r, changed).has_value(), whole) << "edit " << k;
-    (whole ? defects : valid) += 1;
+    const auto whole = find_ring_defect(d);
+    const auto local = index.defect_at(d, edit);
+    ASSERT_EQ(local.has_value(), whole.has_value()) << "edit " << k << (whole ? ": " + whole->describe() : "");
+    if (local) {
+      // One of its two edges is at the changed vertex.
+      const std::size_t n = ring.size(), before = (edit.vertex + n - 1) % n;
+      auto at_vertex = [&](std::size_t r, std::size_t e) { return r == edit.ring && (e == before || e == edit.vertex); };
+      EXPECT_TRUE(at_vertex(local->ring_a, local->vertex_a) || at_vertex(local->ring_b, local->vertex_b))
+          << "edit " << k << ": " << local->describe();
+      ++defects;
+      continue;
+    }
+    index.commit(d, edit);
+    lake = std::move(d);
+    std::size_t edges = 0;
+    for (const auto& r : lake.rings) edges += r.points.size();
+    ASSERT_EQ(index.size(), edges) << "edit " << k;
+    ++valid;
+    removals += edit.removed;
   }
   EXPECT_GT(defects, 300);  // both outcomes were really tried
   EXPECT_GT(valid, 300);
+  EXPECT_GT(removals, 30);
 }
 
 TEST(InputSetMerge, SameProjectionRequiredAndOriginsRenumbered) {

@@ -6,8 +6,15 @@
 #include <vector>
 
 #include "exact_orient.hpp"
+#include "ring_geometry.hpp"
 
 namespace shoremesh::io {
+
+using detail::adjacent_edges_overlap;
+using detail::consecutive_edges;
+using detail::crossing;
+using detail::segments_meet;
+using detail::within_box;
 
 namespace {
 
@@ -16,46 +23,6 @@ struct Edge {
   Point2 a, b;
   double xmin, xmax, ymin, ymax;
 };
-
-// Collinear point p lies within the closed box of segment ab (exact: comparisons only).
-bool within_box(const Point2& a, const Point2& b, const Point2& p) {
-  return std::min(a[0], b[0]) <= p[0] && p[0] <= std::max(a[0], b[0]) && std::min(a[1], b[1]) <= p[1] &&
-         p[1] <= std::max(a[1], b[1]);
-}
-
-// Closed segments ab and cd share at least one point (exact).
-bool segments_meet(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
-  using detail::orient2d_sign;
-  const int o1 = orient2d_sign(a, b, c), o2 = orient2d_sign(a, b, d);
-  const int o3 = orient2d_sign(c, d, a), o4 = orient2d_sign(c, d, b);
-  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
-  if (o1 == 0 && within_box(a, b, c)) return true;
-  if (o2 == 0 && within_box(a, b, d)) return true;
-  if (o3 == 0 && within_box(c, d, a)) return true;
-  if (o4 == 0 && within_box(c, d, b)) return true;
-  return false;
-}
-
-// Consecutive edges a->b and b->c meet only at b unless c folds back along a->b (collinear, same side of b).
-bool adjacent_edges_overlap(const Point2& a, const Point2& b, const Point2& c) {
-  if (detail::orient2d_sign(a, b, c) != 0) return false;
-  auto side = [](double u, double v) { return (u > v) - (u < v); };
-  const int sa = a[0] != b[0] ? side(a[0], b[0]) : side(a[1], b[1]);
-  const int sc = a[0] != b[0] ? side(c[0], b[0]) : side(c[1], b[1]);
-  return sa == sc && sa != 0;
-}
-
-// Edges i and j of a ring of n vertices follow one another (they share a vertex by construction).
-bool consecutive_edges(std::size_t i, std::size_t j, std::size_t n) { return (i + 1) % n == j || (j + 1) % n == i; }
-
-// Edge vertex_a of ring_a meets edge vertex_b of ring_b: the defect, the pair in (ring, edge) order.
-RingDefect crossing(std::size_t ring_a, std::size_t vertex_a, std::size_t ring_b, std::size_t vertex_b) {
-  if (std::make_pair(ring_b, vertex_b) < std::make_pair(ring_a, vertex_a)) {
-    std::swap(ring_a, ring_b);
-    std::swap(vertex_a, vertex_b);
-  }
-  return RingDefect{RingDefect::Kind::Intersection, ring_a, vertex_a, ring_b, vertex_b};
-}
 
 }  // namespace
 
@@ -104,38 +71,6 @@ std::optional<RingDefect> find_ring_defect(const Domain2& domain) {
     }
     active.resize(keep);
     active.push_back(k);
-  }
-  return std::nullopt;
-}
-
-std::optional<RingDefect> find_ring_defect_at(const Domain2& domain, std::size_t ring, std::size_t vertex) {
-  const auto& pts = domain.rings.at(ring).points;
-  const std::size_t n = pts.size();
-  if (n < 3) return RingDefect{RingDefect::Kind::TooFewPoints, ring, 0, ring, 0};
-  const std::size_t before = (vertex + n - 1) % n;
-  for (const std::size_t i : {before, vertex}) {
-    const std::size_t j = (i + 1) % n;
-    if (pts[i] == pts[j]) return RingDefect{RingDefect::Kind::RepeatedVertex, ring, i, ring, j};
-  }
-  for (const std::size_t i : {(before + n - 1) % n, before, vertex})  // folds at before, vertex, after
-    if (adjacent_edges_overlap(pts[i], pts[(i + 1) % n], pts[(i + 2) % n]))
-      return RingDefect{RingDefect::Kind::Intersection, ring, i, ring, (i + 1) % n};
-  for (const std::size_t e : {before, vertex}) {  // the edges e -> e + 1 that are new
-    const Point2 &a = pts[e], &b = pts[(e + 1) % n];
-    const double xmin = std::min(a[0], b[0]), xmax = std::max(a[0], b[0]);
-    const double ymin = std::min(a[1], b[1]), ymax = std::max(a[1], b[1]);
-    for (std::size_t r = 0; r < domain.rings.size(); ++r) {
-      const auto& other = domain.rings[r].points;
-      const std::size_t m = other.size();
-      for (std::size_t i = 0; i < m; ++i) {
-        const Point2 &c = other[i], &d = other[(i + 1) % m];
-        if (std::max(c[0], d[0]) < xmin || std::min(c[0], d[0]) > xmax || std::max(c[1], d[1]) < ymin ||
-            std::min(c[1], d[1]) > ymax)
-          continue;
-        if (r == ring && (i == e || consecutive_edges(i, e, n))) continue;  // itself, its neighbours
-        if (segments_meet(a, b, c, d)) return crossing(ring, e, r, i);
-      }
-    }
   }
   return std::nullopt;
 }

@@ -24,11 +24,8 @@ struct RingDefect {
 // The first defect found, or nothing when the rings are valid.
 std::optional<RingDefect> find_ring_defect(const Domain2& domain);
 
-// The same for rings that were valid before one vertex of ring `ring` moved, or before the vertex after
-// `vertex` was removed: only the edges into and out of `vertex` are new, so only they are tested (each
-// against every other edge, boxes first), with the folds at `vertex` and its two neighbours. O(n) with a
-// small constant, against the sort of the whole check: what a shore edit needs.
-std::optional<RingDefect> find_ring_defect_at(const Domain2& domain, std::size_t ring, std::size_t vertex);
+// The check after one vertex moved or went, which reads only the edges near the new ones: RingEdgeIndex
+// (ring_edge_index.hpp).
 
 // Sets each ring's role from its nesting depth (the number of other rings containing it): even -> Shore,
 // odd -> Island, as the even-odd rule implies. For rings that neither cross nor touch (check first).

@@ -1,0 +1,53 @@
+#pragma once
+// Internal: the segment tests of the ring checks (the whole check, and the index an edit session keeps),
+// exact through orient2d_sign.
+#include <algorithm>
+#include <cstddef>
+#include <utility>
+
+#include "exact_orient.hpp"
+#include "shoremesh/io/ring_check.hpp"
+
+namespace shoremesh::io::detail {
+
+// Collinear point p lies within the closed box of segment ab (exact: comparisons only).
+inline bool within_box(const Point2& a, const Point2& b, const Point2& p) {
+  return std::min(a[0], b[0]) <= p[0] && p[0] <= std::max(a[0], b[0]) && std::min(a[1], b[1]) <= p[1] &&
+         p[1] <= std::max(a[1], b[1]);
+}
+
+// Closed segments ab and cd share at least one point (exact).
+inline bool segments_meet(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
+  using detail::orient2d_sign;
+  const int o1 = orient2d_sign(a, b, c), o2 = orient2d_sign(a, b, d);
+  const int o3 = orient2d_sign(c, d, a), o4 = orient2d_sign(c, d, b);
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  if (o1 == 0 && within_box(a, b, c)) return true;
+  if (o2 == 0 && within_box(a, b, d)) return true;
+  if (o3 == 0 && within_box(c, d, a)) return true;
+  if (o4 == 0 && within_box(c, d, b)) return true;
+  return false;
+}
+
+// Consecutive edges a->b and b->c meet only at b unless c folds back along a->b (collinear, same side of b).
+inline bool adjacent_edges_overlap(const Point2& a, const Point2& b, const Point2& c) {
+  if (detail::orient2d_sign(a, b, c) != 0) return false;
+  auto side = [](double u, double v) { return (u > v) - (u < v); };
+  const int sa = a[0] != b[0] ? side(a[0], b[0]) : side(a[1], b[1]);
+  const int sc = a[0] != b[0] ? side(c[0], b[0]) : side(c[1], b[1]);
+  return sa == sc && sa != 0;
+}
+
+// Edges i and j of a ring of n vertices follow one another (they share a vertex by construction).
+inline bool consecutive_edges(std::size_t i, std::size_t j, std::size_t n) { return (i + 1) % n == j || (j + 1) % n == i; }
+
+// Edge vertex_a of ring_a meets edge vertex_b of ring_b: the defect, the pair in (ring, edge) order.
+inline RingDefect crossing(std::size_t ring_a, std::size_t vertex_a, std::size_t ring_b, std::size_t vertex_b) {
+  if (std::make_pair(ring_b, vertex_b) < std::make_pair(ring_a, vertex_a)) {
+    std::swap(ring_a, ring_b);
+    std::swap(vertex_a, vertex_b);
+  }
+  return RingDefect{RingDefect::Kind::Intersection, ring_a, vertex_a, ring_b, vertex_b};
+}
+
+}  // namespace shoremesh::io::detail
