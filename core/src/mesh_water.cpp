@@ -64,21 +64,22 @@ void WaterTest::remove_from_slabs(std::uint32_t e) {
 void WaterTest::replace_stretch(std::size_t r, const std::vector<Point2>& before, const std::vector<Point2>& after,
                                 std::size_t prefix, std::size_t suffix) {
   const std::size_t m = before.size(), n = after.size();
-  auto changed = [&](std::size_t k, std::size_t size) {
-    return prefix == 0 ? (k == size - 1 || k + suffix + 1 <= size) : (k + 1 >= prefix && k + suffix + 1 <= size);
+  // The run of edges touching the changed vertices, in a ring of `size` vertices (the run wraps when
+  // prefix is 0): visited in O(run), not O(ring).
+  auto for_each_changed = [&](std::size_t size, auto&& visit) {
+    if (prefix == 0) {
+      visit(size - 1);
+      for (std::size_t k = 0; k + suffix + 1 <= size && k + 1 < size; ++k) visit(k);
+    } else {
+      for (std::size_t k = prefix - 1; k + suffix + 1 <= size; ++k) visit(k);
+    }
   };
   std::vector<std::uint32_t>& old_ids = ring_edges_.at(r);
-  std::vector<std::uint32_t> ids(n);
-  for (std::size_t k = 0; k < m; ++k)
-    if (changed(k, m)) {
-      remove_from_slabs(old_ids[k]);
-      free_edges_.push_back(old_ids[k]);
-    }
-  for (std::size_t k = 0; k < n; ++k) {
-    if (!changed(k, n)) {
-      ids[k] = old_ids[k + 1 < prefix ? k : k + m - n];
-      continue;
-    }
+  for_each_changed(m, [&](std::size_t k) {
+    remove_from_slabs(old_ids[k]);
+    free_edges_.push_back(old_ids[k]);
+  });
+  auto new_edge = [&](std::size_t k) {
     std::uint32_t e;
     if (free_edges_.empty()) {
       e = static_cast<std::uint32_t>(edges_.size());
@@ -89,8 +90,17 @@ void WaterTest::replace_stretch(std::size_t r, const std::vector<Point2>& before
     }
     edges_[e] = {after[k], after[(k + 1) % n]};
     add_to_slabs(e);
-    ids[k] = e;
+    return e;
+  };
+  if (m == n) {  // a vertex moved: the other edges keep their places
+    for_each_changed(n, [&](std::size_t k) { old_ids[k] = new_edge(k); });
+    return;
   }
+  // The count changed: the edges after the run move by n - m places.
+  std::vector<std::uint32_t> ids(n, kNoEdge);
+  for_each_changed(n, [&](std::size_t k) { ids[k] = new_edge(k); });
+  for (std::size_t k = 0; k < n; ++k)
+    if (ids[k] == kNoEdge) ids[k] = old_ids[k + 1 < prefix ? k : k + m - n];
   old_ids = std::move(ids);
 }
 

@@ -32,6 +32,7 @@ class WaterTest {
   struct Edge {
     Point2 a, b;
   };
+  static constexpr std::uint32_t kNoEdge = 0xffffffffu;
   std::size_t slab_of(double y) const;
   void add_to_slabs(std::uint32_t e);
   void remove_from_slabs(std::uint32_t e);
