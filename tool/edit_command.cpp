@@ -61,7 +61,8 @@ Command add_edit_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("edit", "Build once, then apply a stream of edits dynamically, reporting each change");
   add_input_options(cmd, opt->in);
   cmd->add_option("--edits", opt->edits,
-                  "Edit lines from FILE, or '-' for standard input: add X Y [Z] | remove ID | move ID X Y [Z] | "
+                  "Edit lines from FILE, or '-' for standard input: add X Y [Z] | add X Y after ID (a shore point: the "
+                  "new point joins its shoreline, after it) | remove ID | move ID X Y [Z] | "
                   "export PATH | preview PATH | preview-change PATH | stats ('#' comments)")
       ->required();
   cmd->add_flag("--json", opt->json, "Reply with one JSON object per line (for programs)");

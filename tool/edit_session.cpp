@@ -159,8 +159,8 @@ template <int D>
 Point<D> EditSession<D>::parse_point(const std::vector<std::string>& words, std::size_t first) const {
   const std::size_t given = words.size() - first;
   if (given != std::size_t(D))
-    throw InputError(words[0] + " takes " + (first == 2 ? "ID " : "") + (D == 2 ? "X Y" : "X Y Z") + " in a " +
-                     std::to_string(D) + "D session");
+    throw InputError(words[0] + " takes " + (first == 2 ? "ID " : "") + (D == 2 ? "X Y" : "X Y Z") +
+                     (words[0] == "add" && D == 2 ? " [after ID]" : "") + " in a " + std::to_string(D) + "D session");
   Point<D> p;
   for (int i = 0; i < D; ++i) p[std::size_t(i)] = parse_number(words[first + std::size_t(i)]);
   if constexpr (D == 2) {
@@ -197,19 +197,24 @@ void EditSession<D>::check_id(std::size_t id) const {
 }
 
 template <int D>
-std::optional<typename EditSession<D>::RingChange> EditSession<D>::domain_with(std::size_t id, const std::optional<Point<D>>& to) const {
+std::optional<typename EditSession<D>::RingChange> EditSession<D>::rings_with(io::RingVertexEdit::Kind kind,
+                                                                             std::size_t id, const Point<D>& p) const {
+  using Kind = io::RingVertexEdit::Kind;
   if constexpr (D != 2) {
     return std::nullopt;
   } else {
     const auto it = ring_of_.find(id);
     if (it == ring_of_.end()) return std::nullopt;
     const auto [r, k] = it->second;
-    RingChange change{domain_, {r, k, domain_.rings[r].points[k], !to}};
+    RingChange change{domain_, {kind, r, k, domain_.rings[r].points[k]}};
     auto& ring = change.domain.rings[r].points;
     // The rings were valid before: only the edges at the changed vertex (or across the gap the removed
     // one leaves, from the vertex before it) are new, and only they need a look.
-    if (to) {
-      ring[k] = *to;
+    if (kind == Kind::Move) {
+      ring[k] = p;
+    } else if (kind == Kind::Insert) {
+      ring.insert(ring.begin() + static_cast<std::ptrdiff_t>(k + 1), p);
+      change.edit.vertex = k + 1;
     } else {
       if (ring.size() <= 3)
         throw InputError("input point " + std::to_string(id) + " is one of the last three points of ring " +
@@ -217,22 +222,33 @@ std::optional<typename EditSession<D>::RingChange> EditSession<D>::domain_with(s
       ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
       change.edit.vertex = (k + ring.size() - 1) % ring.size();
     }
-    if (const auto defect = ring_index_->defect_at(change.domain, change.edit))
-      throw InputError(std::string(to ? "moving" : "removing") + " input point " + std::to_string(id) +
-                       " would break the shoreline: " + defect->describe());
+    if (const auto defect = ring_index_->defect_at(change.domain, change.edit)) {
+      const std::string what = kind == Kind::Move     ? "moving input point " + std::to_string(id)
+                               : kind == Kind::Insert ? "adding a point after input point " + std::to_string(id)
+                                                      : "removing input point " + std::to_string(id);
+      throw InputError(what + " would break the shoreline: " + defect->describe());
+    }
     return change;
   }
 }
 
 template <int D>
-void EditSession<D>::commit_ring_removal(std::size_t id) {
-  const auto it = ring_of_.find(id);
-  if (it == ring_of_.end()) return;
-  const auto [r, k] = it->second;
-  ring_of_.erase(it);
+void EditSession<D>::commit_ring_ids(const RingChange& change, std::size_t id) {
+  using Kind = io::RingVertexEdit::Kind;
+  const std::size_t r = change.edit.ring;
   auto& ids = ring_ids_[r];
-  ids.erase(ids.begin() + static_cast<std::ptrdiff_t>(k));
-  for (std::size_t j = k; j < ids.size(); ++j) ring_of_[ids[j]] = {r, j};
+  std::size_t first = 0;  // the ids from here on changed position
+  if (change.edit.kind == Kind::Insert) {
+    first = change.edit.vertex;
+    ids.insert(ids.begin() + static_cast<std::ptrdiff_t>(first), id);
+  } else if (change.edit.kind == Kind::Remove) {
+    first = ring_of_.at(id).second;
+    ring_of_.erase(id);
+    ids.erase(ids.begin() + static_cast<std::ptrdiff_t>(first));
+  } else {
+    return;
+  }
+  for (std::size_t j = first; j < ids.size(); ++j) ring_of_[ids[j]] = {r, j};
 }
 
 template <int D>
@@ -281,13 +297,35 @@ json EditSession<D>::point_json(const Point<D>& p) const {
 
 template <int D>
 json EditSession<D>::add(const std::vector<std::string>& words) {
-  const Point<D> p = parse_point(words, 1);
+  // add X Y [Z] [after ID]: with `after`, the point joins ID's shoreline, between ID and the vertex after it.
+  std::vector<std::string> point_words = words;
+  std::optional<std::size_t> after;
+  if (point_words.size() >= 3 && point_words[point_words.size() - 2] == "after") {
+    if constexpr (D != 2) throw InputError("add X Y Z after ID: shorelines are for 2D sessions");
+    after = parse_id(point_words.back());
+    point_words.resize(point_words.size() - 2);
+  }
+  const Point<D> p = parse_point(point_words, 1);
+  const auto edit_start = Clock::now();
+  std::optional<RingChange> rings;
+  if (after) {
+    check_id(*after);
+    rings = rings_with(io::RingVertexEdit::Kind::Insert, *after, p);
+    if (!rings)
+      throw InputError("input point " + std::to_string(*after) +
+                       " is on no shoreline (a loose point); 'add X Y' without 'after' adds a loose point");
+  }
   const auto start = Clock::now();
   UpdateReport<D> report;
   const std::size_t id = set_.add(p, &report);
   next_id_ = std::max(next_id_, id + 1);
   json reply = {{"id", id}, {"point", point_json(p)}, {"at", frame_.point(p)}};
-  update_mesh(report, {}, {p}, std::nullopt, start, start, reply);
+  if (rings) {
+    commit_ring_ids(*rings, id);
+    reply["after"] = *after;
+    reply["ring"] = rings->edit.ring + 1;
+  }
+  update_mesh(report, {}, {p}, std::move(rings), edit_start, start, reply);
   return reply;
 }
 
@@ -298,11 +336,11 @@ json EditSession<D>::remove(const std::vector<std::string>& words) {
   check_id(id);
   const Point<D> old = set_.input_point(id);
   const auto edit_start = Clock::now();
-  auto rings = domain_with(id, std::nullopt);
+  auto rings = rings_with(io::RingVertexEdit::Kind::Remove, id, old);
   const auto start = Clock::now();
   UpdateReport<D> report;
   set_.remove(id, &report);
-  commit_ring_removal(id);
+  if (rings) commit_ring_ids(*rings, id);
   json reply = {{"id", id}, {"point", point_json(old)}, {"at", frame_.point(old)}};
   update_mesh(report, {old}, {}, std::move(rings), edit_start, start, reply);
   return reply;
@@ -316,7 +354,7 @@ json EditSession<D>::move(const std::vector<std::string>& words) {
   check_id(id);
   const Point<D> old = set_.input_point(id);
   const auto edit_start = Clock::now();
-  auto rings = domain_with(id, p);
+  auto rings = rings_with(io::RingVertexEdit::Kind::Move, id, p);
   const auto start = Clock::now();
   UpdateReport<D> report;
   set_.move(id, p, &report);
@@ -445,7 +483,10 @@ std::string reply_text(const json& r) {
     return "built: " + count(r, "input_points") + " input points, " + count(r, "steiner_points") + " Steiner points, " +
            count(r, "elements") + " elements, " + millis(r) + "; box " + r["box"].dump() + " (" +
            r.value("units", "") + ")";
-  if (op == "add") return line + "added id " + count(r, "id") + " at " + r.value("at", "") + change();
+  if (op == "add")
+    return line + "added id " + count(r, "id") + " at " + r.value("at", "") +
+           (r.contains("after") ? " to ring " + count(r, "ring") + " after id " + count(r, "after") : std::string()) +
+           change();
   if (op == "remove") return line + "removed id " + count(r, "id") + change();
   if (op == "move") return line + "moved id " + count(r, "id") + " to " + r.value("at", "") + change();
   if (op == "export" || op == "preview" || op == "preview-change")

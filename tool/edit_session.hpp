@@ -53,10 +53,12 @@ class EditSession {
     Domain2 domain;
     io::RingVertexEdit edit;
   };
-  // The rings with input `id` at `to` (nullopt: removed); InputError when they would be invalid. nullopt
-  // when `id` is not a ring vertex.
-  std::optional<RingChange> domain_with(std::size_t id, const std::optional<Point<D>>& to) const;
-  void commit_ring_removal(std::size_t id);
+  // The rings after a shore edit at input `id`: moved to `p` (Move), removed (Remove; `p` unused), or a new
+  // vertex at `p` after it (Insert). InputError when they would be invalid; nullopt when `id` is on no ring.
+  std::optional<RingChange> rings_with(io::RingVertexEdit::Kind kind, std::size_t id, const Point<D>& p) const;
+  // The ids of the ring the change edits, after the engine took it: `id` removed, or inserted as the new
+  // vertex (moves keep them).
+  void commit_ring_ids(const RingChange& change, std::size_t id);
   // After an engine update that started at `engine_start`: the mesh takes the engine's Steiner changes
   // plus the edited input points (and the new rings when a shore point moved or went); the reply gets the
   // counts and the times (`ms`: the whole edit from `edit_start`, the shoreline check included).

@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <array>
 #include <map>
+#include <sstream>
 
 #include "cli_test_util.hpp"
 #include "shoremesh/io/point_file.hpp"
@@ -203,6 +206,95 @@ TEST(EditCommand, SuperiorShorelineEditsFollowTheRingsAndEqualAFreshRun) {
 
 namespace shoremesh::cli_test {
 namespace {
+
+// The triangles of an OFF export as sorted corner coordinates (the text of each number): a mesh compared
+// by place, whatever its numbering.
+std::vector<std::array<std::string, 3>> off_triangles(const fs::path& off) {
+  std::istringstream in(read_file(off));
+  std::string magic;
+  std::size_t points = 0, faces = 0, edges = 0;
+  in >> magic >> points >> faces >> edges;
+  EXPECT_EQ(magic, "OFF");
+  std::vector<std::string> corner(points);
+  for (auto& c : corner) {
+    std::string x, y, z;
+    in >> x >> y >> z;
+    c = x + " " + y;
+  }
+  std::vector<std::array<std::string, 3>> out;
+  for (std::size_t f = 0; f < faces; ++f) {
+    std::size_t three = 0, a = 0, b = 0, c = 0;
+    in >> three >> a >> b >> c;
+    EXPECT_EQ(three, 3u);
+    std::array<std::string, 3> t{corner.at(a), corner.at(b), corner.at(c)};
+    std::sort(t.begin(), t.end());
+    out.push_back(t);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(EditCommand, APointAddedAfterAShorePointJoinsItsShoreline) {
+  TempDir dir;
+  // A lake (a 16-gon of radius 100) with a square island, as a ring file in map units.
+  std::vector<Point2> shore;
+  for (int i = 0; i < 16; ++i) {
+    const double t = 2 * 3.141592653589793 * i / 16;
+    shore.push_back({200 + 100 * std::cos(t), 200 + 100 * std::sin(t)});
+  }
+  const std::vector<Point2> island{{170, 190}, {190, 190}, {190, 210}, {170, 210}};
+  auto ring_text = [](const std::vector<Point2>& ring) {
+    std::string text;
+    for (std::size_t i = 0; i <= ring.size(); ++i)
+      text += io::format_double(ring[i % ring.size()][0]) + "," + io::format_double(ring[i % ring.size()][1]) + "\n";
+    return text;
+  };
+  write_file(dir / "lake.txt", ring_text(shore) + "\n" + ring_text(island));
+  auto xy = [](const Point2& p) { return io::format_double(p[0]) + " " + io::format_double(p[1]); };
+  // Out into the land between shore vertices 3 and 4 (so the water grows), then a little further.
+  const Point2 a = shore[3], b = shore[4];
+  const Point2 bay{(a[0] + b[0]) / 2 + 0.05 * (a[0] + b[0] - 400), (a[1] + b[1]) / 2 + 0.05 * (a[1] + b[1] - 400)};
+  const Point2 bay2{bay[0] + 1, bay[1] + 0.5};
+  const std::string edits = "add " + xy(bay) + " after 3\n" +  // id 20
+                            "add 180 200 after 5\n" +           // into the island: the shore would cross it
+                            "add 230 230\n" +                   // a loose point, id 21
+                            "add 231 229 after 21\n" +          // after a loose point: no shoreline
+                            "move 20 " + xy(bay2) + "\n" +     // the new shore vertex moves with its ring
+                            "export final.off\nexport final.csv\nstats\n";
+  const RunResult r = shoremesh(dir, "edit lake.txt --json --edits -", edits);
+  EXPECT_EQ(r.code, 1) << r.err;
+  const auto replies = json_lines(r.out);
+  ASSERT_EQ(replies.size(), 9u) << r.out;  // the build's, then one a line
+  ASSERT_TRUE(replies[1]["ok"].get<bool>()) << replies[1];
+  EXPECT_EQ(replies[1]["id"], 20);
+  EXPECT_EQ(replies[1]["after"], 3);
+  EXPECT_EQ(replies[1]["ring"], 1);
+  EXPECT_FALSE(replies[2]["ok"].get<bool>());
+  EXPECT_THAT(replies[2]["error"].get<std::string>(),
+              HasSubstr("adding a point after input point 5 would break the shoreline: ring 1 edge"));
+  EXPECT_EQ(replies[3]["id"], 21);
+  EXPECT_FALSE(replies[4]["ok"].get<bool>());
+  EXPECT_THAT(replies[4]["error"].get<std::string>(), HasSubstr("input point 21 is on no shoreline"));
+  for (std::size_t i : {5u, 6u, 7u, 8u}) EXPECT_TRUE(replies[i]["ok"].get<bool>()) << replies[i];
+  EXPECT_EQ(replies[8]["shore_segments"], 16 + 4 + 1);  // the shore has one vertex, one segment more
+
+  // A fresh run on the shoreline with the vertex in place and the loose point: the same mesh, clipped
+  // to the same water.
+  std::vector<Point2> edited = shore;
+  edited.insert(edited.begin() + 4, bay2);
+  write_file(dir / "lake2.txt", ring_text(edited) + "\n" + ring_text(island));
+  write_file(dir / "loose.csv", "x,y\n230,230\n");
+  const RunResult fresh =
+      shoremesh(dir, "mesh -q lake2.txt loose.csv --box " + box_of(dir / "final.csv") + " -o fresh.off");
+  ASSERT_EQ(fresh.code, 0) << fresh.err;
+  const auto edited_mesh = off_triangles(dir / "final.off");
+  EXPECT_GT(edited_mesh.size(), 30u);
+  EXPECT_EQ(edited_mesh, off_triangles(dir / "fresh.off"));
+  // And not the mesh of the old shoreline: the bay is water now.
+  write_file(dir / "lake_old.txt", ring_text(shore) + "\n" + ring_text(island));
+  ASSERT_EQ(shoremesh(dir, "mesh -q lake_old.txt loose.csv --box " + box_of(dir / "final.csv") + " -o old.off").code, 0);
+  EXPECT_NE(edited_mesh, off_triangles(dir / "old.off"));
+}
 
 TEST(EditCommand, LonLatEditsAreProjectedLikeTheInput) {
   TempDir dir;

@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -127,13 +128,14 @@ TEST(RingCheck, IndexedCheckAtAnEditedVertexAgreesWithTheWholeCheckThroughAnEdit
     islet.push_back({-40 + 8 * std::cos(t), 20 + 8 * std::sin(t)});
   }
   // The edits that pass are committed, so the index is checked as an edit session keeps it: through a
-  // sequence of moves and removals, against the whole check of the rings as they are.
+  // sequence of moves, removals and insertions, against the whole check of the rings as they are.
   Domain2 lake = domain_of({shore, island, islet});
   ASSERT_FALSE(find_ring_defect(lake).has_value());
   RingEdgeIndex index(lake);
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(-1, 1);
-  int defects = 0, valid = 0, removals = 0;
+  int defects = 0, valid = 0;
+  std::array<int, 3> kinds{};  // accepted edits of each kind
   for (int k = 0; k < 3000; ++k) {
     Domain2 d = lake;
     RingVertexEdit edit;
@@ -144,8 +146,15 @@ TEST(RingCheck, IndexedCheckAtAnEditedVertexAgreesWithTheWholeCheckThroughAnEdit
     edit.vertex = v;
     if (k % 10 == 9 && ring.size() > 6) {
       ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(v));
-      edit.removed = true;
+      edit.kind = RingVertexEdit::Kind::Remove;
       edit.vertex = (v + ring.size() - 1) % ring.size();
+    } else if (k % 10 == 4 || k % 10 == 7) {  // a vertex inserted near the middle of edge v -> v + 1
+      const Point2 a = ring[v], b = ring[(v + 1) % ring.size()];
+      const double reach = k % 10 == 4 ? 2 : 40;
+      ring.insert(ring.begin() + static_cast<std::ptrdiff_t>(v + 1),
+                  Point2{(a[0] + b[0]) / 2 + reach * u(rng), (a[1] + b[1]) / 2 + reach * u(rng)});
+      edit.kind = RingVertexEdit::Kind::Insert;
+      edit.vertex = v + 1;
     } else {
       const double reach = k % 4 == 0 ? 80 : 8;
       ring[v] = {ring[v][0] + reach * u(rng), ring[v][1] + reach * u(rng)};
@@ -168,11 +177,12 @@ TEST(RingCheck, IndexedCheckAtAnEditedVertexAgreesWithTheWholeCheckThroughAnEdit
     for (const auto& r : lake.rings) edges += r.points.size();
     ASSERT_EQ(index.size(), edges) << "edit " << k;
     ++valid;
-    removals += edit.removed;
+    ++kinds[std::size_t(edit.kind)];
   }
   EXPECT_GT(defects, 300);  // both outcomes were really tried
   EXPECT_GT(valid, 300);
-  EXPECT_GT(removals, 30);
+  EXPECT_GT(kinds[std::size_t(RingVertexEdit::Kind::Remove)], 30);
+  EXPECT_GT(kinds[std::size_t(RingVertexEdit::Kind::Insert)], 100);
 }
 
 TEST(InputSetMerge, SameProjectionRequiredAndOriginsRenumbered) {

@@ -78,9 +78,16 @@ std::optional<RingDefect> RingEdgeIndex::defect_at(const Domain2& after, const R
     if (detail::adjacent_edges_overlap(pts[i], pts[(i + 1) % n], pts[(i + 2) % n]))
       return RingDefect{RingDefect::Kind::Intersection, ring, i, ring, (i + 1) % n};
   // The edges into and out of `vertex` (for a removal, the one into it was there before: harmless) against
-  // the indexed edges their boxes meet. The tree holds the rings before the edit: the edges at `gone` are
-  // not in `after`, and the edges after the edit that it lacks are these two, which follow one another
-  // (the folds above). Among the crossings, the first in (ring, edge) order, as a scan would find it.
+  // the indexed edges their boxes meet. The tree holds the rings before the edit: the edges it took away
+  // (at `gone`, or the edge an inserted vertex split) are not in `after`, and the edges after the edit that
+  // it lacks are these two, which follow one another (the folds above). Among the crossings, the first in
+  // (ring, edge) order, as a scan would find it.
+  const bool insert = edit.kind == RingVertexEdit::Kind::Insert;
+  const Point2 &split_a = pts[before], &split_b = pts[(vertex + 1) % n];  // Insert: the edge that went
+  auto taken_away = [&](const IndexedEdge& f) {
+    if (f.ring != ring) return false;
+    return insert ? f.a == split_a && f.b == split_b : f.a == edit.gone || f.b == edit.gone;
+  };
   std::vector<Entry> near;
   for (const std::size_t e : {before, vertex}) {
     const Point2 &a = pts[e], &b = pts[(e + 1) % n];
@@ -89,10 +96,9 @@ std::optional<RingDefect> RingEdgeIndex::defect_at(const Domain2& after, const R
     tree_->rtree.query(bgi::intersects(box_of(a, b)), std::back_inserter(near));
     std::optional<std::pair<std::size_t, std::size_t>> first;
     for (const auto& [box, f] : near) {
-      if (f.ring == ring) {
-        if (f.a == edit.gone || f.b == edit.gone) continue;  // gone with the edit
-        if ((f.a == a && f.b == b) || (f.a == prev && f.b == a) || (f.a == b && f.b == next)) continue;  // itself, neighbours
-      }
+      if (taken_away(f)) continue;
+      if (f.ring == ring && ((f.a == a && f.b == b) || (f.a == prev && f.b == a) || (f.a == b && f.b == next)))
+        continue;  // itself, its neighbours
       if (!detail::segments_meet(a, b, f.a, f.b)) continue;
       const std::pair<std::size_t, std::size_t> at{f.ring, edge_index(after.rings.at(f.ring).points, f.a, f.b)};
       if (!first || at < *first) first = at;
@@ -103,13 +109,18 @@ std::optional<RingDefect> RingEdgeIndex::defect_at(const Domain2& after, const R
 }
 
 void RingEdgeIndex::commit(const Domain2& after, const RingVertexEdit& edit) {
-  std::vector<Entry> leaving;
-  tree_->rtree.query(bgi::intersects(box_of(edit.gone, edit.gone)), std::back_inserter(leaving));
-  for (const Entry& e : leaving)
-    if (e.second.ring == edit.ring && (e.second.a == edit.gone || e.second.b == edit.gone)) tree_->rtree.remove(e);
   const auto& pts = after.rings.at(edit.ring).points;
   const std::size_t n = pts.size(), before = (edit.vertex + n - 1) % n;
-  if (!edit.removed) tree_->rtree.insert(entry(edit.ring, pts[before], pts[edit.vertex]));
+  if (edit.kind == RingVertexEdit::Kind::Insert) {
+    if (tree_->rtree.remove(entry(edit.ring, pts[before], pts[(edit.vertex + 1) % n])) != 1)
+      throw std::logic_error("ring edge index: an inserted vertex splits no indexed edge");
+  } else {
+    std::vector<Entry> leaving;
+    tree_->rtree.query(bgi::intersects(box_of(edit.gone, edit.gone)), std::back_inserter(leaving));
+    for (const Entry& e : leaving)
+      if (e.second.ring == edit.ring && (e.second.a == edit.gone || e.second.b == edit.gone)) tree_->rtree.remove(e);
+  }
+  if (edit.kind != RingVertexEdit::Kind::Remove) tree_->rtree.insert(entry(edit.ring, pts[before], pts[edit.vertex]));
   tree_->rtree.insert(entry(edit.ring, pts[edit.vertex], pts[(edit.vertex + 1) % n]));
 }
 

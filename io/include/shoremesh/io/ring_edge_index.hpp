@@ -16,13 +16,16 @@
 
 namespace shoremesh::io {
 
-// One vertex's edit: vertex `vertex` of ring `ring` moved from `gone` (then `vertex` is its index in the
-// rings after), or the vertex at `gone` removed (then `vertex` is the index, after, of the vertex before it).
+// One vertex's edit of ring `ring`, with `vertex` an index in the ring after it:
+//  - Move: vertex `vertex` moved from `gone`;
+//  - Remove: the vertex at `gone` went, and `vertex` is the one before it;
+//  - Insert: `vertex` is new, between the two ends of an edge that was there (`gone` is not used).
 struct RingVertexEdit {
+  enum class Kind { Move, Remove, Insert };
+  Kind kind = Kind::Move;
   std::size_t ring = 0;
   std::size_t vertex = 0;
   Point2 gone{};
-  bool removed = false;
 };
 
 class RingEdgeIndex {
@@ -37,7 +40,8 @@ class RingEdgeIndex {
   // boxes meet, and the folds at it and its neighbours.
   std::optional<RingDefect> defect_at(const Domain2& after, const RingVertexEdit& edit) const;
 
-  // Takes a checked edit in: the edges at `edit.gone` leave, those at the changed vertex of `after` come.
+  // Takes a checked edit in: the edges it took away leave (those at `edit.gone`, or the edge an inserted
+  // vertex splits), those at the changed vertex of `after` come.
   void commit(const Domain2& after, const RingVertexEdit& edit);
 
   std::size_t size() const;  // edges indexed
