@@ -37,7 +37,8 @@ n=$("$tool" info "${read_opts[@]}" | sed -n 's/^input: \([0-9]*\) .*/\1/p')
 echo "$n input points (ids 0..$((n - 1))) in $out/superior_points.csv"
 
 # Shore point k moved across the chord of its neighbours k-1, k+1 by 1.2 chord lengths (sign s), and two
-# points added on the new shoreline: the edit lines, and the edited input for the fresh run.
+# points added to the new shoreline (ring vertices, halfway along its edges): the edit lines, and the edited
+# input for the fresh run.
 awk -F, -v n="$n" -v out="$out" '
   NR > 1 && NR <= n + 1 { k = NR - 2; x[k] = $1 + 0; y[k] = $2 + 0; sx[k] = $1; sy[k] = $2 }
   function put(k, px, py) {  # the text the session and the fresh run both read
@@ -48,9 +49,9 @@ awk -F, -v n="$n" -v out="$out" '
     put(k, x[k] + s * 1.2 * len * (-ty / len), y[k] + s * 1.2 * len * (tx / len))
     printf "move %d %s %s\n", k, sx[k], sy[k]
   }
-  function add(a, b) {
+  function add(a, b) {  # onto the shoreline, between shore points a and b
     put(n, (x[a] + x[b]) / 2, (y[a] + y[b]) / 2)
-    printf "add %s %s\n", sx[n], sy[n]; ++n
+    printf "add %s %s after %d\n", sx[n], sy[n], a; ++n
   }
   END {
     print "stats"
