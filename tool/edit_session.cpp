@@ -209,7 +209,7 @@ std::optional<typename EditSession<D>::RingChange> EditSession<D>::rings_with(io
     RingChange change{domain_, {kind, r, k, domain_.rings[r].points[k]}};
     auto& ring = change.domain.rings[r].points;
     // The rings were valid before: only the edges at the changed vertex (or across the gap the removed
-    // one leaves, from the vertex before it) are new, and only they need a look.
+    // one leaves, from the vertex before it) are new, and only they need a look (the ring index).
     if (kind == Kind::Move) {
       ring[k] = p;
     } else if (kind == Kind::Insert) {
@@ -264,7 +264,7 @@ void EditSession<D>::update_mesh(const UpdateReport<D>& report, std::vector<Poin
   const auto start = Clock::now();
   bool rebuilt = false;
   try {
-    // A shore point moved or removed changes the rings too: the mesh takes them with the points
+    // A shore point moved, removed or added changes the rings too: the mesh takes them with the points
     // and classifies again only the triangles near the changed stretch.
     if constexpr (D == 2) last_delta_ = rings ? mesh_.apply(change, rings->domain) : mesh_.apply(change);
     else last_delta_ = mesh_.apply(change);

@@ -60,7 +60,7 @@ class EditSession {
   // vertex (moves keep them).
   void commit_ring_ids(const RingChange& change, std::size_t id);
   // After an engine update that started at `engine_start`: the mesh takes the engine's Steiner changes
-  // plus the edited input points (and the new rings when a shore point moved or went); the reply gets the
+  // plus the edited input points (and the new rings when a shore point moved, went or came); the reply gets the
   // counts and the times (`ms`: the whole edit from `edit_start`, the shoreline check included).
   void update_mesh(const UpdateReport<D>& report, std::vector<Point<D>> inputs_removed,
                    std::vector<Point<D>> inputs_added, std::optional<RingChange> rings,

@@ -24,8 +24,8 @@ struct RingDefect {
 // The first defect found, or nothing when the rings are valid.
 std::optional<RingDefect> find_ring_defect(const Domain2& domain);
 
-// The check after one vertex moved or went, which reads only the edges near the new ones: RingEdgeIndex
-// (ring_edge_index.hpp).
+// The check after one vertex moved, went or came, which reads only the edges near the new ones:
+// RingEdgeIndex (ring_edge_index.hpp).
 
 // Sets each ring's role from its nesting depth (the number of other rings containing it): even -> Shore,
 // odd -> Island, as the even-odd rule implies. For rings that neither cross nor touch (check first).

@@ -1,8 +1,9 @@
 #pragma once
 // The edges of a water domain's rings in an R-tree (Boost.Geometry), kept up to date through edits of one
-// vertex at a time: an edit session checks a moved or removed shore point against the edges near its new
-// edges only. Checking them against every edge (O(n) an edit) took a fifth of a shore edit at 171k shore
-// points; with the tree it is O(log n) plus the edges the new ones come near.
+// vertex at a time: an edit session checks a moved, removed or added shore point against the edges near its
+// new edges only. Checking them against every edge (O(n) an edit) took about a tenth of a shore edit at
+// 171k shore points (0.8 to 0.9 ms of 8, bench/RESULTS.md); with the tree it is O(log n) plus the edges
+// the new ones come near.
 //
 // The rings must be valid (find_ring_defect finds nothing) when the index is built, and each edit checked
 // here before it is committed. Ring vertices are distinct points (the engine refuses duplicates), so an
