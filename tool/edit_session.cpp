@@ -95,14 +95,14 @@ EditSession<D>::EditSession(const io::InputSet& set, double rho, std::optional<B
           rethrow_with_origin(e, set);
         }
       }()),
-      domain_(initial_domain<D>(set)),
-      mesh_(make_mesh<D>(set_.points(), set_.input_count(), domain_, set_.box(), keep_hull_)),
+      mesh_(make_mesh<D>(set_.points(), set_.input_count(), initial_domain<D>(set), set_.box(), keep_hull_)),
       next_id_(set.size()) {
   preview_.rho = rho;
-  if (!domain_.rings.empty()) ring_index_.emplace(domain_);
-  for (std::size_t r = 0; r < domain_.rings.size(); ++r) {
+  const Domain2& domain = mesh_.domain();
+  if (!domain.rings.empty()) ring_index_.emplace(domain);
+  for (std::size_t r = 0; r < domain.rings.size(); ++r) {
     std::vector<std::size_t> ids;
-    for (std::size_t k = 0; k < domain_.rings[r].points.size(); ++k) {
+    for (std::size_t k = 0; k < domain.rings[r].points.size(); ++k) {
       const std::size_t id = set.ring_offsets.at(r) + k;
       ids.push_back(id);
       ring_of_[id] = {r, k};
@@ -206,7 +206,8 @@ std::optional<typename EditSession<D>::RingChange> EditSession<D>::rings_with(io
     const auto it = ring_of_.find(id);
     if (it == ring_of_.end()) return std::nullopt;
     const auto [r, k] = it->second;
-    RingChange change{domain_, {kind, r, k, domain_.rings[r].points[k]}};
+    const Domain2& now = mesh_.domain();
+    RingChange change{now, {kind, r, k, now.rings[r].points[k]}};
     auto& ring = change.domain.rings[r].points;
     // The rings were valid before: only the edges at the changed vertex (or across the gap the removed
     // one leaves, from the vertex before it) are new, and only they need a look (the ring index).
@@ -271,13 +272,12 @@ void EditSession<D>::update_mesh(const UpdateReport<D>& report, std::vector<Poin
   } catch (const InputError&) {
     rebuilt = true;  // the mesh and the engine disagree (nothing was changed): rebuild from the engine's points
   }
-  if (rings) {
-    ring_index_->commit(rings->domain, rings->edit);
-    domain_ = std::move(rings->domain);
-  }
+  if (rings) ring_index_->commit(rings->domain, rings->edit);
   if (rebuilt) {
     const auto before = sorted_corners<D>(mesh_);
-    mesh_ = make_mesh<D>(set_.points(), set_.input_count(), domain_, set_.box(), keep_hull_);
+    // The rings of the edit; the mesh's own when the edit left them (a copy: mesh_ is replaced).
+    const Domain2 domain = rings ? std::move(rings->domain) : mesh_.domain();
+    mesh_ = make_mesh<D>(set_.points(), set_.input_count(), domain, set_.box(), keep_hull_);
     last_delta_ = diff<D>(before, sorted_corners<D>(mesh_));
   }
   reply["elements_removed"] = last_delta_.removed.size();

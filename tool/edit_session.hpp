@@ -1,7 +1,7 @@
 #pragma once
-// The state of `shoremesh edit`: the dynamic well-spaced set, its mesh, the water domain and the ids, kept
-// up to date one edit line at a time. Every line gets one reply (a JSON object, printed as JSON or as
-// text); a bad line gets an error reply and leaves the state as it was.
+// The state of `shoremesh edit`: the dynamic well-spaced set, its mesh (which holds the water domain) and
+// the ids, kept up to date one edit line at a time. Every line gets one reply (a JSON object, printed as
+// JSON or as text); a bad line gets an error reply and leaves the state as it was.
 #include <nlohmann/json.hpp>
 
 #include <chrono>
@@ -75,8 +75,7 @@ class EditSession {
   bool keep_hull_ = false;
   PreviewArgs preview_;
   DynamicWellSpaced<D> set_;
-  Domain2 domain_;
-  std::optional<io::RingEdgeIndex> ring_index_;                              // the edges of domain_'s rings
+  std::optional<io::RingEdgeIndex> ring_index_;  // the edges of the rings of the mesh's water (mesh_.domain())
   std::vector<std::vector<std::size_t>> ring_ids_;                          // ring r's vertices as input ids
   std::unordered_map<std::size_t, std::pair<std::size_t, std::size_t>> ring_of_;  // id -> (ring, position)
   Mesh<D> mesh_;
