@@ -3,12 +3,31 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <filesystem>
 
 #include "progress.hpp"
 #include "shoremesh/error.hpp"
 
 namespace shoremesh::tool {
+
+namespace {
+
+// A number above zero (`positive`) or at least zero, refused in the user's terms: CLI11's PositiveNumber
+// and NonNegativeNumber name a range up to the largest double, printed in full. Text that is not a number
+// is CLI11's to refuse as before, and NaN passes on to the readers, which name it.
+CLI::Validator above_zero(bool positive) {
+  return CLI::Validator(
+      [positive](std::string& text) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(text, v) || std::isnan(v)) return {};
+        if (positive ? v > 0 : v >= 0) return {};
+        return text + (positive ? " is not above 0" : " is below 0");
+      },
+      positive ? "POSITIVE" : "NONNEGATIVE");
+}
+
+}  // namespace
 
 void add_quiet_option(CLI::App* cmd, bool& quiet) {
   cmd->add_flag("-q,--quiet", quiet, "No progress bar (it is drawn only when stderr is a terminal anyway)");
@@ -43,7 +62,7 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
                     "Largest sample spacing along shorelines, tracks and segments, in the input's units "
                     "(metres for georeferenced or lon/lat input, pixels for plain images; default: 4 pixels "
                     "for images, the vertices as given otherwise)")
-      ->check(CLI::PositiveNumber);
+      ->check(above_zero(true));
   group->add_option("--water", a.water,
                     "Images: which side is water, 'light' (default), 'dark', or a colour ('#b0c4de', "
                     "'176,196,222', 'lightsteelblue') for map images");
@@ -67,7 +86,7 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
   group->add_option("--track-close-distance", a.track_close_distance,
                     "GPS tracks: a walk that ends within this many metres of its start is a shore ring (default: "
                     "twice the spacing, at least 25 m; 0: every walk stays loose points)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(above_zero(false));
   group->add_flag("--lonlat", a.lonlat, "Point and ring files hold lon,lat degrees (projected to metres)");
   group->add_option("--projection", a.projection,
                     "Projection of lon/lat input: 'utm' (the data's UTM zone, default) or 'local' "

@@ -54,6 +54,8 @@ TEST(CommandLine, UsageErrorsExitWithTwo) {
       {"mesh p.csv -o out.csv --bogus", "--bogus"},
       {"mesh missing.csv -o out.csv", "missing.csv"},
       {"mesh p.csv -o out.csv --rho 1", "rho"},
+      {"mesh p.csv -o out.csv --spacing -3", "--spacing: -3 is not above 0"},
+      {"mesh p.csv -o out.csv --track-close-distance -1", "--track-close-distance: -1 is below 0"},
       {"edit p.csv", "--edits is required"},
       {"info", "input is required"},
       {"info p.csv p.csv", "input"},
