@@ -1,0 +1,64 @@
+#pragma once
+// Canonical splits of the shoreline, so that the mesh's boundary can be the shoreline itself.
+//
+// The rule (docs/conforming.md): a subsegment of a ring edge is halved at its midpoint while an input point
+// (a ring vertex, a loose point or another split point) lies closer to that midpoint than gamma times half
+// the subsegment's length. Points on the same edge never encroach it, nor do points on the edge that meets
+// it at a corner sharper than 60 degrees (halving there would never end: such corners are the documented
+// exception of every quality mesher). Splitting only ever adds points, so the result is the least fixed
+// point of the rule: one set, whatever the order the rule is applied in, and a function of the input
+// alone. The split points become input points of the engine, which therefore keeps Lemma 7.2 unchanged.
+//
+// update() edits the rings and the loose points and recomputes the splits only where the edit can reach:
+// edges whose subsegments (at any level) had a removed point in their test disk are reset and closed again
+// with everything else; the result equals a fresh ShoreRefinement of the new input (tests pin it).
+// Every decision is an exact predicate (engine/predicates.hpp: intervals, then GMP).
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "shoremesh/domain.hpp"
+#include "shoremesh/point.hpp"
+
+namespace shoremesh {
+
+struct RefinementRule {
+  double gamma = 1.5;  // 1 is Ruppert's diametral circle; larger grades the shore more
+  int max_depth = 40;  // halvings of one ring edge at most
+};
+
+struct SplitChange {
+  std::vector<Point2> removed, added;
+  bool empty() const { return removed.empty() && added.empty(); }
+};
+
+class ShoreRefinement {
+ public:
+  // `rings` must be valid (io::find_ring_defect finds nothing); `loose` are the input points on no ring.
+  explicit ShoreRefinement(const Domain2& rings, std::span<const Point2> loose = {}, RefinementRule rule = {});
+  ~ShoreRefinement();
+  ShoreRefinement(ShoreRefinement&&) noexcept;
+  ShoreRefinement& operator=(ShoreRefinement&&) noexcept;
+
+  const Domain2& rings() const;
+  // The rings with the split points inserted in order: the shoreline the mesh conforms to.
+  Domain2 refined() const;
+  // The split points, sorted.
+  std::vector<Point2> split_points() const;
+  std::size_t split_count() const;
+
+  // The rings become `rings` (the same number, each ring edited anywhere) and the loose points lose
+  // `loose_removed` and gain `loose_added`. Returns the split points that went and came (none in both).
+  SplitChange update(const Domain2& rings, std::span<const Point2> loose_removed = {},
+                     std::span<const Point2> loose_added = {});
+
+  // Recomputes everything from scratch and throws std::logic_error when it differs (tests).
+  void check_valid() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace shoremesh

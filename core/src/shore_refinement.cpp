@@ -1,0 +1,441 @@
+#include "shoremesh/shore_refinement.hpp"
+
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
+
+#include "shoremesh/engine/predicates.hpp"
+
+namespace shoremesh {
+
+namespace {
+
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
+using BBox = bg::model::box<BPoint>;
+
+struct PointHash {
+  std::size_t operator()(const Point2& p) const {
+    const auto h0 = std::hash<std::uint64_t>{}(std::bit_cast<std::uint64_t>(p[0] + 0.0));
+    const auto h1 = std::hash<std::uint64_t>{}(std::bit_cast<std::uint64_t>(p[1] + 0.0));
+    return h0 * 0x9E3779B97F4A7C15ull ^ h1;
+  }
+};
+
+// A ring edge, its ends in lexicographic order so that it has one name whichever way its ring runs.
+struct EdgeKey {
+  Point2 a, b;
+  bool operator==(const EdgeKey&) const = default;
+};
+EdgeKey edge_key(const Point2& p, const Point2& q) { return p < q ? EdgeKey{p, q} : EdgeKey{q, p}; }
+struct EdgeKeyHash {
+  std::size_t operator()(const EdgeKey& e) const { return PointHash{}(e.a) * 31 + PointHash{}(e.b); }
+};
+
+// A subsegment of edge `edge`: parameters t0 < t1, dyadic, so exact in doubles.
+struct Node {
+  std::uint32_t edge;
+  double t0, t1;
+  bool operator==(const Node&) const = default;
+};
+
+using PointTree = bgi::rtree<BPoint, bgi::quadratic<16>>;
+using DiskEntry = std::pair<BBox, Node>;
+using DiskTree = bgi::rtree<DiskEntry, bgi::quadratic<16>>;
+
+BPoint bpoint(const Point2& p) { return BPoint(p[0], p[1]); }
+Point2 point_of(const BPoint& p) { return {bg::get<0>(p), bg::get<1>(p)}; }
+
+// cos(angle between u and w) > 1/2, exactly: the two directions meet at less than 60 degrees.
+bool sharper_than_60(engine::PredicateCounters& c, const Point2& s, const Point2& o1, const Point2& o2) {
+  const int dot = engine::filtered_sign(c, [&](auto zero) {
+    using NT = decltype(zero);
+    return (NT(o1[0]) - NT(s[0])) * (NT(o2[0]) - NT(s[0])) + (NT(o1[1]) - NT(s[1])) * (NT(o2[1]) - NT(s[1]));
+  });
+  if (dot <= 0) return false;
+  return engine::filtered_sign(c, [&](auto zero) {
+           using NT = decltype(zero);
+           const NT ux = NT(o1[0]) - NT(s[0]), uy = NT(o1[1]) - NT(s[1]);
+           const NT wx = NT(o2[0]) - NT(s[0]), wy = NT(o2[1]) - NT(s[1]);
+           const NT d = ux * wx + uy * wy;
+           return NT(4) * d * d - (ux * ux + uy * uy) * (wx * wx + wy * wy);
+         }) > 0;
+}
+
+}  // namespace
+
+struct ShoreRefinement::Impl {
+  struct Edge {
+    Point2 a, b;             // a < b
+    std::vector<double> ts;  // split parameters, sorted, in (0, 1)
+    bool alive = false;
+  };
+  struct Neighbours {
+    Point2 prev, next;
+  };
+
+  RefinementRule rule;
+  Domain2 rings;
+  std::vector<Edge> edges;
+  std::vector<std::uint32_t> free_edges;
+  std::unordered_map<EdgeKey, std::uint32_t, EdgeKeyHash> edge_of;
+  std::unordered_map<Point2, Neighbours, PointHash> ring_vertex;  // a ring vertex's neighbours on its ring
+  std::unordered_map<Point2, std::uint32_t, PointHash> split_owner;  // a split point's edge
+  PointTree points;  // every input point: ring vertices, loose points, split points
+  DiskTree disks;    // every subsegment (leaf or split) with the box of its test disk
+  mutable engine::PredicateCounters counters;
+
+  // Filled while closing: the split points made and undone (update nets them).
+  std::vector<Point2> made, undone;
+
+  Point2 at(const Edge& e, double t) const {
+    if (t == 0) return e.a;
+    if (t == 1) return e.b;
+    return {e.a[0] + t * (e.b[0] - e.a[0]), e.a[1] + t * (e.b[1] - e.a[1])};
+  }
+
+  bool is_split(const Edge& e, double t) const { return std::binary_search(e.ts.begin(), e.ts.end(), t); }
+
+  BBox disk_box(const Node& n) const {
+    const Edge& e = edges[n.edge];
+    const Point2 p = at(e, n.t0), q = at(e, n.t1), m = at(e, 0.5 * (n.t0 + n.t1));
+    const double r = rule.gamma * 0.5 * std::hypot(q[0] - p[0], q[1] - p[1]) * (1 + 1e-9) +
+                     1e-300 + 1e-15 * (std::abs(m[0]) + std::abs(m[1]));
+    return BBox(BPoint(m[0] - r, m[1] - r), BPoint(m[0] + r, m[1] + r));
+  }
+
+  // The edges point q lies on: its own edge when it is a split, the two ring edges when a ring vertex.
+  template <class F>
+  void for_each_edge_of(const Point2& q, F&& f) const {
+    if (auto it = split_owner.find(q); it != split_owner.end()) {
+      const Edge& e = edges[it->second];
+      f(e.a, e.b);
+    } else if (auto v = ring_vertex.find(q); v != ring_vertex.end()) {
+      f(q, v->second.prev);
+      f(q, v->second.next);
+    }
+  }
+
+  // Whether q may encroach a subsegment of edge e: not when it lies on e, nor on an edge that meets e at a
+  // corner sharper than 60 degrees.
+  bool may_encroach(const Edge& e, std::uint32_t edge_index, const Point2& q) const {
+    if (q == e.a || q == e.b) return false;
+    if (auto it = split_owner.find(q); it != split_owner.end() && it->second == edge_index) return false;
+    bool excluded = false;
+    for_each_edge_of(q, [&](const Point2& u, const Point2& w) {
+      for (const auto& [s, o1] : {std::pair{e.a, e.b}, std::pair{e.b, e.a}}) {
+        const Point2* o2 = u == s ? &w : w == s ? &u : nullptr;
+        if (o2 && sharper_than_60(counters, s, o1, *o2)) excluded = true;
+      }
+    });
+    return !excluded;
+  }
+
+  // Whether leaf n must be halved (and can be: its midpoint is a new point strictly between its ends).
+  bool encroached(const Node& n) const {
+    const Edge& e = edges[n.edge];
+    if (-std::ilogb(n.t1 - n.t0) >= rule.max_depth) return false;
+    const Point2 p = at(e, n.t0), q = at(e, n.t1), m = at(e, 0.5 * (n.t0 + n.t1));
+    if (m == p || m == q) return false;
+    const double g2 = rule.gamma * rule.gamma;
+    bool hit = false, taken = false;
+    for (auto it = points.qbegin(bgi::intersects(disk_box(n))); it != points.qend(); ++it) {
+      const Point2 x = point_of(*it);
+      if (x == m) taken = true;
+      if (hit || !may_encroach(e, n.edge, x)) continue;
+      hit = engine::filtered_sign(counters, [&](auto zero) {
+              using NT = decltype(zero);
+              return NT(g2) * engine::squared_distance<NT, 2>(p, q) -
+                     NT(4) * engine::squared_distance<NT, 2>(x, m);
+            }) > 0;
+    }
+    return hit && !taken;  // a midpoint that is already an input point cannot be a new one
+  }
+
+  void add_node(const Node& n) { disks.insert({disk_box(n), n}); }
+  void remove_node(const Node& n) { disks.remove(DiskEntry{disk_box(n), n}); }
+
+  // The leaves whose test disk holds p: what a new point may encroach.
+  void leaves_near(const Point2& p, std::vector<Node>& out) const {
+    for (auto it = disks.qbegin(bgi::intersects(bpoint(p))); it != disks.qend(); ++it) {
+      const Node& n = it->second;
+      if (!is_split(edges[n.edge], 0.5 * (n.t0 + n.t1))) out.push_back(n);
+    }
+  }
+
+  void add_point(const Point2& p, std::vector<Node>& work) {
+    points.insert(bpoint(p));
+    leaves_near(p, work);
+  }
+
+  // Applies the rule until no leaf is encroached (the least fixed point from the current state).
+  void close(std::vector<Node> work) {
+    while (!work.empty()) {
+      const Node n = work.back();
+      work.pop_back();
+      Edge& e = edges[n.edge];
+      const double tm = 0.5 * (n.t0 + n.t1);
+      if (!e.alive || is_split(e, tm) || !encroached(n)) continue;
+      // n may have been queued before its edge was reset: it must still be a node of the edge.
+      if ((n.t0 != 0 && !is_split(e, n.t0)) || (n.t1 != 1 && !is_split(e, n.t1))) continue;
+      e.ts.insert(std::upper_bound(e.ts.begin(), e.ts.end(), tm), tm);
+      const Point2 m = at(e, tm);
+      split_owner.emplace(m, n.edge);
+      made.push_back(m);
+      const Node left{n.edge, n.t0, tm}, right{n.edge, tm, n.t1};
+      add_node(left);
+      add_node(right);
+      work.push_back(left);
+      work.push_back(right);
+      add_point(m, work);
+    }
+  }
+
+  std::uint32_t new_edge(const Point2& p, const Point2& q) {
+    const EdgeKey k = edge_key(p, q);
+    std::uint32_t i;
+    if (!free_edges.empty()) {
+      i = free_edges.back();
+      free_edges.pop_back();
+    } else {
+      i = static_cast<std::uint32_t>(edges.size());
+      edges.emplace_back();
+    }
+    edges[i] = Edge{k.a, k.b, {}, true};
+    edge_of.emplace(k, i);
+    add_node({i, 0, 1});
+    return i;
+  }
+
+  // Every node of edge i: the leaves and the subsegments that were split, from the sorted parameters.
+  void for_each_node(std::uint32_t i, const std::function<void(const Node&)>& f) const {
+    const Edge& e = edges[i];
+    std::function<void(double, double)> walk = [&](double t0, double t1) {
+      f({i, t0, t1});
+      const double tm = 0.5 * (t0 + t1);
+      if (is_split(e, tm)) {
+        walk(t0, tm);
+        walk(tm, t1);
+      }
+    };
+    walk(0, 1);
+  }
+
+  // Takes back every split of edge i (and, unless `keep`, the edge itself).
+  void reset_edge(std::uint32_t i, bool keep) {
+    Edge& e = edges[i];
+    for_each_node(i, [&](const Node& n) { remove_node(n); });
+    for (double t : e.ts) {
+      const Point2 m = at(e, t);
+      points.remove(bpoint(m));
+      split_owner.erase(m);
+      undone.push_back(m);
+    }
+    e.ts.clear();
+    if (keep) {
+      add_node({i, 0, 1});
+    } else {
+      edge_of.erase(edge_key(e.a, e.b));
+      e.alive = false;
+      free_edges.push_back(i);
+    }
+  }
+
+  void add_ring_vertices(const Ring& ring, std::size_t first, std::size_t count) {
+    const std::size_t n = ring.points.size();
+    for (std::size_t j = first; j < first + count; ++j) {
+      const std::size_t k = j % n;
+      ring_vertex[ring.points[k]] = {ring.points[(k + n - 1) % n], ring.points[(k + 1) % n]};
+    }
+  }
+
+  void build(std::span<const Point2> loose) {
+    std::vector<BPoint> all;
+    for (const Ring& ring : rings.rings) {
+      add_ring_vertices(ring, 0, ring.points.size());
+      for (const Point2& p : ring.points) all.push_back(bpoint(p));
+    }
+    for (const Point2& p : loose) all.push_back(bpoint(p));
+    points = PointTree(all.begin(), all.end());  // packed bulk load
+    std::vector<Node> work;
+    for (const Ring& ring : rings.rings)
+      for (std::size_t k = 0; k < ring.points.size(); ++k) {
+        const Point2& p = ring.points[k];
+        const Point2& q = ring.points[(k + 1) % ring.points.size()];
+        if (p == q || edge_of.count(edge_key(p, q))) continue;
+        work.push_back({new_edge(p, q), 0, 1});
+      }
+    close(std::move(work));
+    made.clear();
+  }
+};
+
+ShoreRefinement::ShoreRefinement(const Domain2& rings, std::span<const Point2> loose, RefinementRule rule)
+    : impl_(std::make_unique<Impl>()) {
+  if (!(rule.gamma >= 1) || rule.max_depth < 1 || rule.max_depth > 50)
+    throw std::invalid_argument("ShoreRefinement: gamma must be at least 1 and max_depth in 1..50");
+  impl_->rule = rule;
+  impl_->rings = rings;
+  impl_->build(loose);
+}
+
+ShoreRefinement::~ShoreRefinement() = default;
+ShoreRefinement::ShoreRefinement(ShoreRefinement&&) noexcept = default;
+ShoreRefinement& ShoreRefinement::operator=(ShoreRefinement&&) noexcept = default;
+
+const Domain2& ShoreRefinement::rings() const { return impl_->rings; }
+
+Domain2 ShoreRefinement::refined() const {
+  const Impl& m = *impl_;
+  Domain2 out;
+  out.rings.reserve(m.rings.rings.size());
+  for (const Ring& ring : m.rings.rings) {
+    Ring r{{}, ring.role};
+    r.points.reserve(ring.points.size());
+    for (std::size_t k = 0; k < ring.points.size(); ++k) {
+      const Point2& p = ring.points[k];
+      const Point2& q = ring.points[(k + 1) % ring.points.size()];
+      r.points.push_back(p);
+      const auto it = m.edge_of.find(edge_key(p, q));
+      if (it == m.edge_of.end()) continue;
+      const auto& e = m.edges[it->second];
+      if (p == e.a)
+        for (double t : e.ts) r.points.push_back(m.at(e, t));
+      else
+        for (auto t = e.ts.rbegin(); t != e.ts.rend(); ++t) r.points.push_back(m.at(e, *t));
+    }
+    out.rings.push_back(std::move(r));
+  }
+  return out;
+}
+
+std::vector<Point2> ShoreRefinement::split_points() const {
+  std::vector<Point2> out;
+  out.reserve(impl_->split_owner.size());
+  for (const auto& [p, e] : impl_->split_owner) out.push_back(p);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::size_t ShoreRefinement::split_count() const { return impl_->split_owner.size(); }
+
+SplitChange ShoreRefinement::update(const Domain2& rings, std::span<const Point2> loose_removed,
+                                    std::span<const Point2> loose_added) {
+  Impl& m = *impl_;
+  if (rings.rings.size() != m.rings.rings.size())
+    throw std::invalid_argument("ShoreRefinement::update: the number of rings changed");
+  m.made.clear();
+  m.undone.clear();
+
+  // Per changed ring: the stretch between the common prefix and suffix, widened by two vertices each way,
+  // since a vertex whose neighbour changed has a new corner, which decides what may encroach its edges.
+  std::vector<std::uint32_t> dirty;
+  std::unordered_set<std::uint32_t> is_dirty, old_stretch;
+  std::vector<EdgeKey> new_edges;
+  std::vector<Point2> removed_points(loose_removed.begin(), loose_removed.end());
+  std::vector<Point2> added_points(loose_added.begin(), loose_added.end());
+  for (std::size_t r = 0; r < rings.rings.size(); ++r) {
+    const auto& o = m.rings.rings[r].points;
+    const auto& n = rings.rings[r].points;
+    if (o == n) continue;
+    const std::size_t common = std::min(o.size(), n.size());
+    std::size_t prefix = 0, suffix = 0;
+    while (prefix < common && o[prefix] == n[prefix]) ++prefix;
+    while (suffix < common - prefix && o[o.size() - 1 - suffix] == n[n.size() - 1 - suffix]) ++suffix;
+    // Changed vertices: o[prefix, o.size() - suffix) went, n[prefix, n.size() - suffix) came.
+    for (std::size_t k = prefix; k < o.size() - suffix; ++k) {
+      removed_points.push_back(o[k]);
+      m.ring_vertex.erase(o[k]);
+    }
+    for (std::size_t k = prefix; k < n.size() - suffix; ++k) added_points.push_back(n[k]);
+    // Edges from vertex prefix - 2 to vertex size - suffix + 1 (cyclically), old and new.
+    auto stretch_edges = [&](const std::vector<Point2>& ring, auto&& f) {
+      const std::size_t s = ring.size();
+      const std::size_t changed = s - suffix - prefix;
+      const std::size_t count = std::min(s, changed + 4);
+      for (std::size_t j = 0; j < count; ++j) {
+        const std::size_t k = (prefix + 2 * s - 2 + j) % s;
+        f(ring[k], ring[(k + 1) % s]);
+      }
+    };
+    stretch_edges(o, [&](const Point2& p, const Point2& q) {
+      const auto it = m.edge_of.find(edge_key(p, q));
+      if (it == m.edge_of.end()) return;
+      old_stretch.insert(it->second);
+      if (is_dirty.insert(it->second).second) dirty.push_back(it->second);
+    });
+    stretch_edges(n, [&](const Point2& p, const Point2& q) {
+      if (p != q) new_edges.push_back(edge_key(p, q));
+    });
+    m.add_ring_vertices(rings.rings[r], prefix + n.size() - 2, std::min(n.size(), n.size() - suffix - prefix + 4));
+  }
+
+  // Edges whose subsegments (at any level) had a removed point in their test disk lose their splits too,
+  // and so on with those splits: what is left was justified without any removed point (docs/conforming.md).
+  std::vector<Point2> gone = removed_points;
+  for (std::uint32_t i : dirty)
+    for (double t : m.edges[i].ts) gone.push_back(m.at(m.edges[i], t));
+  for (std::size_t g = 0; g < gone.size(); ++g) {
+    std::vector<std::uint32_t> hit;
+    for (auto it = m.disks.qbegin(bgi::intersects(bpoint(gone[g]))); it != m.disks.qend(); ++it)
+      hit.push_back(it->second.edge);
+    for (std::uint32_t i : hit)
+      if (is_dirty.insert(i).second) {
+        dirty.push_back(i);
+        for (double t : m.edges[i].ts) gone.push_back(m.at(m.edges[i], t));
+      }
+  }
+
+  std::unordered_set<EdgeKey, EdgeKeyHash> keep(new_edges.begin(), new_edges.end());
+  for (const Point2& p : removed_points) m.points.remove(bpoint(p));
+  std::vector<Node> work;
+  for (std::uint32_t i : dirty) {
+    // An edge of an old stretch stays only when the new rings have it; the others are unchanged edges.
+    const bool kept = !old_stretch.count(i) || keep.count(edge_key(m.edges[i].a, m.edges[i].b));
+    m.reset_edge(i, kept);
+    if (kept) work.push_back({i, 0, 1});
+  }
+  for (const EdgeKey& k : new_edges)
+    if (!m.edge_of.count(k)) work.push_back({m.new_edge(k.a, k.b), 0, 1});
+  m.rings = rings;
+  for (const Point2& p : added_points) m.add_point(p, work);
+  m.close(std::move(work));
+
+  // Net: a split undone and made again at the same place did not change.
+  SplitChange change;
+  std::sort(m.made.begin(), m.made.end());
+  std::sort(m.undone.begin(), m.undone.end());
+  std::set_difference(m.undone.begin(), m.undone.end(), m.made.begin(), m.made.end(),
+                      std::back_inserter(change.removed));
+  std::set_difference(m.made.begin(), m.made.end(), m.undone.begin(), m.undone.end(),
+                      std::back_inserter(change.added));
+  m.made.clear();
+  m.undone.clear();
+  return change;
+}
+
+void ShoreRefinement::check_valid() const {
+  std::vector<Point2> loose;
+  // The loose points are those of the point index that are neither ring vertices nor splits.
+  for (const BPoint& b : impl_->points) {
+    const Point2 p = point_of(b);
+    if (!impl_->ring_vertex.count(p) && !impl_->split_owner.count(p)) loose.push_back(p);
+  }
+  const ShoreRefinement fresh(impl_->rings, loose, impl_->rule);
+  if (fresh.split_points() != split_points())
+    throw std::logic_error("shore refinement: " + std::to_string(split_count()) + " split points, a fresh one has " +
+                           std::to_string(fresh.split_count()) + (fresh.split_count() == split_count() ? " (others)" : ""));
+  if (fresh.refined().rings.size() != refined().rings.size())
+    throw std::logic_error("shore refinement: ring count differs from a fresh one");
+}
+
+}  // namespace shoremesh

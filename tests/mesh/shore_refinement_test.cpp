@@ -1,0 +1,136 @@
+// The canonical shore splits (core/include/shoremesh/shore_refinement.hpp): a function of the input alone,
+// whatever the order of the rings or the history of edits.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "shoremesh/engine/predicates.hpp"
+#include "shoremesh/shore_refinement.hpp"
+
+namespace shoremesh {
+namespace {
+
+// A star-shaped ring around (cx, cy): vertices at increasing angles, radii in [r0, r1]. Any radii keep it
+// simple, so random edits of the radii stay valid rings.
+struct StarRing {
+  double cx, cy, r0, r1;
+  std::vector<double> angle, radius;
+  Point2 vertex(std::size_t k) const {
+    return {cx + radius[k] * std::cos(angle[k]), cy + radius[k] * std::sin(angle[k])};
+  }
+  Ring ring(RingRole role) const {
+    Ring r{{}, role};
+    for (std::size_t k = 0; k < angle.size(); ++k) r.points.push_back(vertex(k));
+    return r;
+  }
+};
+
+StarRing star(double cx, double cy, double r0, double r1, std::size_t n, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0, 1);
+  StarRing s{cx, cy, r0, r1, {}, {}};
+  for (std::size_t k = 0; k < n; ++k) {
+    s.angle.push_back(2 * std::numbers::pi * (k + 0.2 + 0.6 * u(rng)) / double(n));
+    s.radius.push_back(r0 + (r1 - r0) * u(rng));
+  }
+  return s;
+}
+
+// The squared distance from x to the midpoint of (p, q) against (gamma/2)^2 |pq|^2.
+bool encroaches(const Point2& p, const Point2& q, const Point2& x, double gamma) {
+  const Point2 m{0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])};
+  return std::hypot(x[0] - m[0], x[1] - m[1]) < 0.5 * gamma * std::hypot(q[0] - p[0], q[1] - p[1]) * (1 - 1e-9);
+}
+
+TEST(ShoreRefinement, NoSubsegmentOfAStraightFarShoreIsEncroachedAfterTheSplits) {
+  // A long thin bay: two parallel shores 1 apart, 40 long, given by their corners only.
+  const Domain2 d{{Ring{{{0, 0}, {40, 0}, {40, 1}, {0, 1}}, RingRole::Shore}}};
+  const ShoreRefinement r(d);
+  const Domain2 refined = r.refined();
+  ASSERT_EQ(refined.rings.size(), 1u);
+  const auto& ring = refined.rings[0].points;
+  EXPECT_GT(ring.size(), 60u);  // each long side halved down to about the width
+  // Every subsegment of a long side is free of the other side's points within gamma/2 of its length.
+  for (std::size_t k = 0; k < ring.size(); ++k) {
+    const Point2 p = ring[k], q = ring[(k + 1) % ring.size()];
+    if (p[1] != q[1]) continue;  // the short ends meet the long sides at right angles: checked by the rule
+    for (const Point2& x : ring) {
+      if (x[1] == p[1]) continue;
+      EXPECT_FALSE(encroaches(p, q, x, 1.5)) << p[0] << "," << p[1] << " - " << q[0];
+    }
+  }
+}
+
+TEST(ShoreRefinement, SplitsDoNotDependOnRingOrderOrStart) {
+  std::mt19937 rng(7);
+  const StarRing outer = star(0, 0, 6, 10, 40, rng), island = star(0.5, 0.3, 1, 2.5, 12, rng);
+  const std::vector<Point2> loose{{3, 3}, {-4, 1}, {0, -5.5}};
+  Domain2 a{{outer.ring(RingRole::Shore), island.ring(RingRole::Island)}};
+  Domain2 b{{island.ring(RingRole::Island), outer.ring(RingRole::Shore)}};
+  std::rotate(b.rings[1].points.begin(), b.rings[1].points.begin() + 17, b.rings[1].points.end());
+  std::vector<Point2> loose_b(loose.rbegin(), loose.rend());
+  const ShoreRefinement ra(a, loose), rb(b, loose_b);
+  EXPECT_GT(ra.split_count(), 0u);
+  EXPECT_EQ(ra.split_points(), rb.split_points());
+}
+
+TEST(ShoreRefinement, SharpCornersEndTheHalving) {
+  // A 5 degree wedge: the two sides meet at a corner sharper than 60 degrees and do not split each other.
+  const double a = 5 * std::numbers::pi / 180;
+  const Domain2 d{{Ring{{{0, 0}, {10, 0}, {10 * std::cos(a), 10 * std::sin(a)}}, RingRole::Shore}}};
+  const ShoreRefinement r(d);
+  EXPECT_LT(r.split_count(), 20u);
+}
+
+TEST(ShoreRefinement, EveryEditEqualsAFreshRefinement) {
+  std::mt19937 rng(11);
+  StarRing outer = star(0, 0, 6, 10, 30, rng), island = star(0.4, -0.2, 1.5, 3, 10, rng);
+  std::vector<Point2> loose{{4, 0.5}, {-4.5, 1}, {0.5, 4.2}};
+  auto domain = [&] { return Domain2{{outer.ring(RingRole::Shore), island.ring(RingRole::Island)}}; };
+  ShoreRefinement r(domain(), loose);
+  std::uniform_real_distribution<double> u(0, 1);
+  const int edits = 300;
+  for (int step = 0; step < edits; ++step) {
+    StarRing& s = u(rng) < 0.7 ? outer : island;
+    const std::size_t k = std::size_t(u(rng) * double(s.angle.size())) % s.angle.size();
+    const double what = u(rng);
+    std::vector<Point2> loose_removed, loose_added;
+    if (what < 0.5) {  // move
+      s.radius[k] = s.r0 + (s.r1 - s.r0) * u(rng);
+    } else if (what < 0.7) {  // add after k
+      const double next = k + 1 < s.angle.size() ? s.angle[k + 1] : s.angle[0] + 2 * std::numbers::pi;
+      s.angle.insert(s.angle.begin() + long(k) + 1, 0.5 * (s.angle[k] + next));
+      s.radius.insert(s.radius.begin() + long(k) + 1, s.r0 + (s.r1 - s.r0) * u(rng));
+    } else if (what < 0.85 && s.angle.size() > 6) {  // remove
+      s.angle.erase(s.angle.begin() + long(k));
+      s.radius.erase(s.radius.begin() + long(k));
+    } else {  // a loose point moves
+      const std::size_t j = k % loose.size();
+      loose_removed.push_back(loose[j]);
+      loose[j] = {-5 + 10 * u(rng), 3.5 + u(rng)};
+      loose_added.push_back(loose[j]);
+    }
+    const std::vector<Point2> before = r.split_points();
+    const SplitChange change = r.update(domain(), loose_removed, loose_added);
+    const ShoreRefinement fresh(domain(), loose);
+    ASSERT_EQ(r.split_points(), fresh.split_points()) << "after edit " << step;
+    ASSERT_EQ(r.refined().rings.size(), 2u);
+    EXPECT_EQ(r.refined().rings[0].points, fresh.refined().rings[0].points) << "after edit " << step;
+    // The change is exactly the difference of the split sets.
+    const std::vector<Point2> after = fresh.split_points();
+    std::vector<Point2> expect_removed, expect_added;
+    std::set_difference(before.begin(), before.end(), after.begin(), after.end(), std::back_inserter(expect_removed));
+    std::set_difference(after.begin(), after.end(), before.begin(), before.end(), std::back_inserter(expect_added));
+    std::vector<Point2> got_removed = change.removed, got_added = change.added;
+    std::sort(got_removed.begin(), got_removed.end());
+    std::sort(got_added.begin(), got_added.end());
+    ASSERT_EQ(got_removed, expect_removed) << "after edit " << step;
+    ASSERT_EQ(got_added, expect_added) << "after edit " << step;
+  }
+}
+
+}  // namespace
+}  // namespace shoremesh
