@@ -9,6 +9,7 @@
 #include "shoremesh/error.hpp"
 #include "shoremesh/io/point_set_csv.hpp"
 #include "shoremesh/io/ring_edge_index.hpp"
+#include "shoremesh/io/ring_file.hpp"
 
 namespace shoremesh::tool {
 
@@ -88,17 +89,32 @@ EditSession<D>::EditSession(const io::InputSet& set, double rho, std::optional<B
       rho_(rho),
       keep_hull_(keep_hull),
       preview_(std::move(preview)),
+      refinement_([&]() -> std::optional<ShoreRefinement> {
+        if (D != 2 || set.domain.empty()) return std::nullopt;
+        return ShoreRefinement(set.domain, loose_points(set));
+      }()),
       set_([&] {
+        // The input points, then the shore's splits (as a fresh `mesh` run gives them to the engine).
+        std::vector<Point<D>> points = input_points<D>(set);
+        if constexpr (D == 2)
+          if (refinement_)
+            for (const Point2& p : refinement_->split_points()) points.push_back(p);
         try {
-          return DynamicWellSpaced<D>(input_points<D>(set), engine_parameters<D>(rho), box);
+          return DynamicWellSpaced<D>(points, engine_parameters<D>(rho), box);
         } catch (const PointInputError& e) {
           rethrow_with_origin(e, set);
         }
       }()),
-      mesh_(make_mesh<D>(set_.points(), set_.input_count(), initial_domain<D>(set), set_.box(), keep_hull_)),
+      mesh_(make_mesh<D>(set_.points(), set_.input_count(), refinement_ ? refinement_->refined() : Domain2{},
+                         set_.box(), keep_hull_)),
       next_id_(set.size()) {
   preview_.rho = rho;
-  const Domain2& domain = mesh_.domain();
+  for (std::size_t id = 0; id < set.size(); ++id) engine_of_user_.push_back(id);
+  if (refinement_) {
+    const std::vector<Point2> splits = refinement_->split_points();
+    for (std::size_t j = 0; j < splits.size(); ++j) split_id_.emplace(splits[j], set.size() + j);
+  }
+  const Domain2& domain = initial_domain<D>(set);
   if (!domain.rings.empty()) ring_index_.emplace(domain);
   for (std::size_t r = 0; r < domain.rings.size(); ++r) {
     std::vector<std::size_t> ids;
@@ -112,9 +128,47 @@ EditSession<D>::EditSession(const io::InputSet& set, double rho, std::optional<B
 }
 
 template <int D>
+std::vector<std::size_t> EditSession<D>::apply_edits(std::vector<Edit<D>> edits, const Domain2* rings,
+                                                     std::vector<Point<D>> loose_removed,
+                                                     std::vector<Point<D>> loose_added,
+                                                     std::vector<Point<D>>& inputs_removed,
+                                                     std::vector<Point<D>>& inputs_added, UpdateReport<D>& report) {
+  const std::size_t user_adds = static_cast<std::size_t>(
+      std::count_if(edits.begin(), edits.end(), [](const Edit<D>& e) { return e.kind == Edit<D>::Kind::Add; }));
+  if constexpr (D == 2) {
+    if (refinement_) {
+      const Domain2 before = refinement_->rings();
+      const SplitChange change = refinement_->update(rings ? *rings : before, loose_removed, loose_added);
+      for (const Point2& p : change.removed) {
+        edits.push_back({Edit<D>::Kind::Remove, split_id_.at(p), {}});
+        inputs_removed.push_back(p);
+      }
+      for (const Point2& p : change.added) {
+        edits.push_back({Edit<D>::Kind::Add, 0, p});
+        inputs_added.push_back(p);
+      }
+      std::vector<std::size_t> ids;
+      try {
+        ids = set_.apply(edits, &report);
+      } catch (...) {
+        refinement_->update(before, loose_added, loose_removed);  // the inverse edit: the same splits as before
+        throw;
+      }
+      for (const Point2& p : change.removed) split_id_.erase(p);
+      for (std::size_t j = 0; j < change.added.size(); ++j) split_id_.emplace(change.added[j], ids[user_adds + j]);
+      ids.resize(user_adds);
+      return ids;
+    }
+  }
+  (void)rings, (void)loose_removed, (void)loose_added;
+  return set_.apply(edits, &report);
+}
+
+template <int D>
 json EditSession<D>::build_reply(double ms) const {
   json r = {{"line", 0}, {"ok", true}, {"op", "build"}};
-  r["input_points"] = set_.input_count();
+  r["input_points"] = user_input_count();
+  r["shore_splits"] = split_id_.size();
   r["steiner_points"] = set_.steiner_count();
   r["elements"] = mesh_.element_count();
   std::vector<double> box(set_.box().origin.begin(), set_.box().origin.end());
@@ -191,7 +245,7 @@ std::size_t EditSession<D>::parse_id(const std::string& word) const {
 
 template <int D>
 void EditSession<D>::check_id(std::size_t id) const {
-  if (set_.has_input(id)) return;
+  if (id < engine_of_user_.size() && engine_of_user_[id] != kRemoved) return;
   if (id < next_id_) throw InputError("input point " + std::to_string(id) + " was removed");
   throw InputError("no input point " + std::to_string(id) + " (ids so far: 0.." + std::to_string(next_id_ - 1) + ")");
 }
@@ -206,7 +260,7 @@ std::optional<typename EditSession<D>::RingChange> EditSession<D>::rings_with(io
     const auto it = ring_of_.find(id);
     if (it == ring_of_.end()) return std::nullopt;
     const auto [r, k] = it->second;
-    const Domain2& now = mesh_.domain();
+    const Domain2& now = refinement_->rings();
     RingChange change{now, {kind, r, k, now.rings[r].points[k]}};
     auto& ring = change.domain.rings[r].points;
     // The rings were valid before: only the edges at the changed vertex (or across the gap the removed
@@ -267,7 +321,7 @@ void EditSession<D>::update_mesh(const UpdateReport<D>& report, std::vector<Poin
   try {
     // A shore point moved, removed or added changes the rings too: the mesh takes them with the points
     // and classifies again only the triangles near the changed stretch.
-    if constexpr (D == 2) last_delta_ = rings ? mesh_.apply(change, rings->domain) : mesh_.apply(change);
+    if constexpr (D == 2) last_delta_ = refinement_ ? mesh_.apply(change, refinement_->refined()) : mesh_.apply(change);
     else last_delta_ = mesh_.apply(change);
   } catch (const InputError&) {
     rebuilt = true;  // the mesh and the engine disagree (nothing was changed): rebuild from the engine's points
@@ -275,8 +329,9 @@ void EditSession<D>::update_mesh(const UpdateReport<D>& report, std::vector<Poin
   if (rings) ring_index_->commit(rings->domain, rings->edit);
   if (rebuilt) {
     const auto before = sorted_corners<D>(mesh_);
-    // The rings of the edit; the mesh's own when the edit left them (a copy: mesh_ is replaced).
-    const Domain2 domain = rings ? std::move(rings->domain) : mesh_.domain();
+    Domain2 domain;
+    if constexpr (D == 2)
+      if (refinement_) domain = refinement_->refined();
     mesh_ = make_mesh<D>(set_.points(), set_.input_count(), domain, set_.box(), keep_hull_);
     last_delta_ = diff<D>(before, sorted_corners<D>(mesh_));
   }
@@ -284,7 +339,8 @@ void EditSession<D>::update_mesh(const UpdateReport<D>& report, std::vector<Poin
   reply["elements_added"] = last_delta_.added.size();
   reply["elements_changed"] = last_delta_.removed.size() + last_delta_.added.size();
   reply["elements"] = mesh_.element_count();
-  reply["input_points"] = set_.input_count();
+  reply["input_points"] = user_input_count();
+  reply["shore_splits"] = split_id_.size();
   reply["steiner_points"] = set_.steiner_count();
   reply["mesh_ms"] = ms_since(start);
   reply["ms"] = ms_since(edit_start);
@@ -317,15 +373,18 @@ json EditSession<D>::add(const std::vector<std::string>& words) {
   }
   const auto start = Clock::now();
   UpdateReport<D> report;
-  const std::size_t id = set_.add(p, &report);
-  next_id_ = std::max(next_id_, id + 1);
+  std::vector<Point<D>> removed, added{p};
+  const auto ids = apply_edits({{Edit<D>::Kind::Add, 0, p}}, rings ? &rings->domain : nullptr, {},
+                               rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{p}, removed, added, report);
+  const std::size_t id = next_id_++;
+  engine_of_user_.push_back(ids.at(0));
   json reply = {{"id", id}, {"point", point_json(p)}, {"at", frame_.point(p)}};
   if (rings) {
     commit_ring_ids(*rings, id);
     reply["after"] = *after;
     reply["ring"] = rings->edit.ring + 1;
   }
-  update_mesh(report, {}, {p}, std::move(rings), edit_start, start, reply);
+  update_mesh(report, std::move(removed), std::move(added), std::move(rings), edit_start, start, reply);
   return reply;
 }
 
@@ -334,15 +393,18 @@ json EditSession<D>::remove(const std::vector<std::string>& words) {
   if (words.size() != 2) throw InputError("remove takes one ID");
   const std::size_t id = parse_id(words[1]);
   check_id(id);
-  const Point<D> old = set_.input_point(id);
+  const Point<D> old = set_.input_point(engine_id(id));
   const auto edit_start = Clock::now();
   auto rings = rings_with(io::RingVertexEdit::Kind::Remove, id, old);
   const auto start = Clock::now();
   UpdateReport<D> report;
-  set_.remove(id, &report);
+  std::vector<Point<D>> removed{old}, added;
+  apply_edits({{Edit<D>::Kind::Remove, engine_id(id), {}}}, rings ? &rings->domain : nullptr,
+              rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{old}, {}, removed, added, report);
+  engine_of_user_[id] = kRemoved;
   if (rings) commit_ring_ids(*rings, id);
   json reply = {{"id", id}, {"point", point_json(old)}, {"at", frame_.point(old)}};
-  update_mesh(report, {old}, {}, std::move(rings), edit_start, start, reply);
+  update_mesh(report, std::move(removed), std::move(added), std::move(rings), edit_start, start, reply);
   return reply;
 }
 
@@ -352,30 +414,53 @@ json EditSession<D>::move(const std::vector<std::string>& words) {
   const std::size_t id = parse_id(words[1]);
   const Point<D> p = parse_point(words, 2);
   check_id(id);
-  const Point<D> old = set_.input_point(id);
+  const Point<D> old = set_.input_point(engine_id(id));
   const auto edit_start = Clock::now();
   auto rings = rings_with(io::RingVertexEdit::Kind::Move, id, p);
   const auto start = Clock::now();
   UpdateReport<D> report;
-  set_.move(id, p, &report);
+  std::vector<Point<D>> removed{old}, added{p};
+  apply_edits({{Edit<D>::Kind::Move, engine_id(id), p}}, rings ? &rings->domain : nullptr,
+              rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{old},
+              rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{p}, removed, added, report);
   json reply = {{"id", id}, {"point", point_json(p)}, {"at", frame_.point(p)}, {"from", frame_.point(old)}};
-  update_mesh(report, {old}, {p}, std::move(rings), edit_start, start, reply);
+  update_mesh(report, std::move(removed), std::move(added), std::move(rings), edit_start, start, reply);
   return reply;
 }
 
 template <int D>
+std::vector<Point<D>> EditSession<D>::canonical_points() const {
+  const std::vector<Point<D>> all = set_.points();
+  std::vector<Point<D>> out;
+  out.reserve(all.size());
+  for (std::size_t eid : engine_of_user_)
+    if (eid != kRemoved) out.push_back(set_.input_point(eid));
+  if constexpr (D == 2)
+    if (refinement_)
+      for (const Point2& p : refinement_->split_points()) out.push_back(p);
+  out.insert(out.end(), all.begin() + static_cast<std::ptrdiff_t>(set_.input_count()), all.end());
+  return out;
+}
+
+template <int D>
 json EditSession<D>::export_to(const std::vector<std::string>& words) {
-  if (words.size() != 2 || words[1].empty()) throw InputError("export takes a PATH (.csv for the point set, or a mesh)");
+  if (words.size() != 2 || words[1].empty())
+    throw InputError("export takes a PATH (.csv for the point set, .rings for the shoreline, or a mesh)");
   const std::filesystem::path path = words[1];
   const auto start = Clock::now();
   json reply = {{"path", path.string()}};
-  if (is_point_set_path(path)) {
-    const auto points = set_.points();
+  std::string ext = path.extension().string();
+  if (ext == ".rings") {
+    if (!refinement_) throw InputError("export PATH.rings: this session has no shoreline");
+    io::write_ring_file(path, refinement_->rings());
+    reply["rings"] = refinement_->rings().rings.size();
+  } else if (is_point_set_path(path)) {
+    const auto points = canonical_points();
     io::write_point_set_csv<D>(path, set_.box(), points);
     reply["points"] = points.size();
   } else {
     // Numbered like a fresh run's export on the current input: its canonical point list.
-    export_mesh_file<D>(mesh_, path, std::nullopt, frame_, set_.points());
+    export_mesh_file<D>(mesh_, path, std::nullopt, frame_, canonical_points());
     reply["elements"] = mesh_.element_count();
   }
   reply["ms"] = ms_since(start);
@@ -446,7 +531,8 @@ json EditSession<D>::stats() const {
   const auto start = Clock::now();
   const QualityNumbers q = quality_numbers<D>(mesh_, rho_, set_.box(), frame_);
   json r;
-  r["input_points"] = set_.input_count();
+  r["input_points"] = user_input_count();
+  r["shore_splits"] = split_id_.size();
   r["steiner_points"] = set_.steiner_count();
   r["next_id"] = next_id_;
   r["elements"] = q.elements;
@@ -459,8 +545,11 @@ json EditSession<D>::stats() const {
   r["rho"] = q.rho;
   if (q.left_out_at_box_edge) r["left_out_at_box_edge"] = *q.left_out_at_box_edge;
   if (q.shore_segments) {
+    r["shore_below_bound"] = q.shore_below_bound;
+    r["shore_splits"] = split_id_.size();
     r["shore_segments"] = *q.shore_segments;
     r["shore_covered"] = *q.shore_covered;
+    r["shore_conforming"] = *q.shore_covered == *q.shore_segments;
   }
   r["ms"] = ms_since(start);
   return r;

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -16,10 +17,18 @@
 #include "shoremesh/io/input_set.hpp"
 #include "shoremesh/io/ring_edge_index.hpp"
 #include "shoremesh/mesh.hpp"
+#include "shoremesh/shore_refinement.hpp"
 #include "shoremesh/well_spaced.hpp"
 #include "user_frame.hpp"
 
 namespace shoremesh::tool {
+
+// Exact coordinates as a key.
+struct SplitHash {
+  std::size_t operator()(const Point2& p) const {
+    return std::hash<double>{}(p[0] + 0.0) * 0x9E3779B97F4A7C15ull ^ std::hash<double>{}(p[1] + 0.0);
+  }
+};
 
 template <int D>
 class EditSession {
@@ -67,6 +76,20 @@ class EditSession {
                    std::chrono::steady_clock::time_point edit_start,
                    std::chrono::steady_clock::time_point engine_start, nlohmann::json& reply);
   void check_id(std::size_t id) const;
+  std::size_t engine_id(std::size_t id) const { return engine_of_user_.at(id); }
+  // Applies the user's edits of the engine's input (engine ids) together with what they do to the shore's
+  // canonical splits, in one propagation: `rings` are the user's rings after the edit (null: unchanged),
+  // `loose_removed`/`loose_added` the loose points the edit takes and gives. The input points that went
+  // and came (splits included) are added to `inputs_removed`/`inputs_added`; returns the engine ids of the
+  // edits' added points, in order. On an error nothing changed.
+  std::vector<std::size_t> apply_edits(std::vector<Edit<D>> edits, const Domain2* rings,
+                                       std::vector<Point<D>> loose_removed, std::vector<Point<D>> loose_added,
+                                       std::vector<Point<D>>& inputs_removed, std::vector<Point<D>>& inputs_added,
+                                       UpdateReport<D>& report);
+  // The point set as a fresh run on the current input lists it: the user's input points by id, the
+  // shore's splits (sorted), then the Steiner points.
+  std::vector<Point<D>> canonical_points() const;
+  std::size_t user_input_count() const { return set_.input_count() - split_id_.size(); }
   nlohmann::json point_json(const Point<D>& p) const;
 
   UserFrame frame_;
@@ -74,8 +97,12 @@ class EditSession {
   double rho_;
   bool keep_hull_ = false;
   PreviewArgs preview_;
+  std::optional<ShoreRefinement> refinement_;  // 2D with rings: the user's rings and their canonical splits
   DynamicWellSpaced<D> set_;
-  std::optional<io::RingEdgeIndex> ring_index_;  // the edges of the rings of the mesh's water (mesh_.domain())
+  std::unordered_map<Point2, std::size_t, SplitHash> split_id_;  // a split point's engine id
+  std::vector<std::size_t> engine_of_user_;  // by user id: the engine's input id (kRemoved once removed)
+  static constexpr std::size_t kRemoved = static_cast<std::size_t>(-1);
+  std::optional<io::RingEdgeIndex> ring_index_;  // the edges of the user's rings (refinement_->rings())
   std::vector<std::vector<std::size_t>> ring_ids_;                          // ring r's vertices as input ids
   std::unordered_map<std::size_t, std::pair<std::size_t, std::size_t>> ring_of_;  // id -> (ring, position)
   Mesh<D> mesh_;

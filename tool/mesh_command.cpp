@@ -29,7 +29,8 @@ struct MeshOptions {
 
 template <int D>
 int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress) {
-  const std::vector<Point<D>> points = input_points<D>(set);
+  const EngineInput<D> in = engine_input<D>(set);
+  const std::vector<Point<D>>& points = in.points;
   const UserFrame frame = UserFrame::of(set);
   const std::filesystem::path output = opt.output;
   const bool point_set = opt.format.empty() && is_point_set_path(output);
@@ -45,7 +46,7 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
     rethrow_with_origin(e, set);
   }
   progress.stage("meshing " + std::to_string(result.points.size()) + " points");
-  const Mesh<D> mesh = make_mesh<D>(result.points, result.input_count, set.domain, result.box, opt.engine.keep_hull);
+  const Mesh<D> mesh = make_mesh<D>(result.points, result.input_count, in.domain, result.box, opt.engine.keep_hull);
 
   progress.stage("writing " + output.filename().string());
   if (point_set) {
@@ -60,7 +61,8 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
     write_preview<D>(mesh, opt.preview, args);
   }
   progress.stage("measuring quality");
-  const QualityNumbers quality = quality_numbers<D>(mesh, opt.engine.rho, result.box, frame);
+  QualityNumbers quality = quality_numbers<D>(mesh, opt.engine.rho, result.box, frame);
+  quality.shore_splits = points.size() - in.input_count;
   progress.finish();
 
   std::cerr << "shoremesh: " << result.input_count << " input points, " << result.points.size() - result.input_count

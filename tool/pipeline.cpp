@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <set>
 #include <sstream>
 
 #include "shoremesh/error.hpp"
+#include "shoremesh/mesh_quality.hpp"
+#include "shoremesh/shore_refinement.hpp"
 
 namespace shoremesh::tool {
 
@@ -60,6 +63,30 @@ std::vector<Point<D>> input_points(const io::InputSet& set) {
     if (set.dimension != 3) throw InputError("--dim 3 needs 3D input (a point file with three columns)");
     return set.points3;
   }
+}
+
+std::vector<Point2> loose_points(const io::InputSet& set) {
+  std::vector<Point2> out;
+  if (set.dimension != 2) return out;
+  for (std::size_t i = 0; i < set.points.size(); ++i)
+    if (set.origins.empty() || set.origins[i].ring == io::PointOrigin::kNoRing) out.push_back(set.points[i]);
+  return out;
+}
+
+template <int D>
+EngineInput<D> engine_input(const io::InputSet& set) {
+  EngineInput<D> in;
+  in.points = input_points<D>(set);
+  in.input_count = in.points.size();
+  if constexpr (D == 2) {
+    if (!set.domain.empty()) {
+      const ShoreRefinement refinement(set.domain, loose_points(set));
+      const std::vector<Point2> splits = refinement.split_points();
+      in.points.insert(in.points.end(), splits.begin(), splits.end());
+      in.domain = refinement.refined();
+    }
+  }
+  return in;
 }
 
 void rethrow_with_origin(const PointInputError& e, const io::InputSet& set) {
@@ -126,6 +153,7 @@ QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransfo
     ++q.points;
     ++(mesh.kinds()[i] == PointKind::Input ? q.input_points : q.steiner_points);
   }
+
   q.min_angle = r.min_angle;
   q.max_angle = r.max_angle;
   q.min_angle_bound = r.min_angle_bound;
@@ -139,6 +167,17 @@ QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransfo
   if (!r.worst.empty()) q.worst_at = frame.point(r.worst.front().shape.centroid);
   if constexpr (D == 2) {
     if (!mesh.domain().empty()) {
+      std::set<std::pair<Point2, Point2>> shore;
+      for (const Ring& ring : mesh.domain().rings)
+        for (std::size_t k = 0; k < ring.points.size(); ++k)
+          shore.insert(std::minmax(ring.points[k], ring.points[(k + 1) % ring.points.size()]));
+      for (const auto& e : elements) {
+        ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
+        if (element_shape<2>(c).radius_edge <= rho) continue;
+        bool on_shore = false;
+        for (int i = 0; i < 3; ++i) on_shore = on_shore || shore.count(std::minmax(c[i], c[(i + 1) % 3]));
+        ++(on_shore ? q.shore_below_bound : q.interior_below_bound);
+      }
       const ShorelineReport s = mesh.shoreline_crossings();
       q.shore_segments = s.segments;
       q.shore_covered = s.covered;
@@ -171,10 +210,18 @@ std::string quality_text(const QualityNumbers& q, int dimension) {
         << "bound; " << q.meeting_bound << " of " << q.elements << " meet it overall\n";
   if (!q.worst_at.empty()) out << "  worst " << (dimension == 2 ? "triangle" : "tetrahedron") << " near " << q.worst_at << "\n";
   if (q.shore_segments) {
-    out << "  shoreline: " << *q.shore_covered << " of " << *q.shore_segments << " shore segments are mesh edges";
-    if (*q.shore_covered < *q.shore_segments)
-      out << "; the others are crossed by mesh edges at most " << q.shore_worst_depth_text
-          << " from the shore (sample the shore finer with --spacing)";
+    if (*q.shore_covered == *q.shore_segments) {
+      out << "  shoreline: all " << *q.shore_segments << " shore segments are mesh edges (the shore is the mesh's "
+          << "boundary; " << q.shore_splits << " of the input points are canonical splits of the shore)";
+    } else {
+      out << "  shoreline: " << *q.shore_covered << " of " << *q.shore_segments << " shore segments are mesh edges"
+          << "; the others are crossed by mesh edges at most " << q.shore_worst_depth_text << " from the shore";
+    }
+    if (q.shore_below_bound)
+      out << "\n  at the shore: " << q.shore_below_bound << ' ' << (dimension == 2 ? "triangles" : "tetrahedra")
+          << " with a shore edge are below the bound (a Steiner point in the edge's diametral circle, or a sharp "
+             "input corner); "
+          << q.interior_below_bound << " elsewhere";
     out << "\n";
   }
   return out.str();
@@ -202,6 +249,8 @@ template Parameters<2> engine_parameters<2>(double);
 template Parameters<3> engine_parameters<3>(double);
 template std::optional<BoxTransform<2>> parse_box<2>(const std::vector<double>&);
 template std::optional<BoxTransform<3>> parse_box<3>(const std::vector<double>&);
+template EngineInput<2> engine_input<2>(const io::InputSet&);
+template EngineInput<3> engine_input<3>(const io::InputSet&);
 template std::vector<Point<2>> input_points<2>(const io::InputSet&);
 template std::vector<Point<3>> input_points<3>(const io::InputSet&);
 template Mesh<2> make_mesh<2>(std::span<const Point<2>>, std::size_t, const Domain2&, const BoxTransform<2>&, bool);

@@ -38,6 +38,21 @@ bool is_point_set_path(const std::filesystem::path& path);
 template <int D>
 std::vector<Point<D>> input_points(const io::InputSet& set);
 
+// The input points on no ring (loose points, tracks kept open).
+std::vector<Point2> loose_points(const io::InputSet& set);
+
+// What the engine and the mesh take: the input points, then (2D with rings) the canonical split points of
+// the shore (ShoreRefinement), which make every shore segment a mesh edge; the mesh's domain is the rings
+// with those splits in them.
+template <int D>
+struct EngineInput {
+  std::vector<Point<D>> points;
+  std::size_t input_count = 0;  // the user's input points, first in `points`
+  Domain2 domain;               // refined rings (2D), empty otherwise
+};
+template <int D>
+EngineInput<D> engine_input(const io::InputSet& set);
+
 // An engine error about particular input points, said with the file and line they came from.
 [[noreturn]] void rethrow_with_origin(const PointInputError& e, const io::InputSet& set);
 
@@ -73,6 +88,10 @@ struct QualityNumbers {
   std::optional<std::size_t> left_out_at_box_edge;  // when the mesh is clipped to the box (not --keep-hull)
   std::string worst_at;                 // the worst element's centroid in the user's frame
   std::optional<std::size_t> shore_segments, shore_covered;
+  std::size_t shore_splits = 0;  // input points the shore's splits added (counted in input_points)
+  // Elements below the bound, all of them with a shore segment as an edge (none elsewhere: checked), and
+  // of those the ones at an input corner sharper than 60 degrees (the documented exception).
+  std::size_t shore_below_bound = 0, interior_below_bound = 0;
   double shore_worst_depth = 0;
   std::string shore_worst_depth_text;  // in the user's units
 };

@@ -3,7 +3,8 @@
 // All of CGAL's heavy templates live in this translation unit.
 #include "shoremesh/mesh.hpp"
 
-#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Constrained_triangulation_face_base_2.h>
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
@@ -44,13 +45,53 @@ enum FaceFlag : std::uint8_t {
 template <int D>
 struct Cgal;
 
+// A 2D face's info: its flags and the vertices it had when it was classified, so that a face that CGAL
+// changed in place (a flip) or created is told apart from one it left alone.
+struct FaceInfo2 {
+  std::uint8_t flags = 0;
+  std::array<const void*, 3> stamp{};  // vertex addresses, sorted; all null for a face never classified
+};
+
+// The constrained Delaunay triangulation of the mesh: the shore's segments are constraints, so that they
+// are mesh edges whatever the points around them. Constraints never cross (the rings are valid), so no
+// intersection point is ever constructed. It reports the faces a constraint's insertion deletes (the
+// faces it crosses), so that the mesh can name them before they go.
+template <class Tds>
+class Cdt : public CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds,
+                                                             CGAL::No_constraint_intersection_requiring_constructions_tag> {
+  using Base =
+      CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>;
+
+ public:
+  using typename Base::Face_handle;
+  using typename Base::List_edges;
+  using typename Base::List_faces;
+  std::function<void(const List_faces&)> on_hole;  // called with the faces about to be deleted
+
+  // The constraints at v stop being constraints, without flips (a triangulation of dimension below 2).
+  void unmark_incident_constraints(typename Base::Vertex_handle v) {
+    CGAL::Constrained_triangulation_2<Kernel, Tds, CGAL::No_constraint_intersection_requiring_constructions_tag>::
+        remove_incident_constraints(v);
+  }
+
+ protected:
+  void triangulate_hole(List_faces& intersected_faces, List_edges& conflict_boundary_ab,
+                        List_edges& conflict_boundary_ba) override {
+    if (on_hole) on_hole(intersected_faces);
+    Base::triangulate_hole(intersected_faces, conflict_boundary_ab, conflict_boundary_ba);
+  }
+};
+
 template <>
 struct Cgal<2> {
   using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, Kernel>;
-  using Fb = CGAL::Triangulation_face_base_with_info_2<std::uint8_t, Kernel>;  // info: FaceFlags
-  using Triangulation = CGAL::Delaunay_triangulation_2<Kernel, CGAL::Triangulation_data_structure_2<Vb, Fb>>;
+  using Fb = CGAL::Constrained_triangulation_face_base_2<
+      Kernel, CGAL::Triangulation_face_base_with_info_2<FaceInfo2, Kernel>>;
+  using Triangulation = Cdt<CGAL::Triangulation_data_structure_2<Vb, Fb>>;
   using Vertex = Triangulation::Vertex_handle;
   using Face = Triangulation::Face_handle;
+
+  static std::uint8_t& flags(Face f) { return f->info().flags; }
 
   static Kernel::Point_2 to_cgal(const Point2& p) { return {p[0], p[1]}; }
   static Point2 from_cgal(const Kernel::Point_2& p) { return {p.x(), p.y()}; }
@@ -92,6 +133,8 @@ struct Cgal<3> {
   using Triangulation = CGAL::Delaunay_triangulation_3<Kernel, CGAL::Triangulation_data_structure_3<Vb, Cb>>;
   using Vertex = Triangulation::Vertex_handle;
   using Face = Triangulation::Cell_handle;
+
+  static std::uint8_t& flags(Face f) { return f->info(); }
 
   static Kernel::Point_3 to_cgal(const Point3& p) { return {p[0], p[1], p[2]}; }
   static Point3 from_cgal(const Kernel::Point_3& p) { return {p.x(), p.y(), p.z()}; }
@@ -189,6 +232,39 @@ std::optional<ChangedWater> changed_water(const Domain2& before, const Domain2& 
   return w;
 }
 
+// The shore segments of `before` that `after` no longer has and those it gained: from each changed stretch
+// (the segments from the vertex before it to the vertex after it), or all of them when the rings differ
+// in number.
+void changed_segments(const Domain2& before, const Domain2& after, const std::optional<ChangedWater>& water,
+                      std::vector<std::pair<Point2, Point2>>& dropped, std::vector<std::pair<Point2, Point2>>& inserted) {
+  using Segment = std::pair<Point2, Point2>;
+  auto segments = [](const std::vector<Point2>& ring, std::size_t prefix, std::size_t suffix, std::vector<Segment>& out) {
+    const std::size_t m = ring.size();
+    const std::size_t count = std::min(m, m - prefix - suffix + 1);
+    for (std::size_t j = 0; j < count; ++j) {
+      const std::size_t k = (prefix + m - 1 + j) % m;
+      const Point2 &a = ring[k], &b = ring[(k + 1) % m];
+      if (a != b) out.push_back(std::minmax(a, b));
+    }
+  };
+  std::vector<Segment> old_segments, new_segments;
+  if (water) {
+    for (const auto& st : water->stretches) {
+      segments(before.rings[st.ring].points, st.prefix, st.suffix, old_segments);
+      segments(after.rings[st.ring].points, st.prefix, st.suffix, new_segments);
+    }
+  } else {
+    for (const Ring& r : before.rings) segments(r.points, 0, 0, old_segments);
+    for (const Ring& r : after.rings) segments(r.points, 0, 0, new_segments);
+  }
+  std::sort(old_segments.begin(), old_segments.end());
+  std::sort(new_segments.begin(), new_segments.end());
+  std::set_difference(old_segments.begin(), old_segments.end(), new_segments.begin(), new_segments.end(),
+                      std::back_inserter(dropped));
+  std::set_difference(new_segments.begin(), new_segments.end(), old_segments.begin(), old_segments.end(),
+                      std::back_inserter(inserted));
+}
+
 }  // namespace
 
 template <int D>
@@ -210,65 +286,6 @@ class MeshTriangulation {
 
   Triangulation triangulation;
   std::unordered_map<Point<D>, Vertex, PointHash<D>> vertex_of;
-
-  void build(std::span<const Point<D>> points) {
-    std::vector<std::pair<decltype(C::to_cgal(points[0])), std::uint32_t>> input;
-    input.reserve(points.size());
-    for (std::uint32_t i = 0; i < points.size(); ++i) input.emplace_back(C::to_cgal(points[i]), i);
-    triangulation.insert(input.begin(), input.end());  // spatially sorted bulk insertion
-    for (Vertex v : triangulation.finite_vertex_handles()) vertex_of.emplace(C::from_cgal(v->point()), v);
-    C::for_each_finite_face(triangulation, [&](Face f) { classify(f); });
-  }
-
-  // Whether the mesh keeps f: in the water and covered.
-  bool kept(Face f) const { return f->info() == (kInWater | kCovered); }
-  bool in_water(Face f) const { return f->info() & kInWater; }
-
-  Element<D> element(Face f) const {
-    Element<D> e;
-    for (int i = 0; i <= D; ++i) e[i] = f->vertex(i)->info();
-    return e;
-  }
-
-  Key key(Face f) const {
-    Key k;
-    for (int i = 0; i <= D; ++i) k[i] = C::from_cgal(f->vertex(i)->point());
-    std::sort(k.begin(), k.end());
-    return k;
-  }
-
-  // A new face: its side of the water and whether the box covers it.
-  void classify(Face f) {
-    std::uint8_t flags = water_side(f);
-    if (!covered_box_) {
-      flags |= kCovered;
-    } else {
-      ElementCorners<D> corners;
-      for (int i = 0; i <= D; ++i) corners[i] = C::from_cgal(f->vertex(i)->point());
-      if (circumcentre_in_box<D>(corners, *covered_box_)) flags |= kCovered;
-    }
-    f->info() = flags;
-  }
-
-  // The water side of a triangle is the side of its centroid: the mesh's elements do not cross the rings
-  // when the sampling is fine enough (shoreline_crossings says where it is not).
-  std::uint8_t water_side(Face f) const {
-    if constexpr (D == 2) {
-      const auto c = CGAL::centroid(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
-      return water_.in_water({c.x(), c.y()}) ? kInWater : 0;
-    } else {
-      return kInWater;
-    }
-  }
-
-  std::set<Key> all_keys() const {
-    std::set<Key> keys;
-    if (triangulation.dimension() < D) return keys;
-    C::for_each_finite_face(triangulation, [&](Face f) {
-      if (kept(f)) keys.insert(key(f));
-    });
-    return keys;
-  }
 
   // The elements a change destroyed and created, netted once at the end: an element removed then
   // recreated (or created then removed) cancels. Each element's births and deaths alternate, so the net is
@@ -294,6 +311,183 @@ class MeshTriangulation {
     }
   };
 
+
+  void build(std::span<const Point<D>> points, const Domain2& domain_) {
+    std::vector<std::pair<decltype(C::to_cgal(points[0])), std::uint32_t>> input;
+    input.reserve(points.size());
+    for (std::uint32_t i = 0; i < points.size(); ++i) input.emplace_back(C::to_cgal(points[i]), i);
+    triangulation.insert(input.begin(), input.end());  // spatially sorted bulk insertion
+    for (Vertex v : triangulation.finite_vertex_handles()) vertex_of.emplace(C::from_cgal(v->point()), v);
+    if constexpr (D == 2)
+      for (const Ring& ring : domain_.rings)
+        for (std::size_t k = 0; k < ring.points.size(); ++k) {
+          const Point2& a = ring.points[k];
+          const Point2& b = ring.points[(k + 1) % ring.points.size()];
+          const auto ia = vertex_of.find(a), ib = vertex_of.find(b);
+          // A ring vertex that is not a mesh point leaves its segments out (shoreline_crossings says so).
+          if (a != b && ia != vertex_of.end() && ib != vertex_of.end()) insert_constraint(ia->second, ib->second);
+        }
+    C::for_each_finite_face(triangulation, [&](Face f) { classify(f); });
+  }
+
+  // Constraints never cross when the rings are valid (io::find_ring_defect); CGAL's refusal to construct a
+  // crossing is turned into an error that says so.
+  void insert_constraint(Vertex a, Vertex b)
+    requires(D == 2)
+  {
+    try {
+      triangulation.insert_constraint(a, b);
+    } catch (const typename Triangulation::Intersection_of_constraints_exception&) {
+      throw InputError("shore segment " + describe<2>(C::from_cgal(a->point())) + "-" +
+                       describe<2>(C::from_cgal(b->point())) + " crosses another shore segment");
+    }
+  }
+
+  // A face's corners by address, sorted: what classify() stamps on a 2D face.
+  static std::array<const void*, 3> stamp_of(Face f)
+    requires(D == 2)
+  {
+    std::array<const void*, 3> s{&*f->vertex(0), &*f->vertex(1), &*f->vertex(2)};
+    std::sort(s.begin(), s.end(), std::less<const void*>{});
+    return s;
+  }
+
+  // After a CGAL operation on the 2D triangulation: every face it created or changed in place is new
+  // (unclassified, or its corners are not those it was classified with). Such faces touch the seeds or
+  // another such face (CGAL's flips spread through neighbours), so a walk from the faces around the
+  // seeds through the changed faces finds them all. A changed face's old corners are alive (no vertex
+  // was deleted by the operations that change faces in place), so its old key is read from them. A
+  // finite face may become infinite in place (a point inserted on the hull): it leaves the mesh.
+  void sweep(const std::vector<Vertex>& seeds, Accumulator& acc)
+    requires(D == 2)
+  {
+    std::vector<Face> todo;
+    std::set<Face> seen;
+    for (Vertex v : seeds) {
+      auto c = triangulation.incident_faces(v), done = c;
+      if (c != nullptr) do {
+          if (seen.insert(c).second) todo.push_back(c);
+        } while (++c != done);
+    }
+    while (!todo.empty()) {
+      const Face f = todo.back();
+      todo.pop_back();
+      const bool infinite = triangulation.is_infinite(f);
+      const auto now = stamp_of(f);
+      const auto& old = f->info().stamp;
+      if (old == now || (infinite && !old[0])) continue;
+      if (old[0] && kept(f)) {
+        Key k;
+        for (int i = 0; i < 3; ++i) k[i] = C::from_cgal(static_cast<const typename Triangulation::Vertex*>(old[i])->point());
+        std::sort(k.begin(), k.end());
+        acc.remove(k);
+      }
+      if (infinite) {
+        f->info() = FaceInfo2{};
+      } else {
+        classify(f);
+        if (kept(f)) acc.add(key(f));
+      }
+      for (int i = 0; i < 3; ++i)
+        if (seen.insert(f->neighbor(i)).second) todo.push_back(f->neighbor(i));
+    }
+  }
+
+  // Keys of the kept faces that `faces` lists (about to be deleted).
+  template <class Faces>
+  void record_deleted(const Faces& faces, Accumulator& acc) {
+    for (Face f : faces)
+      if (!triangulation.is_infinite(f) && kept(f)) acc.remove(key(f));
+  }
+
+  // The constraints become those of `after`'s changed stretches (`change`): the segments only `before`
+  // has stop being constrained (those of removed points go with them), the new ones are inserted.
+  // Called between the point removals and insertions: `stage` 0 drops, 1 inserts.
+  void drop_constraints(const std::vector<std::pair<Point2, Point2>>& segments, Accumulator& acc)
+    requires(D == 2)
+  {
+    for (const auto& [a, b] : segments) {
+      const auto ia = vertex_of.find(a), ib = vertex_of.find(b);
+      if (ia == vertex_of.end() || ib == vertex_of.end()) continue;  // a removed point takes it along
+      Face f;
+      int i;
+      if (!triangulation.is_edge(ia->second, ib->second, f, i) || !f->is_constrained(i)) continue;
+      triangulation.remove_constrained_edge(f, i);
+      sweep({ia->second, ib->second}, acc);
+    }
+  }
+
+  void add_constraints(const std::vector<std::pair<Point2, Point2>>& segments, Accumulator& acc)
+    requires(D == 2)
+  {
+    for (const auto& [a, b] : segments) {
+      const auto ia = vertex_of.find(a), ib = vertex_of.find(b);
+      if (ia == vertex_of.end() || ib == vertex_of.end()) continue;  // as in build
+      const Vertex va = ia->second, vb = ib->second;
+      std::vector<Vertex> seeds{va, vb};
+      triangulation.on_hole = [&](const auto& faces) {
+        record_deleted(faces, acc);
+        for (Face f : faces)
+          for (int i = 0; i < 3; ++i) seeds.push_back(f->vertex(i));
+      };
+      insert_constraint(va, vb);
+      triangulation.on_hole = nullptr;
+      std::erase_if(seeds, [&](Vertex v) { return triangulation.is_infinite(v); });
+      sweep(seeds, acc);
+    }
+  }
+
+  // Whether the mesh keeps f: in the water and covered.
+  bool kept(Face f) const { return C::flags(f) == (kInWater | kCovered); }
+  bool in_water(Face f) const { return C::flags(f) & kInWater; }
+
+  Element<D> element(Face f) const {
+    Element<D> e;
+    for (int i = 0; i <= D; ++i) e[i] = f->vertex(i)->info();
+    return e;
+  }
+
+  Key key(Face f) const {
+    Key k;
+    for (int i = 0; i <= D; ++i) k[i] = C::from_cgal(f->vertex(i)->point());
+    std::sort(k.begin(), k.end());
+    return k;
+  }
+
+  // A new face: its side of the water and whether the box covers it.
+  void classify(Face f) {
+    std::uint8_t flags = water_side(f);
+    if (!covered_box_) {
+      flags |= kCovered;
+    } else {
+      ElementCorners<D> corners;
+      for (int i = 0; i <= D; ++i) corners[i] = C::from_cgal(f->vertex(i)->point());
+      if (circumcentre_in_box<D>(corners, *covered_box_)) flags |= kCovered;
+    }
+    C::flags(f) = flags;
+    if constexpr (D == 2) f->info().stamp = stamp_of(f);
+  }
+
+  // The water side of a triangle is the side of its centroid: the mesh's elements do not cross the rings
+  // when the sampling is fine enough (shoreline_crossings says where it is not).
+  std::uint8_t water_side(Face f) const {
+    if constexpr (D == 2) {
+      const auto c = CGAL::centroid(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
+      return water_.in_water({c.x(), c.y()}) ? kInWater : 0;
+    } else {
+      return kInWater;
+    }
+  }
+
+  std::set<Key> all_keys() const {
+    std::set<Key> keys;
+    if (triangulation.dimension() < D) return keys;
+    C::for_each_finite_face(triangulation, [&](Face f) {
+      if (kept(f)) keys.insert(key(f));
+    });
+    return keys;
+  }
+
   // The keys of the kept elements whose corners are all in `link` (sorted). With `known` (the kept ones
   // before a removal, sorted), the others are new or were not kept: they are classified first. The
   // link's vertices carry kLinkMark meanwhile; each face is taken once, from its first corner in memory.
@@ -314,11 +508,29 @@ class MeshTriangulation {
   void remove(const Point<D>& p, std::vector<Point<D>>& points, std::vector<PointKind>& kinds, Accumulator& acc) {
     const Vertex v = vertex_of.at(p);
     const std::uint32_t slot = v->info();
+    if constexpr (D == 2) {
+      // Its segments go first, with CGAL's flips: points they hid become visible to faces outside the star.
+      if (triangulation.dimension() == 2 && triangulation.are_there_incident_constraints(v)) {
+        triangulation.remove_incident_constraints(v);
+        sweep({v}, acc);
+      } else {
+        triangulation.unmark_incident_constraints(v);
+      }
+    }
     if (triangulation.dimension() < D) {
       const std::set<Key> before = all_keys();
       triangulation.remove(v);
       acc.record(before, all_keys());
       hint_ = Vertex();
+    } else if constexpr (D == 2) {
+      // The star goes; the faces that fill its hole have link vertices only.
+      const std::vector<Vertex> link = C::adjacent_finite_vertices(triangulation, v);
+      C::for_each_incident_finite_face(triangulation, v, [&](Face f) {
+        if (kept(f)) acc.remove(key(f));
+      });
+      triangulation.remove(v);
+      if (!link.empty()) hint_ = link.front();
+      if (triangulation.dimension() == D) sweep(link, acc);
     } else {
       // The faces destroyed are those around v (its star). The faces created fill the star's hole, so
       // they have only link vertices as corners; so may a few faces outside the star, which the
@@ -356,6 +568,18 @@ class MeshTriangulation {
               Accumulator& acc) {
     const auto cp = C::to_cgal(p);
     const bool full = triangulation.dimension() == D;
+    if constexpr (D == 2) {
+      if (full) {  // CGAL splits and flips faces in place here, and deletes none: the sweep sees it all
+        const Vertex v = triangulation.insert(cp, C::locate(triangulation, cp, hint_));
+        hint_ = v;
+        v->info() = static_cast<std::uint32_t>(points.size());
+        points.push_back(p);
+        kinds.push_back(kind);
+        vertex_of.emplace(p, v);
+        sweep({v}, acc);
+        return;
+      }
+    }
     std::set<Key> before;
     Face start;
     if (full) {
@@ -388,7 +612,7 @@ class MeshTriangulation {
   // changed side, it left or joined the mesh.
   void reclassify(Face f, Accumulator& acc) {
     const bool was = kept(f);
-    f->info() = std::uint8_t((f->info() & ~kInWater) | water_side(f));
+    C::flags(f) = std::uint8_t((C::flags(f) & ~kInWater) | water_side(f));
     if (was == kept(f)) return;
     if (was) acc.remove(key(f));
     else acc.add(key(f));
@@ -490,7 +714,7 @@ void Mesh<D>::build(std::span<const Point<D>> points, std::size_t input_count) {
   kinds_.assign(points.size(), PointKind::Steiner);
   std::fill_n(kinds_.begin(), input_count, PointKind::Input);
   triangulation_ = std::make_unique<MeshTriangulation<D>>(domain_, covered_box_);
-  triangulation_->build(points_);
+  triangulation_->build(points_, domain_);
   element_count_ = count_elements();
 }
 
@@ -568,10 +792,12 @@ MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domai
   if (points_.size() + change.added.size() - change.removed.size() >= MeshTriangulation<D>::kMaxPoints)
     throw InputError("too many points for a mesh");
   std::optional<ChangedWater> water;
+  std::vector<std::pair<Point2, Point2>> dropped, inserted;  // shore segments that went and came
   if constexpr (D == 2) {
     if (domain) {
-      // The faces the change creates are classified against the new rings.
       water = changed_water(domain_, *domain);
+      changed_segments(domain_, *domain, water, dropped, inserted);
+      // The faces the change creates are classified against the new rings.
       if (water) t.update_water(domain_, *domain, *water);
       else t.set_water(*domain);
       domain_ = *domain;
@@ -579,8 +805,10 @@ MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domai
   }
   typename MeshTriangulation<D>::Accumulator acc;
   for (const Point<D>& p : change.removed) t.remove(p, points_, kinds_, acc);
+  if constexpr (D == 2) t.drop_constraints(dropped, acc);
   for (std::size_t i = 0; i < change.added.size(); ++i)
     t.insert(change.added[i], i < change.added_input_count ? PointKind::Input : PointKind::Steiner, points_, kinds_, acc);
+  if constexpr (D == 2) t.add_constraints(inserted, acc);
   if constexpr (D == 2) {
     if (domain && !water) t.reclassify_all(acc);
     else if (domain && water->changed) t.reclassify_within(water->lo, water->hi, water->seed, acc);
@@ -642,9 +870,11 @@ ShorelineReport Mesh<D>::shoreline_crossings() const
       if (ia == t.vertex_of.end() || ib == t.vertex_of.end() || dt.dimension() < 2) {
         issue.endpoint_missing = true;
         for (const auto& p : {pa, pb})
-          if (dt.number_of_vertices() > 0 && !t.vertex_of.count(C::from_cgal(p)))
-            issue.depth = std::max(issue.depth, std::sqrt(CGAL::to_double(
-                                                    CGAL::squared_distance(dt.nearest_vertex(p)->point(), p))));
+          if (!t.vertex_of.count(C::from_cgal(p))) {
+            double nearest = std::numeric_limits<double>::infinity();
+            for (const Point2& q : points_) nearest = std::min(nearest, std::hypot(q[0] - p.x(), q[1] - p.y()));
+            if (!points_.empty()) issue.depth = std::max(issue.depth, nearest);
+          }
         report.issues.push_back(issue);
         continue;
       }

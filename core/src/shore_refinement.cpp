@@ -140,6 +140,16 @@ struct ShoreRefinement::Impl {
     return !excluded;
   }
 
+  bool off_line(const Point2& p, const Point2& q, const Point2& x) const {
+    const double k = rule.min_offset > 0 ? 1 / (rule.min_offset * rule.min_offset) : 0;
+    return engine::filtered_sign(counters, [&](auto zero) {
+             using NT = decltype(zero);
+             const NT cross = (NT(q[0]) - NT(p[0])) * (NT(x[1]) - NT(p[1])) - (NT(q[1]) - NT(p[1])) * (NT(x[0]) - NT(p[0]));
+             const NT l2 = engine::squared_distance<NT, 2>(p, q);
+             return rule.min_offset > 0 ? NT(k) * cross * cross - l2 * l2 : cross * cross;
+           }) > (rule.min_offset > 0 ? -1 : 0);
+  }
+
   // Whether leaf n must be halved (and can be: its midpoint is a new point strictly between its ends).
   bool encroached(const Node& n) const {
     const Edge& e = edges[n.edge];
@@ -156,7 +166,10 @@ struct ShoreRefinement::Impl {
               using NT = decltype(zero);
               return NT(g2) * engine::squared_distance<NT, 2>(p, q) -
                      NT(4) * engine::squared_distance<NT, 2>(x, m);
-            }) > 0;
+            }) > 0 &&
+            // x off the line by min_offset of the length: a point on the line (rings that touch) or nearly
+            // so would halve it without end.
+            off_line(p, q, x);
     }
     return hit && !taken;  // a midpoint that is already an input point cannot be a new one
   }
@@ -281,8 +294,8 @@ struct ShoreRefinement::Impl {
 
 ShoreRefinement::ShoreRefinement(const Domain2& rings, std::span<const Point2> loose, RefinementRule rule)
     : impl_(std::make_unique<Impl>()) {
-  if (!(rule.gamma >= 1) || rule.max_depth < 1 || rule.max_depth > 50)
-    throw std::invalid_argument("ShoreRefinement: gamma must be at least 1 and max_depth in 1..50");
+  if (!(rule.gamma >= 1) || rule.max_depth < 1 || rule.max_depth > 50 || !(rule.min_offset >= 0 && rule.min_offset < 1))
+    throw std::invalid_argument("ShoreRefinement: gamma must be at least 1, max_depth in 1..50, min_offset in [0, 1)");
   impl_->rule = rule;
   impl_->rings = rings;
   impl_->build(loose);

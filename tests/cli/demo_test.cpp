@@ -16,7 +16,7 @@ TEST(Demo, RunsAndWritesWhatItAnnounces) {
   const int status = std::system(cmd.c_str());
   const std::string log = read_file(dir / "log");
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << log;
-  EXPECT_THAT(log, ::testing::HasSubstr("identical: superior_edited.csv = shoremesh mesh edited_input.csv"));
+  EXPECT_THAT(log, ::testing::HasSubstr("identical: superior_edited.csv = shoremesh mesh superior_edited.rings"));
   EXPECT_THAT(log, ::testing::ContainsRegex("line 2: moved id 600 to .*: \\+[0-9]+ Steiner, -[0-9]+ Steiner, [0-9]+ elements changed, [0-9.e+]+ ms"));
   for (const char* f : {"superior.png", "superior_quality.png", "change_move.png", "change_add.png", "superior_edited.png",
                         "superior.msh", "superior_edited.msh", "superior_edited.geojson", "edit_log.txt"})

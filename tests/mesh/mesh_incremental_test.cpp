@@ -12,6 +12,7 @@
 #include "mesh_test_util.hpp"
 #include "shoremesh/error.hpp"
 #include "shoremesh/families.hpp"
+#include "shoremesh/io/ring_check.hpp"
 #include "shoremesh/mesh.hpp"
 #include "shoremesh/well_spaced.hpp"
 
@@ -172,6 +173,8 @@ void check_ring_edits(std::optional<BoxTransform<2>> box) {
     } else if (kind == 3) {  // a new ring (a pond): every triangle is classified again
       edited.rings.push_back(Ring{{{0.2, 0.2}, {0.3, 0.2}, {0.25, 0.3}}, RingRole::Shore});
     }
+    // The rings must stay valid (constraints never cross): an edit that breaks them is not made.
+    if (io::find_ring_defect(edited)) continue;
     change.added_input_count = change.added.size();
     for (const Point2& p : change.removed) erase_point(p);
     points.insert(points.end(), change.added.begin(), change.added.end());

@@ -5,7 +5,8 @@
 // (a ring vertex, a loose point or another split point) lies closer to that midpoint than gamma times half
 // the subsegment's length. Points on the same edge never encroach it, nor do points on the edge that meets
 // it at a corner sharper than 60 degrees (halving there would never end: such corners are the documented
-// exception of every quality mesher). Splitting only ever adds points, so the result is the least fixed
+// exception of every quality mesher), nor does a point within 1/1024 of the subsegment's length of its line
+// (where rings touch, halving would never end). Splitting only ever adds points, so the result is the least fixed
 // point of the rule: one set, whatever the order the rule is applied in, and a function of the input
 // alone. The split points become input points of the engine, which therefore keeps Lemma 7.2 unchanged.
 //
@@ -24,8 +25,11 @@
 namespace shoremesh {
 
 struct RefinementRule {
-  double gamma = 1.5;  // 1 is Ruppert's diametral circle; larger grades the shore more
-  int max_depth = 40;  // halvings of one ring edge at most
+  double gamma = 1.25;  // 1 is Ruppert's diametral circle; larger grades the shore more
+  int max_depth = 24;  // halvings of one ring edge at most
+  // How far off a subsegment's line (a fraction of its length) a point must lie to encroach it; 0: any
+  // point not on the line.
+  double min_offset = 1.0 / 1024;
 };
 
 struct SplitChange {

@@ -47,6 +47,7 @@ std::optional<InputFormat> format_from_extension(const std::string& path) {
   if (ext == ".node") return InputFormat::Node;
   if (ext == ".poly") return InputFormat::Poly;
   if (ext == ".geojson" || ext == ".json") return InputFormat::GeoJson;
+  if (ext == ".rings") return InputFormat::RingFile;  // what `edit` exports as its shoreline
   return std::nullopt;
 }
 
@@ -95,7 +96,7 @@ InputFormat detect_input_format(const std::string& path) {
   if (const auto f = format_from_extension(path)) return *f;
   if (is_text_extension(path)) return text_format(detail::read_text_file(path));
   throw InputError("unknown input format (extension " + detail::quoted(extension(path)) +
-                       "); expected png/jpg/tif, gpx, csv/txt/xyz, node, poly or geojson",
+                       "); expected png/jpg/tif, gpx, csv/txt/xyz, rings, node, poly or geojson",
                    path);
 }
 
@@ -125,6 +126,7 @@ InputSet read_input(const std::string& path, const InputOptions& options) {
       return gps_to_input(data, path, o);
     }
     case InputFormat::RingFile:
+      if (text.empty()) text = detail::read_text_file(path);  // a .rings file, known by its extension
       return ring_file_to_input(parse_ring_file_text(text, path), path, options.lonlat, projection, choice,
                                 options.ring_spacing);
     case InputFormat::PointFile:

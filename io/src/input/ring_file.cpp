@@ -4,6 +4,8 @@
 
 #include "input_builder.hpp"
 #include "shoremesh/error.hpp"
+#include "shoremesh/io/atomic_file.hpp"
+#include "shoremesh/io/point_set_csv.hpp"
 #include "shoremesh/io/ring_check.hpp"
 #include "text_util.hpp"
 
@@ -105,6 +107,20 @@ InputSet ring_file_to_input(const RingFile& rf, const std::string& file, bool lo
   assign_roles_by_nesting(set.domain);
   check_rings(set);
   return set;
+}
+
+void write_ring_file(const std::filesystem::path& path, const Domain2& domain) {
+  AtomicFile file(path);
+  std::ostream& out = file.stream();
+  out << "# " << domain.rings.size() << " rings (shoremesh), each closed by its first point\n";
+  for (const Ring& ring : domain.rings) {
+    out << '\n';
+    for (std::size_t k = 0; k <= ring.points.size(); ++k) {
+      const Point2& p = ring.points[k % ring.points.size()];
+      out << format_double(p[0]) << ',' << format_double(p[1]) << '\n';
+    }
+  }
+  file.commit();
 }
 
 }  // namespace shoremesh::io

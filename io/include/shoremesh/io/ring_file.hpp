@@ -3,8 +3,11 @@
 // by repeating its first point at the end (the layout of GMT's multi-segment output and of the bundled
 // samples/superior/lake_superior_lonlat.csv). '#' comments are allowed; numbers are parsed strictly.
 #include <cstddef>
+#include <filesystem>
 #include <optional>
 #include <string>
+
+#include "shoremesh/domain.hpp"
 #include <string_view>
 #include <vector>
 
@@ -20,6 +23,9 @@ struct RingFile {
 
 RingFile parse_ring_file_text(std::string_view text, const std::string& name);
 RingFile read_ring_file(const std::string& path);
+// Writes `domain`'s rings as a ring file (each closed by repeating its first point), atomically: what an
+// edit session saves as its current shoreline, readable by every command.
+void write_ring_file(const std::filesystem::path& path, const Domain2& domain);
 
 // True when the text looks like a ring file: blank-line separated groups of 2-column lines, and at least
 // one group of four or more lines ends with its first point (no header).
