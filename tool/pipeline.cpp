@@ -102,8 +102,10 @@ template <int D>
 Mesh<D> make_mesh(std::span<const Point<D>> points, std::size_t input_count, const Domain2& domain,
                   const BoxTransform<D>& box, bool keep_hull) {
   const std::optional<BoxTransform<D>> covered = keep_hull ? std::nullopt : std::optional(box);
+  // With a shore, the mesh is all of the water: clipping to the box would cut it where the shore touches
+  // the box (the box is fitted to the input), so nothing is clipped.
   if constexpr (D == 2)
-    if (!domain.empty()) return Mesh<2>(points, input_count, domain, covered);
+    if (!domain.empty()) return Mesh<2>(points, input_count, domain);
   return Mesh<D>(points, input_count, covered);
 }
 
@@ -167,16 +169,18 @@ QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransfo
   if (!r.worst.empty()) q.worst_at = frame.point(r.worst.front().shape.centroid);
   if constexpr (D == 2) {
     if (!mesh.domain().empty()) {
-      std::set<std::pair<Point2, Point2>> shore;
-      for (const Ring& ring : mesh.domain().rings)
-        for (std::size_t k = 0; k < ring.points.size(); ++k)
-          shore.insert(std::minmax(ring.points[k], ring.points[(k + 1) % ring.points.size()]));
+      // Elements below the bound: those the shore's constraints made (their circumcircle holds a mesh point
+      // hidden behind the shore, so they are not Delaunay) and the others. Few: each is checked against
+      // every point.
       for (const auto& e : elements) {
-        ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
-        if (element_shape<2>(c).radius_edge <= rho) continue;
-        bool on_shore = false;
-        for (int i = 0; i < 3; ++i) on_shore = on_shore || shore.count(std::minmax(c[i], c[(i + 1) % 3]));
-        ++(on_shore ? q.shore_below_bound : q.interior_below_bound);
+        const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
+        const ElementShape<2> shape = element_shape<2>(c);
+        if (shape.radius_edge <= rho) continue;
+        const double radius = std::hypot(c[0][0] - shape.circumcentre[0], c[0][1] - shape.circumcentre[1]);
+        bool hides = false;
+        for (const Point2& p : mesh.points())
+          hides = hides || std::hypot(p[0] - shape.circumcentre[0], p[1] - shape.circumcentre[1]) < radius * (1 - 1e-9);
+        ++(hides ? q.shore_below_bound : q.interior_below_bound);
       }
       const ShorelineReport s = mesh.shoreline_crossings();
       q.shore_segments = s.segments;
@@ -219,9 +223,9 @@ std::string quality_text(const QualityNumbers& q, int dimension) {
     }
     if (q.shore_below_bound)
       out << "\n  at the shore: " << q.shore_below_bound << ' ' << (dimension == 2 ? "triangles" : "tetrahedra")
-          << " with a shore edge are below the bound (a Steiner point in the edge's diametral circle, or a sharp "
-             "input corner); "
-          << q.interior_below_bound << " elsewhere";
+          << " below the bound are made by the shore's constraints (a point across the shore lies in their "
+             "circumcircle); "
+          << q.interior_below_bound << " others are";
     out << "\n";
   }
   return out.str();

@@ -89,8 +89,8 @@ struct QualityNumbers {
   std::string worst_at;                 // the worst element's centroid in the user's frame
   std::optional<std::size_t> shore_segments, shore_covered;
   std::size_t shore_splits = 0;  // input points the shore's splits added (counted in input_points)
-  // Elements below the bound, all of them with a shore segment as an edge (none elsewhere: checked), and
-  // of those the ones at an input corner sharper than 60 degrees (the documented exception).
+  // Elements below the bound that the shore's constraints made (not Delaunay: a point hidden behind the
+  // shore lies in their circumcircle), and the others (none, unless the box cuts the water).
   std::size_t shore_below_bound = 0, interior_below_bound = 0;
   double shore_worst_depth = 0;
   std::string shore_worst_depth_text;  // in the user's units

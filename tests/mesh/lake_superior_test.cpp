@@ -17,35 +17,8 @@
 namespace shoremesh {
 namespace {
 
-// Equirectangular about the lake's middle: simple, invertible, and it maps the water mask's lon/lat
-// rectangle onto a rectangle. Areas are within about 2.5% at the lake's north and south ends.
-struct Equirectangular {
-  double lon0 = -88.25, lat0 = 47.7, radius = 6371008.8;
-  double k() const { return std::numbers::pi / 180 * radius; }
-  Point2 forward(const Point2& ll) const { return {(ll[0] - lon0) * k() * std::cos(lat0 * std::numbers::pi / 180), (ll[1] - lat0) * k()}; }
-  Point2 inverse(const Point2& xy) const { return {lon0 + xy[0] / (k() * std::cos(lat0 * std::numbers::pi / 180)), lat0 + xy[1] / k()}; }
-};
-
-// Rings separated by blank lines, first point repeated at the end (dropped here).
-std::vector<std::vector<Point2>> read_rings(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<std::vector<Point2>> rings(1);
-  for (std::string line; std::getline(in, line);) {
-    if (line.find_first_not_of(" \r\t") == std::string::npos) {
-      if (!rings.back().empty()) rings.emplace_back();
-      continue;
-    }
-    std::replace(line.begin(), line.end(), ',', ' ');
-    std::istringstream s(line);
-    Point2 p;
-    s >> p[0] >> p[1];
-    rings.back().push_back(p);
-  }
-  if (rings.back().empty()) rings.pop_back();
-  for (auto& r : rings)
-    if (r.size() > 1 && r.front() == r.back()) r.pop_back();
-  return rings;
-}
+using mesh_test::Equirectangular;
+using mesh_test::read_rings;
 
 TEST(LakeSuperior, MeshesTheWaterExportsLonLatAndPreviews) {
   const auto lonlat_rings = read_rings(mesh_test::samples("superior/lake_superior_lonlat.csv"));
