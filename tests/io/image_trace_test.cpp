@@ -248,6 +248,9 @@ TEST(ImageTrace, SuperiorGeoreferencedProjectedAndBack) {
   EXPECT_GT(img.dropped_other_water, 0u);  // the other inland lakes
   ASSERT_EQ(set.domain.rings.size(), img.rings.size());
   EXPECT_EQ(set.domain.rings[0].role, RingRole::Shore);
+  // One body of water: the lake and its islands, no pond on an island (Isle Royale's lakes are water of
+  // their own).
+  for (std::size_t r = 1; r < set.domain.rings.size(); ++r) EXPECT_EQ(set.domain.rings[r].role, RingRole::Island) << r;
   // Samples go back to the lon/lat of their pixel position.
   double worst = 0;
   for (const auto& r : img.rings)

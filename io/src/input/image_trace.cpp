@@ -316,9 +316,12 @@ TracedImage trace_mask(cv::Mat water, const ImageTraceOptions& opt, const Georef
     std::vector<int> remap(kept.size(), -1);
     std::vector<Contour> filtered;
     for (std::size_t k = 0; k < kept.size(); ++k) {
-      const bool keep = kept[k].depth == 0 ? static_cast<int>(k) == best : remap[kept[k].parent] >= 0;
+      // One connected body of water: the largest lake and its islands. A pond on an island (depth 2) is
+      // water of its own, so it goes with whatever lies in it.
+      const bool keep = kept[k].depth == 0 ? static_cast<int>(k) == best
+                                           : kept[k].depth == 1 && remap[kept[k].parent] >= 0;
       if (!keep) {
-        if (kept[k].depth == 0) ++result.dropped_other_water;
+        if (kept[k].depth % 2 == 0 && (kept[k].depth == 0 || remap[kept[k].parent] >= 0)) ++result.dropped_other_water;
         continue;
       }
       remap[k] = static_cast<int>(filtered.size());

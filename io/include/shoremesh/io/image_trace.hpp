@@ -59,7 +59,7 @@ struct ImageTraceOptions {
   int open_radius = 0;                      // morphological opening (removes specks of water), pixels
   int close_radius = 0;                     // morphological closing (removes specks of land), pixels
   double min_area = 16;                     // pixels; islands and water regions below are dropped (>= 3)
-  bool largest_water_only = false;          // keep only the largest water region (with its islands)
+  bool largest_water_only = false;          // keep only the largest water region and its islands (no ponds)
   enum class SpacingUnit { Pixels, Map };
   double spacing = 4;                       // largest sample spacing along rings
   SpacingUnit spacing_unit = SpacingUnit::Pixels;
