@@ -584,7 +584,15 @@ std::string reply_text(const json& r) {
     return line + "stats: " + count(r, "input_points") + " input points, " + count(r, "steiner_points") +
            " Steiner points, " + count(r, "elements") + " elements, angles " + approx(r.value("min_angle", 0.0), 4) +
            ".." + approx(r.value("max_angle", 0.0), 4) + " deg, bound met by " + count(r, "covered_meeting_bound") +
-           " of " + count(r, "covered") + " covered elements";
+           " of " + count(r, "covered") + " covered elements" +
+           (r.contains("shore_segments")
+                ? std::string("; shoreline: ") +
+                      (r.value("shore_conforming", false) ? "all " + count(r, "shore_segments") + " shore segments are mesh edges"
+                                                          : count(r, "shore_covered") + " of " + count(r, "shore_segments") +
+                                                                " shore segments are mesh edges") +
+                      " (" + count(r, "shore_splits") + " canonical splits; " + count(r, "shore_below_bound") +
+                      " triangles at the shore below the bound)"
+                : std::string());
   return line + r.dump();
 }
 

@@ -5,7 +5,11 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <map>
+#include <optional>
 #include <regex>
+#include <set>
+#include <sstream>
 
 #include "cli_test_util.hpp"
 #include "shoremesh/io/point_file.hpp"
@@ -214,6 +218,111 @@ TEST(MeshCommand, GpsWalkClosedByGuessCanBeKeptOpen) {
   EXPECT_GT(std::stoul(m[1]), 303u);
 
   EXPECT_EQ(shoremesh(dir, "mesh -q " + gpx + " --track-close-distance nan -o walk.msh").code, 1);
+}
+
+}  // namespace
+}  // namespace shoremesh::cli_test
+
+namespace shoremesh::cli_test {
+namespace {
+
+// Triangle's .node/.ele as written by `mesh -o X.node`, read here line by line (1-based numbering).
+struct TriangleFiles {
+  std::vector<Point2> nodes;
+  std::vector<std::array<std::size_t, 3>> triangles;
+};
+
+TriangleFiles read_triangle_files(const fs::path& node) {
+  TriangleFiles t;
+  std::istringstream n(read_file(node));
+  std::size_t count = 0, dim = 0, attributes = 0, markers = 0;
+  n >> count >> dim >> attributes >> markers;
+  for (std::size_t i = 0; i < count; ++i) {
+    std::size_t id = 0, marker = 0;
+    Point2 p;
+    n >> id >> p[0] >> p[1];
+    if (markers) n >> marker;
+    t.nodes.push_back(p);
+  }
+  fs::path ele = node;
+  ele.replace_extension(".ele");
+  std::istringstream e(read_file(ele));
+  std::size_t corners = 0;
+  e >> count >> corners >> attributes;
+  for (std::size_t i = 0; i < count; ++i) {
+    std::size_t id = 0;
+    std::array<std::size_t, 3> tri{};
+    e >> id >> tri[0] >> tri[1] >> tri[2];
+    for (auto& v : tri) --v;
+    t.triangles.push_back(tri);
+  }
+  return t;
+}
+
+// Checked from the exported mesh alone: each given segment a-b is a chain of mesh edges whose inner vertices
+// lie on it (to rounding), and the triangles' area is `area`.
+void expect_conforming_export(const TriangleFiles& t, const std::vector<std::vector<Point2>>& rings, double area,
+                              const std::string& what) {
+  std::set<std::pair<Point2, Point2>> edges;
+  double sum = 0;
+  std::map<Point2, std::vector<Point2>> next;
+  for (const auto& tri : t.triangles) {
+    const Point2 &a = t.nodes.at(tri[0]), &b = t.nodes.at(tri[1]), &c = t.nodes.at(tri[2]);
+    sum += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+    for (const auto& [p, q] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}}) {
+      if (edges.insert(std::minmax(p, q)).second) {
+        next[p].push_back(q);
+        next[q].push_back(p);
+      }
+    }
+  }
+  EXPECT_NEAR(sum, area, 1e-9 * area) << what;
+  std::size_t segments = 0, chained = 0;
+  for (const auto& ring : rings)
+    for (std::size_t k = 0; k < ring.size(); ++k, ++segments) {
+      const Point2 a = ring[k], b = ring[(k + 1) % ring.size()];
+      const double length = std::hypot(b[0] - a[0], b[1] - a[1]);
+      // Walk from a toward b along mesh edges whose far end lies on the segment and is nearer to b.
+      Point2 at = a;
+      for (int steps = 0; at != b && steps < 100000; ++steps) {
+        std::optional<Point2> step;
+        for (const Point2& q : next[at]) {
+          const double off = std::abs((b[0] - a[0]) * (q[1] - a[1]) - (b[1] - a[1]) * (q[0] - a[0])) / length;
+          const double ahead = std::hypot(b[0] - q[0], b[1] - q[1]);
+          if (off <= 1e-9 * length && ahead < std::hypot(b[0] - at[0], b[1] - at[1])) step = q;
+        }
+        if (!step) break;
+        at = *step;
+      }
+      chained += at == b;
+    }
+  EXPECT_EQ(chained, segments) << what << ": shore segments that are chains of mesh edges";
+}
+
+double ring_area(const std::vector<Point2>& r) {
+  double a = 0;
+  for (std::size_t k = 0; k < r.size(); ++k) a += 0.5 * (r[k][0] * r[(k + 1) % r.size()][1] - r[(k + 1) % r.size()][0] * r[k][1]);
+  return std::abs(a);
+}
+
+TEST(MeshCommand, ExportedMeshHasTheShoreAsItsBoundaryAndTheRingsArea) {
+  TempDir dir;
+  // A letter A as Triangle's A.poly draws it (sharp serifs, a triangular hole), as a ring file.
+  const std::vector<std::vector<Point2>> letter{
+      {{0, 0}, {1.2, 0}, {1.6, 1.2}, {3.4, 1.2}, {3.8, 0}, {5, 0}, {3.1, 6}, {1.9, 6}},
+      {{2.0, 2.2}, {3.0, 2.2}, {2.5, 4.2}}};
+  std::string text;
+  for (const auto& r : letter) {
+    for (std::size_t k = 0; k <= r.size(); ++k)
+      text += io::format_double(r[k % r.size()][0]) + "," + io::format_double(r[k % r.size()][1]) + "\n";
+    text += "\n";
+  }
+  write_file(dir / "letter.rings", text);
+  const RunResult r = shoremesh(dir, "mesh letter.rings -o letter.node");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("shore segments are mesh edges (the shore is the mesh's boundary"));
+  expect_conforming_export(read_triangle_files(dir / "letter.node"), letter,
+                           ring_area(letter[0]) - ring_area(letter[1]), "letter A");
 }
 
 }  // namespace
