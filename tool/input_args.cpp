@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "progress.hpp"
+#include "shoremesh/io/dem.hpp"
 #include "shoremesh/error.hpp"
 
 namespace shoremesh::tool {
@@ -54,7 +55,6 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
                                 several ? "Input files: image (png/jpg/tif), GPS track (gpx, lat/lon csv), point "
                                           "file (csv/txt/xyz), ring file, Triangle .node/.poly, GeoJSON"
                                         : "The file to describe")
-                    ->required()
                     ->check(CLI::ExistingFile);
   if (!several) files->expected(1);
   auto* group = cmd->add_option_group("Reading inputs");
@@ -92,7 +92,24 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
                     "Projection of lon/lat input: 'utm' (the data's UTM zone, default) or 'local' "
                     "(transverse Mercator centred on the data)")
       ->check(CLI::IsMember({"utm", "local"}));
+  if (several) {
+    auto* dem = cmd->add_option_group("Terrain and depths");
+    dem->add_option("--dem", a.dem,
+                    "A DEM (any raster GDAL reads, heights positive up) as an input: the shoreline is its contour "
+                    "at --shoreline-level, water below; mesh nodes get their depths from it")
+        ->check(CLI::ExistingFile);
+    dem->add_option("--shoreline-level", a.shoreline_level, "--dem: height of the shoreline in metres (default 0)");
+    dem->add_option("--depth-from", a.depth_from, "A DEM giving the depths at mesh nodes beside other inputs")
+        ->check(CLI::ExistingFile);
+    dem->add_option("--min-depth", a.min_depth, "Depths below this value (metres, positive down) are raised to it");
+  }
   add_quiet_option(cmd, a.quiet);
+  cmd->callback([&a, several] {
+    if (a.files.empty() && (!several || a.dem.empty()))
+      throw CLI::RequiredError(several ? "an input file or --dem" : "input");
+    if (!a.dem.empty() && !a.depth_from.empty())
+      throw CLI::ValidationError("--depth-from", "--dem is the depth source already; give one of them");
+  });
 }
 
 namespace {
@@ -169,6 +186,19 @@ io::InputOptions input_options(const InputArgs& a) {
 io::InputSet read_user_inputs(const InputArgs& a, Progress& progress) {
   const io::InputOptions options = input_options(a);
   std::vector<io::InputSet> sets;
+  std::shared_ptr<const io::Dem> depth_dem;
+  if (!a.dem.empty()) {
+    // First, so that its projection is the one the other inputs use.
+    progress.stage("tracing " + std::filesystem::path(a.dem).filename().string());
+    io::DemTraceOptions d;
+    d.level = a.shoreline_level;
+    d.image = options.image;
+    d.image.projection = options.projection;
+    d.image.projection_choice = options.projection_choice;
+    io::TracedDem traced = io::trace_dem(a.dem, d);
+    depth_dem = traced.dem;
+    sets.push_back(std::move(traced.traced.input));
+  }
   for (const std::string& file : a.files) {
     const bool image = io::detect_input_format(file) == io::InputFormat::Image;
     progress.stage((image ? "tracing " : "reading ") + std::filesystem::path(file).filename().string());
@@ -182,7 +212,21 @@ io::InputSet read_user_inputs(const InputArgs& a, Progress& progress) {
       }
     sets.push_back(io::read_input(file, o));
   }
-  return sets.size() == 1 ? std::move(sets.front()) : io::merge(sets);
+  io::InputSet set = sets.size() == 1 ? std::move(sets.front()) : io::merge(sets);
+  if (!a.depth_from.empty()) depth_dem = std::make_shared<const io::Dem>(io::read_dem(a.depth_from));
+  if (depth_dem) {
+    auto source = std::make_shared<io::DepthSource>();
+    source->frame = std::make_shared<const io::DemFrame>(depth_dem, set.projection);
+    source->options.min_depth = a.min_depth;
+    set.depth = std::move(source);
+    set.notes.push_back("depths at nodes from " + depth_dem->file + " (" + std::to_string(depth_dem->width) + " x " +
+                        std::to_string(depth_dem->height) + " cells, heights " + approx(depth_dem->min, 5) + " .. " +
+                        approx(depth_dem->max, 5) + " m), positive down" +
+                        (a.min_depth ? ", at least " + approx(*a.min_depth, 5) + " m" : std::string()));
+  } else if (a.min_depth) {
+    throw ParameterError("--min-depth needs a depth source (--dem or --depth-from)");
+  }
+  return set;
 }
 
 }  // namespace shoremesh::tool

@@ -68,6 +68,8 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
   std::cout << describe_input(set);
   std::cout << "box: origin " << frame.point(result.box.origin) << ", side " << frame.length(result.box.side) << '\n';
   std::cout << quality_text(quality, D);
+  if constexpr (D == 2)
+    if (frame.depth) std::cout << depth_text(mesh_depths(io::MeshSnapshot<2>(mesh).view(), frame));
   std::cout << "wrote " << opt.output;
   if (!opt.preview.empty()) std::cout << " and " << opt.preview;
   std::cout << '\n';

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "shoremesh/error.hpp"
+#include "shoremesh/io/dem.hpp"
 
 namespace shoremesh::tool {
 
@@ -84,15 +85,41 @@ template <int D>
 void export_mesh_file(const Mesh<D>& mesh, const std::filesystem::path& path, std::optional<io::ExportFormat> format,
                       const UserFrame& frame, std::span<const Point<D>> order) {
   const io::MeshSnapshot<D> snapshot(mesh, order);
+  io::MeshView<D> view = snapshot.view();
   if (D == 2 && !frame.projection.is_none()) {
     const io::Projection projection = frame.projection;
-    io::export_mesh<D>(path, snapshot.view([projection](const Point2& p) {
+    view = snapshot.view([projection](const Point2& p) {
       const io::LonLat ll = projection.reverse(p);
       return Point2{ll.lon, ll.lat};
-    }), format);
-  } else {
-    io::export_mesh<D>(path, snapshot.view(), format);
+    });
   }
+  std::vector<double> depths;
+  std::vector<std::uint8_t> open;
+  if constexpr (D == 2) {
+    depths = mesh_depths(view, frame);
+    view.depths = depths;
+    if (!frame.open_points.empty()) {
+      open.resize(view.points.size());
+      for (std::size_t i = 0; i < open.size(); ++i)
+        open[i] = std::binary_search(frame.open_points.begin(), frame.open_points.end(), view.points[i]);
+      view.open_nodes = open;
+    }
+  }
+  io::export_mesh<D>(path, view, format);
+}
+
+std::vector<double> mesh_depths(const io::MeshView<2>& view, const UserFrame& frame) {
+  if (!frame.depth) return {};
+  return io::node_depths(*frame.depth->frame, view.points, view.elements, frame.depth->options);
+}
+
+std::string depth_text(std::span<const double> depths) {
+  if (depths.empty()) return {};
+  const auto [lo, hi] = std::minmax_element(depths.begin(), depths.end());
+  double sum = 0;
+  for (double d : depths) sum += d;
+  return "depths: " + std::to_string(depths.size()) + " nodes, " + approx(*lo, 5) + " .. " + approx(*hi, 5) +
+         " m, mean " + approx(sum / static_cast<double>(depths.size()), 5) + " m (positive down)\n";
 }
 
 io::PreviewOptions preview_options(const PreviewArgs& args) {

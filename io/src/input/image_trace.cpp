@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -45,8 +46,13 @@ struct Output {
   CoordinateSystem::Kind crs = CoordinateSystem::Kind::Unknown;
   Projection source_utm;  // the image's own UTM zone (crs == Utm)
   Projection projection;  // output projection (None for pixel/map units)
+  std::function<Point2(const Point2&)> map_to_lonlat;  // Georeference::map_to_lonlat
   Point2 operator()(const Point2& px) const {
     const Point2 m = affine(px);
+    if (map_to_lonlat) {
+      const Point2 ll = map_to_lonlat(m);
+      return projection.forward({ll[0], ll[1]});
+    }
     if (crs == CoordinateSystem::Kind::Geographic) return projection.forward({m[0], m[1]});
     if (crs == CoordinateSystem::Kind::Utm && !(source_utm == projection)) return projection.forward(source_utm.reverse(m));
     return m;
@@ -218,7 +224,8 @@ Output make_output(const Georeference& g, const cv::Size& size, const ImageTrace
     out.crs = CoordinateSystem::Kind::Unknown;
     return out;
   }
-  if (g.crs.kind == CoordinateSystem::Kind::Unknown) {
+  out.map_to_lonlat = g.map_to_lonlat;
+  if (g.crs.kind == CoordinateSystem::Kind::Unknown && !g.map_to_lonlat) {
     set.units = Units::MapUnits;
     return out;
   }
@@ -232,7 +239,7 @@ Output make_output(const Georeference& g, const cv::Size& size, const ImageTrace
     std::vector<LonLat> extent;
     for (double c : {-0.5, 0.5 * size.width - 0.5, size.width - 0.5})
       for (double r : {-0.5, 0.5 * size.height - 0.5, size.height - 0.5}) {
-        const Point2 m = g.pixel_to_map(c, r);
+        const Point2 m = g.map_to_lonlat ? g.map_to_lonlat(g.pixel_to_map(c, r)) : g.pixel_to_map(c, r);
         extent.push_back({m[0], m[1]});
       }
     out.projection = Projection::choose(extent, opt.projection_choice, name);

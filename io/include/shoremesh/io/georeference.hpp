@@ -12,6 +12,7 @@
 // ETRS89, which agree within a metre), UTM zones (EPSG:326zz/327zz, WKT PROJCS named "UTM zone zzN/S");
 // anything else is kept as "map units" with its name.
 #include <array>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -47,11 +48,14 @@ struct PixelToMap {
 PixelToMap parse_world_file_text(std::string_view text, const std::string& name);
 
 struct Georeference {
-  enum class Source { None, UserBox, WorldFile, GeoTiff };
+  enum class Source { None, UserBox, WorldFile, GeoTiff, Gdal };
   Source source = Source::None;
   PixelToMap pixel_to_map;  // pixel units (Source::None): x = col + 0.5, y = height - row - 0.5
   CoordinateSystem crs;     // Unknown when none was found
   std::string description;  // e.g. "world file superior.wld with superior.prj (WGS 84)"
+  // Another projected system (a DEM in Web Mercator, a national grid; dem.hpp): map -> {lon, lat} degrees
+  // through GDAL/PROJ. The tracer then projects like geographic input.
+  std::function<Point2(const Point2&)> map_to_lonlat;
 };
 
 // A user's box: the outer edges of the image in map coordinates (xmin/xmax at the left/right edges of the
