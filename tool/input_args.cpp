@@ -69,8 +69,10 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
   group->add_option("--threshold", a.threshold, "Images: grey level between water and land (default: Otsu)");
   group->add_option("--colour-tolerance", a.colour_tolerance,
                     "Images with --water COLOUR: RGB distance still counted as water (default 40)");
-  group->add_option("--min-area", a.min_area, "Images: drop islands and lakes under this many pixels (default 16)")
-      ->check(CLI::Range(3.0, 1e12));
+  group->add_option("--min-area", a.min_area,
+                    "Images and DEMs: drop islands and lakes under this many pixels or DEM cells (default 16; "
+                    "images: at least 3)")
+      ->check(CLI::Range(1.0, 1e12));
   group->add_flag("--largest-water", a.largest_water, "Images: keep only the largest body of water");
   group->add_option("--open-radius", a.open_radius, "Images: morphological opening in pixels (removes specks of water)")
       ->check(CLI::Range(0, 100));
@@ -218,6 +220,7 @@ io::InputSet read_user_inputs(const InputArgs& a, Progress& progress) {
     auto source = std::make_shared<io::DepthSource>();
     source->frame = std::make_shared<const io::DemFrame>(depth_dem, set.projection);
     source->options.min_depth = a.min_depth;
+    if (!a.dem.empty()) source->options.max_height = a.shoreline_level;
     set.depth = std::move(source);
     set.notes.push_back("depths at nodes from " + depth_dem->file + " (" + std::to_string(depth_dem->width) + " x " +
                         std::to_string(depth_dem->height) + " cells, heights " + approx(depth_dem->min, 5) + " .. " +

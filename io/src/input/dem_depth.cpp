@@ -116,8 +116,9 @@ std::vector<double> node_depths(const DemFrame& frame, std::span<const Point2> p
   std::vector<double> depth(points.size(), 0.0);
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!used[i]) continue;
-    const double height = count[i] > 0 ? sum[i] / count[i] : dem.bilinear(cell[i][0], cell[i][1]);
-    depth[i] = -height;
+    double height = count[i] > 0 ? sum[i] / count[i] : dem.bilinear(cell[i][0], cell[i][1]);
+    if (options.max_height) height = std::min(height, *options.max_height);
+    depth[i] = 0.0 - height;  // not -0 at the shoreline
     if (options.min_depth) depth[i] = std::max(depth[i], *options.min_depth);
   }
   return depth;

@@ -84,9 +84,13 @@ class DemFrame {
 // Depths at mesh nodes, positive down (depth = -height), from a DEM: the mean of the DEM cells whose centre
 // lies in the node's cell of the mesh (the part of each incident triangle nearer to the node than to the
 // triangle's other corners, the node's Voronoi cell restricted to the mesh for well-shaped Delaunay
-// triangles), or the bilinear value at the node where that cell holds no DEM cell centre. Every depth is at
-// least `min_depth` when given. Nodes are indices into `points`; `triangles` are the mesh's elements.
+// triangles), or the bilinear value at the node where that cell holds no DEM cell centre. Heights above
+// `max_height` are lowered to it: with --dem the mesh is the water below the shoreline level, so a shore node,
+// whose bilinear value mixes in the land cells beside it (a fjord's walls), lies at the shoreline, and a
+// dropped islet (under --min-area) is water at that level. Then every depth is at least `min_depth` when
+// given. Nodes are indices into `points`; `triangles` are the mesh's elements.
 struct DepthOptions {
+  std::optional<double> max_height;
   std::optional<double> min_depth;
 };
 std::vector<double> node_depths(const DemFrame& frame, std::span<const Point2> points,
