@@ -143,11 +143,9 @@ Dem read_dem(const std::string& path, std::size_t max_cells) {
     srs->exportToWkt(&wkt);
     dem.crs_wkt = wkt ? wkt : "";
     CPLFree(wkt);
-    dem.crs_name = srs->GetName() ? srs->GetName() : "unnamed";
-    dem.geographic = srs->IsGeographic();
-    int north = 1;
-    dem.utm_zone = srs->IsProjected() ? srs->GetUTMZone(&north) : 0;
-    dem.utm_north = north != 0;
+    const CoordinateSystem cs = parse_coordinate_system(dem.crs_wkt, path);
+    dem.crs_name = cs.name;
+    dem.geographic = cs.kind == CoordinateSystem::Kind::Geographic;
   }
   return dem;
 }
@@ -160,7 +158,7 @@ struct DemFrame::Transform {
 namespace {
 
 // A PROJ transformation between lon/lat (WGS84, lon first) and the DEM's coordinate system.
-std::unique_ptr<OGRCoordinateTransformation> lonlat_transform(const Dem& dem, bool to_dem) {
+std::unique_ptr<OGRCoordinateTransformation> dem_transform(const Dem& dem, bool to_dem) {
   OGRSpatialReference srs, ll;
   if (srs.importFromWkt(dem.crs_wkt.c_str()) != OGRERR_NONE)
     throw InputError("cannot read the DEM's coordinate system", dem.file);
@@ -184,8 +182,8 @@ DemFrame::DemFrame(std::shared_ptr<const Dem> dem, const Projection& mesh_projec
   if (dem_->crs_wkt.empty())
     throw InputError("the DEM has no coordinate system, and the mesh is in projected lon/lat: cannot place it", dem_->file);
   transform_ = std::make_unique<Transform>();
-  transform_->to_dem = lonlat_transform(*dem_, true);
-  transform_->from_dem = lonlat_transform(*dem_, false);
+  transform_->to_dem = dem_transform(*dem_, true);
+  transform_->from_dem = dem_transform(*dem_, false);
 }
 
 DemFrame::~DemFrame() = default;
@@ -259,26 +257,15 @@ TracedDem trace_dem(std::shared_ptr<const Dem> dem, const DemTraceOptions& optio
   g.source = Georeference::Source::Gdal;
   const auto& t = dem->geotransform;
   g.pixel_to_map = {t[1] / k, t[2] / k, t[0] + 0.5 * (t[1] + t[2]) / k, t[4] / k, t[5] / k, t[3] + 0.5 * (t[4] + t[5]) / k};
-  g.crs.name = dem->crs_name;
   if (dem->crs_wkt.empty()) {
     g.description = "DEM geotransform without a coordinate system: map units";
-  } else if (dem->geographic) {
-    g.crs.kind = CoordinateSystem::Kind::Geographic;
-    g.description = "DEM in " + dem->crs_name + " (lon/lat)";
-  } else if (dem->utm_zone != 0) {
-    g.crs.kind = CoordinateSystem::Kind::Utm;
-    g.crs.zone = dem->utm_zone;
-    g.crs.north = dem->utm_north;
-    g.description = "DEM in " + dem->crs_name;
   } else {
-    std::shared_ptr<OGRCoordinateTransformation> to_lonlat = lonlat_transform(*dem, false);
-    const std::string file = dem->file;
-    g.map_to_lonlat = [to_lonlat, file](const Point2& m) {
-      double x = m[0], y = m[1];
-      if (!to_lonlat->Transform(1, &x, &y)) throw std::domain_error("PROJ cannot take a DEM point to lon/lat");
-      return Point2{x, y};
-    };
-    g.description = "DEM in " + dem->crs_name + ", taken through lon/lat (PROJ) to metres";
+    g.crs = parse_coordinate_system(dem->crs_wkt, dem->file);
+    g.description = "DEM in " + g.crs.name;
+    if (g.crs.kind == CoordinateSystem::Kind::Other) {
+      g.map_to_lonlat = lonlat_transform(g.crs, dem->file);
+      g.description += ", taken through WGS 84 lon/lat (PROJ) to metres";
+    }
   }
   TracedDem out;
   out.dem = dem;

@@ -13,9 +13,9 @@
 // runs just outside it) are where the water leaves the data: InputSet::open_points, an open boundary for
 // fort.14.
 //
-// Coordinates. A geographic DEM is projected like lon/lat images. A UTM DEM keeps its zone. Any other
-// projected coordinate system (Web Mercator, national grids) goes through lon/lat (GDAL/PROJ) to the
-// projection chosen from the data, so that lengths and --spacing are true metres.
+// Coordinates (georeference.hpp): a geographic DEM is projected like lon/lat images, a UTM DEM keeps its
+// zone, any other system (Web Mercator, national grids) goes through lon/lat (GDAL/PROJ) to the projection
+// chosen from the data, so that lengths and --spacing are true metres.
 #include <array>
 #include <cstddef>
 #include <memory>
@@ -42,9 +42,7 @@ struct Dem {
   double min = 0, max = 0;        // over the cells that held data
   std::string crs_wkt;            // empty: the raster has no coordinate system
   std::string crs_name;           // "WGS 84 / Pseudo-Mercator", ...
-  bool geographic = false;        // lon/lat degrees
-  int utm_zone = 0;               // a UTM coordinate system: its zone (1..60), else 0
-  bool utm_north = true;
+  bool geographic = false;        // lon/lat degrees on WGS 84 (or a datum within a metre of it)
 
   float at(int col, int row) const { return heights[static_cast<std::size_t>(row) * width + col]; }
   // Map coordinates of a point given in cell units with (0, 0) the centre of the upper-left cell.
