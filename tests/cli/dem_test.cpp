@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "cli_test_util.hpp"
+#include "dem_test_util.hpp"
 
 namespace shoremesh::cli_test {
 namespace {
@@ -314,21 +315,6 @@ TEST(SalishSeaDem, InfoReadsTheFort14AndMshBackAndMeshioReadsTheDepths) {
       EXPECT_NE(i.out.find("depths: " + std::to_string(points) + " nodes"), std::string::npos) << i.out;
     }
   }
-}
-
-// A small GeoTIFF in EPSG:32610 (UTM 10N, metres) with the given heights, row-major, north up.
-void write_dem(const fs::path& path, int w, int h, const std::vector<float>& z, std::optional<double> nodata = {}) {
-  GDALAllRegister();
-  GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
-  std::unique_ptr<GDALDataset> ds(drv->Create(path.c_str(), w, h, 1, GDT_Float32, nullptr));
-  double g[6] = {400000, 1000, 0, 5400000, 0, -1000};
-  ds->SetGeoTransform(g);
-  OGRSpatialReference srs;
-  srs.importFromEPSG(32610);
-  ds->SetSpatialRef(&srs);
-  if (nodata) ds->GetRasterBand(1)->SetNoDataValue(*nodata);
-  ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, const_cast<float*>(z.data()), w, h, GDT_Float32, 0, 0),
-            CE_None);
 }
 
 // A bowl: water (below 0) in the middle, land around it.
