@@ -8,6 +8,7 @@
 
 #include "progress.hpp"
 #include "shoremesh/io/dem.hpp"
+#include "shoremesh/io/soundings.hpp"
 #include "shoremesh/error.hpp"
 
 namespace shoremesh::tool {
@@ -215,6 +216,27 @@ io::InputSet read_user_inputs(const InputArgs& a, Progress& progress) {
     sets.push_back(io::read_input(file, o));
   }
   io::InputSet set = sets.size() == 1 ? std::move(sets.front()) : io::merge(sets);
+  if (set.dimension == 3 && !a.three_d) {
+    // x, y, depth soundings: a 2D mesh whose nodes take their depths from them (--dim 3 meshes in 3D).
+    if (!depth_dem && a.depth_from.empty()) {
+      std::vector<Point2> xy;
+      std::vector<double> depths;
+      for (const Point3& p : set.points3) xy.push_back({p[0], p[1]}), depths.push_back(p[2]);
+      auto source = std::make_shared<io::DepthSource>();
+      source->soundings = std::make_shared<const io::Soundings>(xy, depths);
+      source->options.min_depth = a.min_depth;
+      set.depth = std::move(source);
+      set.notes.push_back("third column: depths (positive down) at the " + std::to_string(xy.size()) +
+                          " soundings, interpolated linearly between them (--dim 3 meshes the points in 3D)");
+      set.points = std::move(xy);
+    } else {
+      set.points.clear();
+      for (const Point3& p : set.points3) set.points.push_back({p[0], p[1]});
+      set.notes.push_back("third column ignored: the depths come from the DEM (--dim 3 meshes the points in 3D)");
+    }
+    set.points3.clear();
+    set.dimension = 2;
+  }
   if (!a.depth_from.empty()) depth_dem = std::make_shared<const io::Dem>(io::read_dem(a.depth_from));
   if (depth_dem) {
     auto source = std::make_shared<io::DepthSource>();
@@ -226,7 +248,7 @@ io::InputSet read_user_inputs(const InputArgs& a, Progress& progress) {
                         std::to_string(depth_dem->height) + " cells, heights " + approx(depth_dem->min, 5) + " .. " +
                         approx(depth_dem->max, 5) + " m), positive down" +
                         (a.min_depth ? ", at least " + approx(*a.min_depth, 5) + " m" : std::string()));
-  } else if (a.min_depth) {
+  } else if (a.min_depth && !set.depth) {
     throw ParameterError("--min-depth needs a depth source (--dem or --depth-from)");
   }
   return set;

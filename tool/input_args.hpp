@@ -32,6 +32,7 @@ struct InputArgs {
   double shoreline_level = 0;
   std::string depth_from;          // a DEM giving depths beside other inputs
   std::optional<double> min_depth;
+  bool three_d = false;            // --dim 3: a third column is z; otherwise x,y,depth soundings
   bool quiet = false;
 };
 

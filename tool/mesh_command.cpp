@@ -99,6 +99,7 @@ Command add_mesh_command(CLI::App& app) {
       "  shoremesh mesh lake.png track.gpx -o lake.geojson   # an image plus a survey track");
   return [opt]() {
     Progress progress(!opt->in.quiet && Progress::stderr_is_terminal(), opt->in.files.size() + 4);
+    opt->in.three_d = opt->engine.dim == 3;
     const io::InputSet set = read_user_inputs(opt->in, progress);
     const int dim = opt->engine.dim != 0 ? opt->engine.dim : set.dimension;
     return dim == 3 ? run_mesh<3>(*opt, set, progress) : run_mesh<2>(*opt, set, progress);

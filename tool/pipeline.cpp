@@ -6,6 +6,7 @@
 
 #include "shoremesh/error.hpp"
 #include "shoremesh/io/dem.hpp"
+#include "shoremesh/io/soundings.hpp"
 
 namespace shoremesh::tool {
 
@@ -110,6 +111,7 @@ void export_mesh_file(const Mesh<D>& mesh, const std::filesystem::path& path, st
 
 std::vector<double> mesh_depths(const io::MeshView<2>& view, const UserFrame& frame) {
   if (!frame.depth) return {};
+  if (!frame.depth->frame) return io::sounding_depths(*frame.depth->soundings, view.points, frame.depth->options);
   return io::node_depths(*frame.depth->frame, view.points, view.elements, frame.depth->options);
 }
 

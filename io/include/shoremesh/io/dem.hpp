@@ -95,9 +95,12 @@ std::vector<double> node_depths(const DemFrame& frame, std::span<const Point2> p
                                 std::span<const std::array<std::uint32_t, 3>> triangles,
                                 const DepthOptions& options = {});
 
-// The depth source of a run: a DEM in the frame of the mesh, and the clamp.
+class Soundings;  // soundings.hpp
+
+// The depth source of a run: a DEM in the frame of the mesh or soundings, and the clamp.
 struct DepthSource {
   std::shared_ptr<const DemFrame> frame;
+  std::shared_ptr<const Soundings> soundings;  // when there is no frame
   DepthOptions options;
 };
 
