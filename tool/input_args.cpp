@@ -46,8 +46,9 @@ void add_engine_options(CLI::App* cmd, EngineArgs& args) {
 }
 
 void add_preview_options(CLI::App* cmd, PreviewArgs& args) {
-  cmd->add_option("--preview-colour", args.colouring, "Preview triangles coloured by none, quality or size")
-      ->check(CLI::IsMember({"none", "quality", "size"}));
+  cmd->add_option("--preview-colour", args.colouring,
+                  "Preview triangles coloured by none, quality, size or depth (with --dem, --depth-from or soundings)")
+      ->check(CLI::IsMember({"none", "quality", "size", "depth"}));
   cmd->add_option("--preview-width", args.width, "Preview width in pixels (default 1024)")->check(CLI::Range(16, 16384));
 }
 

@@ -36,6 +36,8 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
   const std::optional<io::ExportFormat> format =
       opt.format.empty() ? std::nullopt : std::optional(parse_export_format(opt.format));
   if (!point_set && !format) io::export_format_from_path(output);  // refuse an unknown extension before the work
+  if (opt.preview_args.colouring == "depth" && !set.depth)
+    throw ParameterError("--preview-colour depth needs depths: --dem, --depth-from or x,y,depth soundings");
 
   progress.stage("StableWS on " + std::to_string(points.size()) + " points");
   StableResult<D> result;
@@ -57,7 +59,7 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
     progress.stage("drawing " + std::filesystem::path(opt.preview).filename().string());
     PreviewArgs args = opt.preview_args;
     args.rho = opt.engine.rho;
-    write_preview<D>(mesh, opt.preview, args);
+    write_preview<D>(mesh, opt.preview, args, &frame);
   }
   progress.stage("measuring quality");
   const QualityNumbers quality = quality_numbers<D>(mesh, opt.engine.rho, result.box, frame);

@@ -130,14 +130,20 @@ io::PreviewOptions preview_options(const PreviewArgs& args) {
   o.rho = args.rho;
   if (args.colouring == "quality") o.colouring = io::PreviewColouring::Quality;
   else if (args.colouring == "size") o.colouring = io::PreviewColouring::Size;
-  else if (args.colouring != "none") throw ParameterError("--preview-colour must be none, quality or size");
+  else if (args.colouring == "depth") o.colouring = io::PreviewColouring::Depth;
+  else if (args.colouring != "none") throw ParameterError("--preview-colour must be none, quality, size or depth");
   return o;
 }
 
 template <int D>
-void write_preview(const Mesh<D>& mesh, const std::filesystem::path& path, const PreviewArgs& args) {
+void write_preview(const Mesh<D>& mesh, const std::filesystem::path& path, const PreviewArgs& args,
+                   const UserFrame* frame) {
   const io::MeshSnapshot<D> snapshot(mesh);
-  io::render_preview<D>(path, snapshot.view(), preview_options(args));
+  io::MeshView<D> view = snapshot.view();
+  std::vector<double> depths;
+  if constexpr (D == 2)
+    if (frame && args.colouring == "depth") depths = mesh_depths(view, *frame), view.depths = depths;
+  io::render_preview<D>(path, view, preview_options(args));
 }
 
 template <int D>
@@ -239,8 +245,8 @@ template void export_mesh_file<2>(const Mesh<2>&, const std::filesystem::path&, 
                                   const UserFrame&, std::span<const Point<2>>);
 template void export_mesh_file<3>(const Mesh<3>&, const std::filesystem::path&, std::optional<io::ExportFormat>,
                                   const UserFrame&, std::span<const Point<3>>);
-template void write_preview<2>(const Mesh<2>&, const std::filesystem::path&, const PreviewArgs&);
-template void write_preview<3>(const Mesh<3>&, const std::filesystem::path&, const PreviewArgs&);
+template void write_preview<2>(const Mesh<2>&, const std::filesystem::path&, const PreviewArgs&, const UserFrame*);
+template void write_preview<3>(const Mesh<3>&, const std::filesystem::path&, const PreviewArgs&, const UserFrame*);
 template QualityNumbers quality_numbers<2>(const Mesh<2>&, double, const BoxTransform<2>&, const UserFrame&);
 template QualityNumbers quality_numbers<3>(const Mesh<3>&, double, const BoxTransform<3>&, const UserFrame&);
 

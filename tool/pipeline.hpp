@@ -61,14 +61,16 @@ std::vector<double> mesh_depths(const io::MeshView<2>& view, const UserFrame& fr
 std::string depth_text(std::span<const double> depths);
 
 struct PreviewArgs {
-  std::string colouring = "none";  // none | quality | size
+  std::string colouring = "none";  // none | quality | size | depth
   int width = 1024;
   double rho = 1.4142135623730951;
 };
 io::PreviewOptions preview_options(const PreviewArgs& args);
 
+// `frame` gives the depths for the depth colouring.
 template <int D>
-void write_preview(const Mesh<D>& mesh, const std::filesystem::path& path, const PreviewArgs& args);
+void write_preview(const Mesh<D>& mesh, const std::filesystem::path& path, const PreviewArgs& args,
+                   const UserFrame* frame = nullptr);
 
 // The numbers of the quality summary, for text and JSON.
 struct QualityNumbers {
