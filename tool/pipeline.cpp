@@ -99,10 +99,12 @@ void export_mesh_file(const Mesh<D>& mesh, const std::filesystem::path& path, st
   if constexpr (D == 2) {
     depths = mesh_depths(view, frame);
     view.depths = depths;
-    if (!frame.open_points.empty()) {
-      open.resize(view.points.size());
-      for (std::size_t i = 0; i < open.size(); ++i)
-        open[i] = std::binary_search(frame.open_points.begin(), frame.open_points.end(), view.points[i]);
+    // Without rings no land is known: the mesh ends where the water reaches the box, all open.
+    if (!frame.open_points.empty() || mesh.domain().empty()) {
+      open.resize(view.points.size(), 1);
+      if (!mesh.domain().empty())
+        for (std::size_t i = 0; i < open.size(); ++i)
+          open[i] = std::binary_search(frame.open_points.begin(), frame.open_points.end(), view.points[i]);
       view.open_nodes = open;
     }
   }

@@ -373,6 +373,25 @@ TEST(DemInput, AllLandAllWaterOneCellAndTruncatedDemsAreRefusedNamingTheFile) {
   EXPECT_NE(r.err.find("junk.tif"), std::string::npos) << r.err;
 }
 
+// Points without a shoreline: no land is known, the mesh ends where the water reaches the box, and
+// fort.14 has one closed open boundary and no land boundary.
+TEST(DemInput, PointsWithoutRingsAreOpenWaterAllAround) {
+  TempDir dir;
+  write_file(dir / "p.csv", random_points(200, 50, 30, 9));
+  RunResult r = shoremesh(dir, "mesh p.csv -q -o p.14");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Fort14 f = parse_fort14(read_file(dir / "p.14"));
+  ASSERT_EQ(f.open.size(), 1u);
+  EXPECT_EQ(f.open[0].nodes.front(), f.open[0].nodes.back());
+  EXPECT_EQ(f.land.size(), 0u);
+  std::map<std::pair<long, long>, int> uses;
+  for (const auto& t : f.triangles)
+    for (int k = 0; k < 3; ++k) ++uses[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
+  std::size_t boundary = 0;
+  for (const auto& [edge, n] : uses) boundary += n == 1;
+  EXPECT_EQ(f.open[0].nodes.size(), boundary + 1);
+}
+
 TEST(DemInput, DepthFromGivesDepthsToAnotherInputsMesh) {
   TempDir dir;
   // A square of water in the Strait of Georgia (lon/lat ring), depths from the Salish Sea DEM.

@@ -278,18 +278,6 @@ TracedDem trace_dem(std::shared_ptr<const Dem> dem, const DemTraceOptions& optio
                       std::to_string(k * k) + " pixels)");
   if (dem->nodata_cells > 0)
     set.notes.push_back(std::to_string(dem->nodata_cells) + " nodata cells of the DEM filled from their neighbours");
-  // Beyond the outermost cell centres: the ring there runs along the frame (0.75 cell outside them), or
-  // cuts a corner of the raster between two frame stretches, or is the point where the shore meets the edge.
-  const double last_col = mask.width - 1, last_row = mask.height - 1;
-  for (const TracedRing& ring : out.traced.rings)
-    for (std::size_t k = 0; k < ring.pixels.size(); ++k) {
-      const Point2& px = ring.pixels[k];
-      if (px[0] < 0 || px[1] < 0 || px[0] > last_col || px[1] > last_row) set.open_points.push_back(ring.points[k]);
-    }
-  std::sort(set.open_points.begin(), set.open_points.end());
-  if (!set.open_points.empty())
-    set.notes.push_back(std::to_string(set.open_points.size()) +
-                        " shoreline points where the water reaches the DEM's edge: an open boundary");
   return out;
 }
 

@@ -357,6 +357,19 @@ TracedImage trace_mask(cv::Mat water, const ImageTraceOptions& opt, const Georef
   }
   result.georeference = georef;
   set.dropped_small_islands = result.dropped_small_islands;
+  // Ring points beyond the outermost pixel centres: the ring runs along the land frame there (0.75 pixel
+  // outside them), cuts a corner of the image between two frame stretches, or is where the shore meets the
+  // edge. The water leaves the data there: an open boundary.
+  const double last_col = water.cols - 1, last_row = water.rows - 1;
+  for (const TracedRing& ring : result.rings)
+    for (std::size_t k = 0; k < ring.pixels.size(); ++k) {
+      const Point2& px = ring.pixels[k];
+      if (px[0] < 0 || px[1] < 0 || px[0] > last_col || px[1] > last_row) set.open_points.push_back(ring.points[k]);
+    }
+  std::sort(set.open_points.begin(), set.open_points.end());
+  if (!set.open_points.empty())
+    set.notes.push_back(std::to_string(set.open_points.size()) +
+                        " shore points where the water reaches the edge of the image: an open boundary");
   std::size_t islands = 0;
   for (const auto& r : result.rings) islands += r.role == RingRole::Island;
   set.notes.push_back("traced " + std::to_string(result.rings.size()) + " rings (" + std::to_string(islands) +

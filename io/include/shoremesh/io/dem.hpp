@@ -8,10 +8,8 @@
 // and said in the notes. A raster with no data at all is an error.
 //
 // Coastline. trace_dem() traces the contour at `level` (water strictly below it) with the image tracer
-// (image_trace.hpp): islands, --min-area, sampling and projection as for images. Ring points beyond the
-// outermost cell centres (the tracer frames the raster with land, so where water reaches the edge the ring
-// runs just outside it) are where the water leaves the data: InputSet::open_points, an open boundary for
-// fort.14.
+// (image_trace.hpp): islands, --min-area, sampling, projection and the open boundary where the water
+// reaches the raster's edge (InputSet::open_points) as for images.
 //
 // Coordinates (georeference.hpp): a geographic DEM is projected like lon/lat images, a UTM DEM keeps its
 // zone, any other system (Web Mercator, national grids) goes through lon/lat (GDAL/PROJ) to the projection

@@ -30,7 +30,8 @@ struct MeshView {
   // Depths at the nodes, positive down, parallel to `points` (empty: none): fort.14's depth column (before
   // `depth`), a "depth" node field in .msh and .vtu, the corners' depths in GeoJSON.
   std::span<const double> depths;
-  // 2D: per node, 1 where the water leaves the data (a DEM's edge); a boundary edge between two such nodes
+  // 2D: per node, 1 where the water leaves the data (a DEM's or image's edge; every node of a mesh without
+  // rings, which ends at the box); a boundary edge between two such nodes
   // is an open boundary in fort.14 (empty: none).
   std::span<const std::uint8_t> open_nodes;
 };
