@@ -373,6 +373,34 @@ TEST(DemInput, AllLandAllWaterOneCellAndTruncatedDemsAreRefusedNamingTheFile) {
   EXPECT_NE(r.err.find("junk.tif"), std::string::npos) << r.err;
 }
 
+// Any raster GDAL reads: an ESRI ASCII grid without a coordinate system is traced in its map units, its
+// NODATA_value cells filled, and the depths follow the grid (a bowl 0..60 m deep).
+TEST(DemInput, EsriAsciiGridWithNodataIsReadInMapUnits) {
+  TempDir dir;
+  std::string text = "ncols 30\nnrows 30\nxllcorner 1000\nyllcorner 2000\ncellsize 10\nNODATA_value -9999\n";
+  const std::vector<float> z = bowl(30, 30);
+  for (int r = 0; r < 30; ++r) {
+    for (int c = 0; c < 30; ++c) text += (r == 3 && c == 4 ? std::string("-9999") : std::to_string(z[r * 30 + c])) + " ";
+    text += "\n";
+  }
+  write_file(dir / "bowl.asc", text);
+  RunResult r = shoremesh(dir, "mesh --dem bowl.asc -o bowl.14");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("map units"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("1 nodata cells of the DEM filled"), std::string::npos) << r.out;
+  const Fort14 f = parse_fort14(read_file(dir / "bowl.14"));
+  double deepest = 0;
+  for (const auto& [id, n] : f.nodes) {
+    EXPECT_GT(n.x, 1000);
+    EXPECT_LT(n.x, 1300);
+    EXPECT_GT(n.y, 2000);
+    EXPECT_LT(n.y, 2300);
+    deepest = std::max(deepest, n.depth);
+  }
+  EXPECT_GT(deepest, 40);  // the middle of the bowl
+  EXPECT_LE(deepest, 60);
+}
+
 // Points without a shoreline: no land is known, the mesh ends where the water reaches the box, and
 // fort.14 has one closed open boundary and no land boundary.
 TEST(DemInput, PointsWithoutRingsAreOpenWaterAllAround) {

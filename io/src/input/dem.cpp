@@ -237,6 +237,11 @@ TracedDem trace_dem(std::shared_ptr<const Dem> dem, const DemTraceOptions& optio
   // (The bilinear surface's contour was tried: on steep coasts it loses most of each one-cell fjord, 10 %
   // of the Salish Sea's water.)
   const std::size_t cells = dem->heights.size();
+  if (cells > options.image.max_pixels)
+    throw InputError("DEM too large to trace: " + std::to_string(dem->width) + " x " + std::to_string(dem->height) +
+                         " cells, more than the tracer's limit of " + std::to_string(options.image.max_pixels) +
+                         " (as a depth source, --depth-from reads up to 200 million)",
+                     dem->file);
   const int k = static_cast<int>(std::clamp<std::size_t>(
       static_cast<std::size_t>(std::sqrt(static_cast<double>(options.image.max_pixels) / static_cast<double>(cells))), 1,
       kDemRefinement));
