@@ -7,9 +7,9 @@
 #include <filesystem>
 
 #include "progress.hpp"
+#include "shoremesh/error.hpp"
 #include "shoremesh/io/dem.hpp"
 #include "shoremesh/io/soundings.hpp"
-#include "shoremesh/error.hpp"
 
 namespace shoremesh::tool {
 

@@ -9,24 +9,15 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
-#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
+#include "gdal_setup.hpp"
 #include "shoremesh/error.hpp"
 
 namespace shoremesh::io {
 
 namespace {
-
-void register_gdal() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    GDALAllRegister();
-    // GDAL prints its own warnings on stderr; ours name the file instead.
-    CPLSetErrorHandler(CPLQuietErrorHandler);
-  });
-}
 
 std::string last_gdal_error() {
   const char* m = CPLGetLastErrorMsg();
@@ -89,7 +80,7 @@ double Dem::bilinear(double col, double row) const {
 }
 
 Dem read_dem(const std::string& path, std::size_t max_cells) {
-  register_gdal();
+  detail::register_gdal();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError("cannot open file", path);
   CPLErrorReset();
@@ -177,7 +168,7 @@ std::unique_ptr<OGRCoordinateTransformation> dem_transform(const Dem& dem, bool 
 
 DemFrame::DemFrame(std::shared_ptr<const Dem> dem, const Projection& mesh_projection)
     : dem_(std::move(dem)), projection_(mesh_projection) {
-  register_gdal();
+  detail::register_gdal();
   if (projection_.is_none() || dem_->geographic) return;
   if (dem_->crs_wkt.empty())
     throw InputError("the DEM has no coordinate system, and the mesh is in projected lon/lat: cannot place it", dem_->file);

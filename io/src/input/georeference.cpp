@@ -10,11 +10,11 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <vector>
 
+#include "gdal_setup.hpp"
 #include "shoremesh/error.hpp"
 #include "text_util.hpp"
 
@@ -26,14 +26,6 @@ std::string upper(std::string_view s) {
   std::string out(s);
   for (auto& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
   return out;
-}
-
-void register_gdal() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    GDALAllRegister();
-    CPLSetErrorHandler(CPLQuietErrorHandler);  // our messages name the file instead
-  });
 }
 
 // WGS 84, NAD83 and ETRS89 agree within a metre: their lon/lat is taken as WGS 84's.
@@ -96,7 +88,7 @@ CoordinateSystem from_srs(OGRSpatialReference& srs) {
 }  // namespace
 
 CoordinateSystem parse_coordinate_system(std::string_view text_in, const std::string& file) {
-  register_gdal();
+  detail::register_gdal();
   const std::string text(detail::trim(detail::strip_bom(text_in)));
   const std::optional<std::string> code = short_form(text, file);
   OGRSpatialReference srs;
@@ -113,7 +105,7 @@ CoordinateSystem parse_coordinate_system(std::string_view text_in, const std::st
 }
 
 std::function<Point2(const Point2&)> lonlat_transform(const CoordinateSystem& crs, const std::string& file) {
-  register_gdal();
+  detail::register_gdal();
   OGRSpatialReference src, ll;
   if (crs.wkt.empty() || src.importFromWkt(crs.wkt.c_str()) != OGRERR_NONE)
     throw InputError("cannot read the coordinate system " + detail::quoted(crs.name), file);
@@ -160,7 +152,7 @@ PixelToMap parse_world_file_text(std::string_view text, const std::string& name)
 }
 
 std::optional<Georeference> read_geotiff_tags(const std::string& path) {
-  register_gdal();
+  detail::register_gdal();
   std::unique_ptr<GDALDataset> ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
   if (!ds) return std::nullopt;
   double t[6];

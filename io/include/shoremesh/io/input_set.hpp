@@ -50,10 +50,11 @@ struct InputSet {
   Projection projection;              // Kind::None unless lon/lat input was projected
   std::vector<std::string> notes;     // plain statements for the user ("pixel units: no georeference", ...)
   std::size_t dropped_small_islands = 0;  // islands (and water specks) under the minimum area, images only
-  // Ring points where the water reaches the edge of the data (a traced DEM's outer edge): a mesh boundary
-  // edge between two of them is an open (ocean) boundary, not land. Sorted.
+  // Ring points where the water reaches the edge of the data (a traced image's or DEM's outer edge): a mesh
+  // boundary edge between two of them is an open (ocean) boundary, not land. Sorted.
   std::vector<Point2> open_points;
-  // Where depths at mesh nodes come from (--dem, --depth-from), in the frame of these points; null: none.
+  // Where depths at mesh nodes come from (--dem, --depth-from, soundings), in the frame of these points;
+  // null: none.
   std::shared_ptr<const DepthSource> depth;
 
   std::size_t size() const { return dimension == 3 ? points3.size() : points.size(); }
