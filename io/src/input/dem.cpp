@@ -141,23 +141,22 @@ Dem read_dem(const std::string& path, std::size_t max_cells) {
   return dem;
 }
 
-// Mesh lon/lat <-> the DEM's coordinate system (PROJ through OGR), traditional lon, lat axis order.
+// Mesh lon/lat -> the DEM's coordinate system (PROJ through OGR), traditional lon, lat axis order.
 struct DemFrame::Transform {
-  std::unique_ptr<OGRCoordinateTransformation> to_dem, from_dem;
+  std::unique_ptr<OGRCoordinateTransformation> to_dem;
 };
 
 namespace {
 
-// A PROJ transformation between lon/lat (WGS84, lon first) and the DEM's coordinate system.
-std::unique_ptr<OGRCoordinateTransformation> dem_transform(const Dem& dem, bool to_dem) {
+// A PROJ transformation from lon/lat (WGS84, lon first) to the DEM's coordinate system.
+std::unique_ptr<OGRCoordinateTransformation> dem_transform(const Dem& dem) {
   OGRSpatialReference srs, ll;
   if (srs.importFromWkt(dem.crs_wkt.c_str()) != OGRERR_NONE)
     throw InputError("cannot read the DEM's coordinate system", dem.file);
   srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   ll.SetWellKnownGeogCS("WGS84");
   ll.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  std::unique_ptr<OGRCoordinateTransformation> t(
-      to_dem ? OGRCreateCoordinateTransformation(&ll, &srs) : OGRCreateCoordinateTransformation(&srs, &ll));
+  std::unique_ptr<OGRCoordinateTransformation> t(OGRCreateCoordinateTransformation(&ll, &srs));
   if (!t)
     throw InputError("PROJ cannot transform between lon/lat and the DEM's coordinate system (" + dem.crs_name + ")",
                      dem.file);
@@ -173,8 +172,7 @@ DemFrame::DemFrame(std::shared_ptr<const Dem> dem, const Projection& mesh_projec
   if (dem_->crs_wkt.empty())
     throw InputError("the DEM has no coordinate system, and the mesh is in projected lon/lat: cannot place it", dem_->file);
   transform_ = std::make_unique<Transform>();
-  transform_->to_dem = dem_transform(*dem_, true);
-  transform_->from_dem = dem_transform(*dem_, false);
+  transform_->to_dem = dem_transform(*dem_);
 }
 
 DemFrame::~DemFrame() = default;
@@ -192,15 +190,6 @@ Point2 DemFrame::to_cell(const Point2& xy) const {
   return dem_->map_to_cell({x, y});
 }
 
-Point2 DemFrame::to_mesh(const Point2& cell) const {
-  const Point2 m = dem_->cell_to_map(cell[0], cell[1]);
-  if (projection_.is_none()) return m;
-  double x = m[0], y = m[1];
-  if (transform_ && !transform_->from_dem->Transform(1, &x, &y))
-    throw InputError("PROJ cannot transform a DEM point to lon/lat", dem_->file);
-  return projection_.forward({x, y});
-}
-
 namespace {
 constexpr std::size_t kDemRefinement = 4;  // mask pixels per cell side, at most
 }  // namespace
@@ -211,14 +200,15 @@ TracedDem trace_dem(const std::string& path, const DemTraceOptions& options) {
 
 TracedDem trace_dem(std::shared_ptr<const Dem> dem, const DemTraceOptions& options) {
   if (!std::isfinite(options.level)) throw InputError("the shoreline level must be a finite height", dem->file);
+  std::ostringstream level_text;
+  level_text << options.level << " m";
+  const std::string level = level_text.str();
   std::size_t water = 0;
   for (float v : dem->heights) water += v < options.level;
-  if (water == 0)
-    throw InputError("all land: no cell of the DEM lies below the shoreline level " + std::to_string(options.level) + " m",
-                     dem->file);
+  if (water == 0) throw InputError("all land: no cell of the DEM lies below the shoreline level " + level, dem->file);
   if (water == dem->heights.size())
-    throw InputError("all water: every cell of the DEM lies below the shoreline level " + std::to_string(options.level) +
-                         " m, so there is no shoreline to trace",
+    throw InputError("all water: every cell of the DEM lies below the shoreline level " + level +
+                         ", so there is no shoreline to trace",
                      dem->file);
 
   // Water is the cells below the level, each cell standing for its square (so the water's area is that of
@@ -267,9 +257,7 @@ TracedDem trace_dem(std::shared_ptr<const Dem> dem, const DemTraceOptions& optio
   out.dem = dem;
   out.traced = trace_water_mask(mask, scaled.image, g, dem->file);
   InputSet& set = out.traced.input;
-  std::ostringstream level;
-  level << options.level;
-  set.notes.push_back("shoreline: the DEM's contour at " + level.str() + " m, water below it (traced on the cells " +
+  set.notes.push_back("shoreline: the DEM's contour at " + level + ", water below it (traced on the cells " +
                       "refined " + std::to_string(k) + " x " + std::to_string(k) + ": a cell is " +
                       std::to_string(k * k) + " pixels)");
   if (dem->nodata_cells > 0)

@@ -56,7 +56,7 @@ struct Dem {
 // no data at all.
 Dem read_dem(const std::string& path, std::size_t max_cells = 200'000'000);
 
-// A DEM's coordinates to and from the mesh's: mesh metres -> (projection's lon/lat) -> DEM CRS -> cells.
+// From the mesh's coordinates to a DEM's cells: mesh metres -> (projection's lon/lat) -> DEM CRS -> cells.
 // Without a mesh projection the mesh is taken to be in the DEM's own coordinates.
 class DemFrame {
  public:
@@ -67,8 +67,6 @@ class DemFrame {
   const Dem& dem() const { return *dem_; }
   // Cell coordinates (centre convention) of a mesh point; InputError when PROJ cannot transform it.
   Point2 to_cell(const Point2& mesh_xy) const;
-  // Mesh coordinates of a point in cell units.
-  Point2 to_mesh(const Point2& cell) const;
 
  private:
   struct Transform;
