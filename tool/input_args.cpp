@@ -191,6 +191,8 @@ io::InputSet read_user_inputs(const InputArgs& a, Progress& progress) {
   const io::InputOptions options = input_options(a);
   std::vector<io::InputSet> sets;
   std::shared_ptr<const io::Dem> depth_dem;
+  std::vector<Point2> sounding_points;
+  std::vector<double> sounding_depths;
   if (!a.dem.empty()) {
     // First, so that its projection is the one the other inputs use.
     progress.stage("tracing " + std::filesystem::path(a.dem).filename().string());
@@ -215,28 +217,29 @@ io::InputSet read_user_inputs(const InputArgs& a, Progress& progress) {
         break;
       }
     sets.push_back(io::read_input(file, o));
+    if (sets.back().dimension == 3 && !a.three_d) {
+      // x, y, depth soundings: 2D points whose third column is a depth (--dim 3 meshes them in 3D).
+      io::InputSet& s = sets.back();
+      for (const Point3& p : s.points3) {
+        s.points.push_back({p[0], p[1]});
+        sounding_points.push_back({p[0], p[1]});
+        sounding_depths.push_back(p[2]);
+      }
+      s.points3.clear();
+      s.dimension = 2;
+    }
   }
   io::InputSet set = sets.size() == 1 ? std::move(sets.front()) : io::merge(sets);
-  if (set.dimension == 3 && !a.three_d) {
-    // x, y, depth soundings: a 2D mesh whose nodes take their depths from them (--dim 3 meshes in 3D).
-    if (!depth_dem && a.depth_from.empty()) {
-      std::vector<Point2> xy;
-      std::vector<double> depths;
-      for (const Point3& p : set.points3) xy.push_back({p[0], p[1]}), depths.push_back(p[2]);
-      auto source = std::make_shared<io::DepthSource>();
-      source->soundings = std::make_shared<const io::Soundings>(xy, depths);
-      source->options.min_depth = a.min_depth;
-      set.depth = std::move(source);
-      set.notes.push_back("third column: depths (positive down) at the " + std::to_string(xy.size()) +
-                          " soundings, interpolated linearly between them (--dim 3 meshes the points in 3D)");
-      set.points = std::move(xy);
-    } else {
-      set.points.clear();
-      for (const Point3& p : set.points3) set.points.push_back({p[0], p[1]});
-      set.notes.push_back("third column ignored: the depths come from the DEM (--dim 3 meshes the points in 3D)");
-    }
-    set.points3.clear();
-    set.dimension = 2;
+  const bool dem_depths = depth_dem || !a.depth_from.empty();
+  if (!sounding_points.empty() && dem_depths) {
+    set.notes.push_back("third column ignored: the depths come from the DEM (--dim 3 meshes the points in 3D)");
+  } else if (!sounding_points.empty()) {
+    auto source = std::make_shared<io::DepthSource>();
+    source->soundings = std::make_shared<const io::Soundings>(sounding_points, sounding_depths);
+    source->options.min_depth = a.min_depth;
+    set.depth = std::move(source);
+    set.notes.push_back("third column: depths (positive down) at the " + std::to_string(sounding_points.size()) +
+                        " soundings, interpolated linearly between them (--dim 3 meshes the points in 3D)");
   }
   if (!a.depth_from.empty()) depth_dem = std::make_shared<const io::Dem>(io::read_dem(a.depth_from));
   if (depth_dem) {
@@ -250,7 +253,7 @@ io::InputSet read_user_inputs(const InputArgs& a, Progress& progress) {
                         approx(depth_dem->max, 5) + " m), positive down" +
                         (a.min_depth ? ", at least " + approx(*a.min_depth, 5) + " m" : std::string()));
   } else if (a.min_depth && !set.depth) {
-    throw ParameterError("--min-depth needs a depth source (--dem or --depth-from)");
+    throw ParameterError("--min-depth needs a depth source (--dem, --depth-from or x,y,depth soundings)");
   }
   return set;
 }

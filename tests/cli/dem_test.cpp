@@ -373,17 +373,23 @@ TEST(DemInput, AllLandAllWaterOneCellAndTruncatedDemsAreRefusedNamingTheFile) {
   EXPECT_NE(r.err.find("junk.tif"), std::string::npos) << r.err;
 }
 
+// The bowl as an ESRI ASCII grid without a coordinate system, 10 map units a cell from (1000, 2000), with
+// one NODATA_value cell when `hole`.
+std::string bowl_ascii_grid(bool hole) {
+  std::string text = "ncols 30\nnrows 30\nxllcorner 1000\nyllcorner 2000\ncellsize 10\nNODATA_value -9999\n";
+  const std::vector<float> z = bowl(30, 30);
+  for (int r = 0; r < 30; ++r) {
+    for (int c = 0; c < 30; ++c) text += (hole && r == 3 && c == 4 ? std::string("-9999") : std::to_string(z[r * 30 + c])) + " ";
+    text += "\n";
+  }
+  return text;
+}
+
 // Any raster GDAL reads: an ESRI ASCII grid without a coordinate system is traced in its map units, its
 // NODATA_value cells filled, and the depths follow the grid (a bowl 0..60 m deep).
 TEST(DemInput, EsriAsciiGridWithNodataIsReadInMapUnits) {
   TempDir dir;
-  std::string text = "ncols 30\nnrows 30\nxllcorner 1000\nyllcorner 2000\ncellsize 10\nNODATA_value -9999\n";
-  const std::vector<float> z = bowl(30, 30);
-  for (int r = 0; r < 30; ++r) {
-    for (int c = 0; c < 30; ++c) text += (r == 3 && c == 4 ? std::string("-9999") : std::to_string(z[r * 30 + c])) + " ";
-    text += "\n";
-  }
-  write_file(dir / "bowl.asc", text);
+  write_file(dir / "bowl.asc", bowl_ascii_grid(true));
   RunResult r = shoremesh(dir, "mesh --dem bowl.asc -o bowl.14");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("map units"), std::string::npos) << r.out;
@@ -399,6 +405,26 @@ TEST(DemInput, EsriAsciiGridWithNodataIsReadInMapUnits) {
   }
   EXPECT_GT(deepest, 40);  // the middle of the bowl
   EXPECT_LE(deepest, 60);
+}
+
+// Soundings beside a DEM: their points join the mesh (in 2D, not refused as 3D input beside 2D rings) and
+// the depths come from the DEM, said in the summary.
+TEST(DemInput, SoundingsBesideADemJoinTheMeshWithTheDemsDepths) {
+  TempDir dir;
+  write_file(dir / "bowl.asc", bowl_ascii_grid(false));
+  // Three points in the water of the bowl (its centre is at 1150, 2150), z = 999 (not a depth here).
+  write_file(dir / "s.xyz", "1150 2150 999\n1140 2145 999\n1160 2155 999\n");
+  RunResult r = shoremesh(dir, "mesh --dem bowl.asc s.xyz -o b.14");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("third column ignored"), std::string::npos) << r.out;
+  const Fort14 f = parse_fort14(read_file(dir / "b.14"));
+  EXPECT_TRUE(f.nodes.size() > 3);
+  std::size_t soundings = 0;
+  for (const auto& [id, n] : f.nodes) {
+    EXPECT_LT(n.depth, 61);
+    soundings += (n.x == 1150 && n.y == 2150) || (n.x == 1140 && n.y == 2145) || (n.x == 1160 && n.y == 2155);
+  }
+  EXPECT_EQ(soundings, 3u);
 }
 
 // Points without a shoreline: no land is known, the mesh ends where the water reaches the box, and
