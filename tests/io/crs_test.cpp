@@ -11,12 +11,16 @@ namespace {
 using ::testing::HasSubstr;
 using test::expect_input_error;
 
+void expect_utm(const std::string& text, int zone, bool north) {
+  const auto cs = parse_coordinate_system(text);
+  EXPECT_EQ(cs.kind, CoordinateSystem::Kind::Utm) << text;
+  EXPECT_EQ(cs.zone, zone) << text;
+  EXPECT_EQ(cs.north, north) << text;
+}
+
 TEST(CoordinateSystems, EpsgWktAndProjStringsAreHonoured) {
   EXPECT_EQ(parse_coordinate_system("EPSG:4326").kind, CoordinateSystem::Kind::Geographic);
-  const auto utm = parse_coordinate_system("EPSG:32616");
-  EXPECT_EQ(utm.kind, CoordinateSystem::Kind::Utm);
-  EXPECT_EQ(utm.zone, 16);
-  EXPECT_TRUE(utm.north);
+  expect_utm("EPSG:32616", 16, true);
   const auto merc = parse_coordinate_system("EPSG:3857");
   EXPECT_EQ(merc.kind, CoordinateSystem::Kind::Other);
   EXPECT_THAT(merc.name, HasSubstr("Pseudo-Mercator"));
@@ -30,11 +34,8 @@ TEST(CoordinateSystems, EpsgWktAndProjStringsAreHonoured) {
       "GEOGCS[\"WGS 84\",DATUM[\"WGS_1984\",SPHEROID[\"WGS 84\",6378137,298.257223563]],PRIMEM[\"Greenwich\",0],"
       "UNIT[\"degree\",0.0174532925199433]]");
   EXPECT_EQ(wkt.kind, CoordinateSystem::Kind::Geographic);
-  const auto proj = parse_coordinate_system("+proj=utm +zone=33 +south +datum=WGS84 +units=m +no_defs");
-  EXPECT_EQ(proj.kind, CoordinateSystem::Kind::Utm);
-  EXPECT_EQ(proj.zone, 33);
-  EXPECT_FALSE(proj.north);
-  // Another datum's lon/lat is not taken as WGS 84's: it goes through PROJ (NAD27 is some 100 m off here).
+  expect_utm("+proj=utm +zone=33 +south +datum=WGS84 +units=m +no_defs", 33, false);
+  // Another datum's lon/lat is not taken as WGS 84's: it goes through PROJ (NAD27 is tens of metres off).
   const auto nad27 = parse_coordinate_system("EPSG:4267");
   EXPECT_EQ(nad27.kind, CoordinateSystem::Kind::Other);
 }
