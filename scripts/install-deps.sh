@@ -10,6 +10,8 @@ packages=(
   libopencv-dev                                        # coastline tracing
   libgeographiclib-dev                                 # GPS projections
   libopenimageio-dev openimageio-tools                 # previews, GeoTIFF tags (its CMake targets name the tools)
+  libgdal-dev                                          # DEM rasters and coordinate systems (PROJ underneath)
+  gdal-bin python3-gdal                                # tests: independent raster reads and test rasters
   libpugixml-dev nlohmann-json3-dev                    # GPX (XML) and GeoJSON parsers
   libcli11-dev                                         # command line
   libtbb-dev

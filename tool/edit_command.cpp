@@ -88,6 +88,7 @@ Command add_edit_command(CLI::App& app) {
     }
     std::istream& edits = opt->edits == "-" ? std::cin : file;
     Progress progress(!opt->in.quiet && Progress::stderr_is_terminal(), opt->in.files.size() + 1);
+    opt->in.three_d = opt->engine.dim == 3;
     const io::InputSet set = read_user_inputs(opt->in, progress);
     const int dim = opt->engine.dim != 0 ? opt->engine.dim : set.dimension;
     return dim == 3 ? run_edit<3>(*opt, set, progress, edits) : run_edit<2>(*opt, set, progress, edits);

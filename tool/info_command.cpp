@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -12,6 +13,7 @@
 #include "pipeline.hpp"
 #include "progress.hpp"
 #include "shoremesh/error.hpp"
+#include "shoremesh/io/mesh_file.hpp"
 #include "shoremesh/io/point_set_csv.hpp"
 
 namespace shoremesh::tool {
@@ -91,6 +93,35 @@ int info_input(const InputArgs& args) {
   return kExitOk;
 }
 
+// A mesh written by `mesh` (or any fort.14 / Gmsh 4.1 ASCII file): nodes, elements, boundaries, depths.
+int info_mesh_file(const std::string& path) {
+  const io::MeshFile m = io::read_mesh_file(path);
+  std::cout << path << ": " << m.format << " mesh, " << m.nodes.size() << " nodes, " << m.triangles.size() << " triangles";
+  if (m.tetrahedra > 0) std::cout << ", " << m.tetrahedra << " tetrahedra";
+  std::cout << '\n';
+  if (!m.title.empty()) std::cout << "title: " << m.title << '\n';
+  auto nodes_of = [](const std::vector<io::MeshFileBoundary>& list) {
+    std::size_t n = 0;
+    for (const auto& b : list) n += b.nodes.size();
+    return n;
+  };
+  if (m.format == "ADCIRC fort.14") {
+    std::cout << "open boundaries: " << m.open.size() << " segments, " << nodes_of(m.open) << " nodes\n";
+    std::map<int, std::size_t> by_type;
+    for (const auto& b : m.land) ++by_type[b.type];
+    std::cout << "land boundaries: " << m.land.size() << " segments, " << nodes_of(m.land) << " nodes";
+    for (const auto& [type, n] : by_type) std::cout << "; IBTYPE " << type << ": " << n;
+    std::cout << '\n';
+  } else {
+    for (const auto& b : m.land)
+      std::cout << "boundary lines: " << b.nodes.size() / 2 << " in physical group " << b.type
+                << (b.name.empty() ? "" : " \"" + b.name + "\"") << '\n';
+  }
+  if (!m.depths.empty()) std::cout << depth_text(m.depths);
+  else std::cout << "depths: none\n";
+  return kExitOk;
+}
+
 struct InfoOptions {
   InputArgs in;
   double rho = std::sqrt(2.0);
@@ -112,6 +143,7 @@ Command add_info_command(CLI::App& app) {
       "  shoremesh info samples/superior/superior_watermask_h.png --largest-water");
   return [opt]() {
     const std::string& path = opt->in.files.front();
+    if (io::is_mesh_file(path)) return info_mesh_file(path);
     switch (point_set_box_values(path)) {
       case 3: return info_point_set<2>(path, opt->rho);
       case 4: return info_point_set<3>(path, opt->rho);

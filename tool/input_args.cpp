@@ -8,6 +8,8 @@
 
 #include "progress.hpp"
 #include "shoremesh/error.hpp"
+#include "shoremesh/io/dem.hpp"
+#include "shoremesh/io/soundings.hpp"
 
 namespace shoremesh::tool {
 
@@ -44,8 +46,9 @@ void add_engine_options(CLI::App* cmd, EngineArgs& args) {
 }
 
 void add_preview_options(CLI::App* cmd, PreviewArgs& args) {
-  cmd->add_option("--preview-colour", args.colouring, "Preview triangles coloured by none, quality or size")
-      ->check(CLI::IsMember({"none", "quality", "size"}));
+  cmd->add_option("--preview-colour", args.colouring,
+                  "Preview triangles coloured by none, quality, size or depth (with --dem, --depth-from or soundings)")
+      ->check(CLI::IsMember({"none", "quality", "size", "depth"}));
   cmd->add_option("--preview-width", args.width, "Preview width in pixels (default 1024)")->check(CLI::Range(16, 16384));
 }
 
@@ -54,7 +57,6 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
                                 several ? "Input files: image (png/jpg/tif), GPS track (gpx, lat/lon csv), point "
                                           "file (csv/txt/xyz), ring file, Triangle .node/.poly, GeoJSON"
                                         : "The file to describe")
-                    ->required()
                     ->check(CLI::ExistingFile);
   if (!several) files->expected(1);
   auto* group = cmd->add_option_group("Reading inputs");
@@ -69,8 +71,10 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
   group->add_option("--threshold", a.threshold, "Images: grey level between water and land (default: Otsu)");
   group->add_option("--colour-tolerance", a.colour_tolerance,
                     "Images with --water COLOUR: RGB distance still counted as water (default 40)");
-  group->add_option("--min-area", a.min_area, "Images: drop islands and lakes under this many pixels (default 16)")
-      ->check(CLI::Range(3.0, 1e12));
+  group->add_option("--min-area", a.min_area,
+                    "Images and DEMs: drop islands and lakes under this many pixels or DEM cells (default 16; "
+                    "images: at least 3)")
+      ->check(CLI::Range(1.0, 1e12));
   group->add_flag("--largest-water", a.largest_water, "Images: keep only the largest body of water");
   group->add_option("--open-radius", a.open_radius, "Images: morphological opening in pixels (removes specks of water)")
       ->check(CLI::Range(0, 100));
@@ -92,7 +96,24 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
                     "Projection of lon/lat input: 'utm' (the data's UTM zone, default) or 'local' "
                     "(transverse Mercator centred on the data)")
       ->check(CLI::IsMember({"utm", "local"}));
+  if (several) {
+    auto* dem = cmd->add_option_group("Terrain and depths");
+    dem->add_option("--dem", a.dem,
+                    "A DEM (any raster GDAL reads, heights positive up) as an input: the shoreline is its contour "
+                    "at --shoreline-level, water below; mesh nodes get their depths from it")
+        ->check(CLI::ExistingFile);
+    dem->add_option("--shoreline-level", a.shoreline_level, "--dem: height of the shoreline in metres (default 0)");
+    dem->add_option("--depth-from", a.depth_from, "A DEM giving the depths at mesh nodes beside other inputs")
+        ->check(CLI::ExistingFile);
+    dem->add_option("--min-depth", a.min_depth, "Depths below this value (metres, positive down) are raised to it");
+  }
   add_quiet_option(cmd, a.quiet);
+  cmd->callback([&a, several] {
+    if (a.files.empty() && (!several || a.dem.empty()))
+      throw CLI::RequiredError(several ? "an input file or --dem" : "input");
+    if (!a.dem.empty() && !a.depth_from.empty())
+      throw CLI::ValidationError("--depth-from", "--dem is the depth source already; give one of them");
+  });
 }
 
 namespace {
@@ -169,6 +190,21 @@ io::InputOptions input_options(const InputArgs& a) {
 io::InputSet read_user_inputs(const InputArgs& a, Progress& progress) {
   const io::InputOptions options = input_options(a);
   std::vector<io::InputSet> sets;
+  std::shared_ptr<const io::Dem> depth_dem;
+  std::vector<Point2> sounding_points;
+  std::vector<double> sounding_depths;
+  if (!a.dem.empty()) {
+    // First, so that its projection is the one the other inputs use.
+    progress.stage("tracing " + std::filesystem::path(a.dem).filename().string());
+    io::DemTraceOptions d;
+    d.level = a.shoreline_level;
+    d.image = options.image;
+    d.image.projection = options.projection;
+    d.image.projection_choice = options.projection_choice;
+    io::TracedDem traced = io::trace_dem(a.dem, d);
+    depth_dem = traced.dem;
+    sets.push_back(std::move(traced.traced.input));
+  }
   for (const std::string& file : a.files) {
     const bool image = io::detect_input_format(file) == io::InputFormat::Image;
     progress.stage((image ? "tracing " : "reading ") + std::filesystem::path(file).filename().string());
@@ -181,8 +217,45 @@ io::InputSet read_user_inputs(const InputArgs& a, Progress& progress) {
         break;
       }
     sets.push_back(io::read_input(file, o));
+    if (sets.back().dimension == 3 && !a.three_d) {
+      // x, y, depth soundings: 2D points whose third column is a depth (--dim 3 meshes them in 3D).
+      io::InputSet& s = sets.back();
+      for (const Point3& p : s.points3) {
+        s.points.push_back({p[0], p[1]});
+        sounding_points.push_back({p[0], p[1]});
+        sounding_depths.push_back(p[2]);
+      }
+      s.points3.clear();
+      s.dimension = 2;
+    }
   }
-  return sets.size() == 1 ? std::move(sets.front()) : io::merge(sets);
+  io::InputSet set = sets.size() == 1 ? std::move(sets.front()) : io::merge(sets);
+  const bool dem_depths = depth_dem || !a.depth_from.empty();
+  if (!sounding_points.empty() && dem_depths) {
+    set.notes.push_back("third column ignored: the depths come from the DEM (--dim 3 meshes the points in 3D)");
+  } else if (!sounding_points.empty()) {
+    auto source = std::make_shared<io::DepthSource>();
+    source->soundings = std::make_shared<const io::Soundings>(sounding_points, sounding_depths);
+    source->options.min_depth = a.min_depth;
+    set.depth = std::move(source);
+    set.notes.push_back("third column: depths (positive down) at the " + std::to_string(sounding_points.size()) +
+                        " soundings, interpolated linearly between them (--dim 3 meshes the points in 3D)");
+  }
+  if (!a.depth_from.empty()) depth_dem = std::make_shared<const io::Dem>(io::read_dem(a.depth_from));
+  if (depth_dem) {
+    auto source = std::make_shared<io::DepthSource>();
+    source->frame = std::make_shared<const io::DemFrame>(depth_dem, set.projection);
+    source->options.min_depth = a.min_depth;
+    if (!a.dem.empty()) source->options.max_height = a.shoreline_level;
+    set.depth = std::move(source);
+    set.notes.push_back("depths at nodes from " + depth_dem->file + " (" + std::to_string(depth_dem->width) + " x " +
+                        std::to_string(depth_dem->height) + " cells, heights " + approx(depth_dem->min, 5) + " .. " +
+                        approx(depth_dem->max, 5) + " m), positive down" +
+                        (a.min_depth ? ", at least " + approx(*a.min_depth, 5) + " m" : std::string()));
+  } else if (a.min_depth && !set.depth) {
+    throw ParameterError("--min-depth needs a depth source (--dem, --depth-from or x,y,depth soundings)");
+  }
+  return set;
 }
 
 }  // namespace shoremesh::tool

@@ -28,6 +28,11 @@ struct InputArgs {
   std::optional<double> track_close_distance;  // GPS walks ending this near their start become rings
   bool lonlat = false;
   std::string projection = "utm";  // utm | local
+  std::string dem;                 // a DEM traced at shoreline_level, and the depth source
+  double shoreline_level = 0;
+  std::string depth_from;          // a DEM giving depths beside other inputs
+  std::optional<double> min_depth;
+  bool three_d = false;            // --dim 3: a third column is z; otherwise x,y,depth soundings
   bool quiet = false;
 };
 

@@ -37,6 +37,8 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
   const std::optional<io::ExportFormat> format =
       opt.format.empty() ? std::nullopt : std::optional(parse_export_format(opt.format));
   if (!point_set && !format) io::export_format_from_path(output);  // refuse an unknown extension before the work
+  if (opt.preview_args.colouring == "depth" && !set.depth)
+    throw ParameterError("--preview-colour depth needs depths: --dem, --depth-from or x,y,depth soundings");
 
   progress.stage("StableWS on " + std::to_string(points.size()) + " points");
   StableResult<D> result;
@@ -58,7 +60,7 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
     progress.stage("drawing " + std::filesystem::path(opt.preview).filename().string());
     PreviewArgs args = opt.preview_args;
     args.rho = opt.engine.rho;
-    write_preview<D>(mesh, opt.preview, args);
+    write_preview<D>(mesh, opt.preview, args, &frame);
   }
   progress.stage("measuring quality");
   QualityNumbers quality = quality_numbers<D>(mesh, opt.engine.rho, result.box, frame);
@@ -70,6 +72,8 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
   std::cout << describe_input(set);
   std::cout << "box: origin " << frame.point(result.box.origin) << ", side " << frame.length(result.box.side) << '\n';
   std::cout << quality_text(quality, D);
+  if constexpr (D == 2)
+    if (frame.depth) std::cout << depth_text(mesh_depths(io::MeshSnapshot<2>(mesh).view(), frame));
   std::cout << "wrote " << opt.output;
   if (!opt.preview.empty()) std::cout << " and " << opt.preview;
   std::cout << '\n';
@@ -99,6 +103,7 @@ Command add_mesh_command(CLI::App& app) {
       "  shoremesh mesh lake.png track.gpx -o lake.geojson   # an image plus a survey track");
   return [opt]() {
     Progress progress(!opt->in.quiet && Progress::stderr_is_terminal(), opt->in.files.size() + 4);
+    opt->in.three_d = opt->engine.dim == 3;
     const io::InputSet set = read_user_inputs(opt->in, progress);
     const int dim = opt->engine.dim != 0 ? opt->engine.dim : set.dimension;
     return dim == 3 ? run_mesh<3>(*opt, set, progress) : run_mesh<2>(*opt, set, progress);

@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "shoremesh/error.hpp"
+#include "shoremesh/io/dem.hpp"
+#include "shoremesh/io/soundings.hpp"
 #include "shoremesh/mesh_quality.hpp"
 #include "shoremesh/shore_refinement.hpp"
 
@@ -113,15 +115,44 @@ template <int D>
 void export_mesh_file(const Mesh<D>& mesh, const std::filesystem::path& path, std::optional<io::ExportFormat> format,
                       const UserFrame& frame, std::span<const Point<D>> order) {
   const io::MeshSnapshot<D> snapshot(mesh, order);
+  io::MeshView<D> view = snapshot.view();
   if (D == 2 && !frame.projection.is_none()) {
     const io::Projection projection = frame.projection;
-    io::export_mesh<D>(path, snapshot.view([projection](const Point2& p) {
+    view = snapshot.view([projection](const Point2& p) {
       const io::LonLat ll = projection.reverse(p);
       return Point2{ll.lon, ll.lat};
-    }), format);
-  } else {
-    io::export_mesh<D>(path, snapshot.view(), format);
+    });
   }
+  std::vector<double> depths;
+  std::vector<std::uint8_t> open;
+  if constexpr (D == 2) {
+    depths = mesh_depths(view, frame);
+    view.depths = depths;
+    // Without rings no land is known: the mesh ends where the water reaches the box, all open.
+    if (!frame.open_points.empty() || mesh.domain().empty()) {
+      open.resize(view.points.size(), 1);
+      if (!mesh.domain().empty())
+        for (std::size_t i = 0; i < open.size(); ++i)
+          open[i] = std::binary_search(frame.open_points.begin(), frame.open_points.end(), view.points[i]);
+      view.open_nodes = open;
+    }
+  }
+  io::export_mesh<D>(path, view, format);
+}
+
+std::vector<double> mesh_depths(const io::MeshView<2>& view, const UserFrame& frame) {
+  if (!frame.depth) return {};
+  if (!frame.depth->frame) return io::sounding_depths(*frame.depth->soundings, view.points, frame.depth->options);
+  return io::node_depths(*frame.depth->frame, view.points, view.elements, frame.depth->options);
+}
+
+std::string depth_text(std::span<const double> depths) {
+  if (depths.empty()) return {};
+  const auto [lo, hi] = std::minmax_element(depths.begin(), depths.end());
+  double sum = 0;
+  for (double d : depths) sum += d;
+  return "depths: " + std::to_string(depths.size()) + " nodes, " + approx(*lo, 5) + " .. " + approx(*hi, 5) +
+         " m, mean " + approx(sum / static_cast<double>(depths.size()), 5) + " m (positive down)\n";
 }
 
 io::PreviewOptions preview_options(const PreviewArgs& args) {
@@ -130,14 +161,20 @@ io::PreviewOptions preview_options(const PreviewArgs& args) {
   o.rho = args.rho;
   if (args.colouring == "quality") o.colouring = io::PreviewColouring::Quality;
   else if (args.colouring == "size") o.colouring = io::PreviewColouring::Size;
-  else if (args.colouring != "none") throw ParameterError("--preview-colour must be none, quality or size");
+  else if (args.colouring == "depth") o.colouring = io::PreviewColouring::Depth;
+  else if (args.colouring != "none") throw ParameterError("--preview-colour must be none, quality, size or depth");
   return o;
 }
 
 template <int D>
-void write_preview(const Mesh<D>& mesh, const std::filesystem::path& path, const PreviewArgs& args) {
+void write_preview(const Mesh<D>& mesh, const std::filesystem::path& path, const PreviewArgs& args,
+                   const UserFrame* frame) {
   const io::MeshSnapshot<D> snapshot(mesh);
-  io::render_preview<D>(path, snapshot.view(), preview_options(args));
+  io::MeshView<D> view = snapshot.view();
+  std::vector<double> depths;
+  if constexpr (D == 2)
+    if (frame && args.colouring == "depth") depths = mesh_depths(view, *frame), view.depths = depths;
+  io::render_preview<D>(path, view, preview_options(args));
 }
 
 template <int D>
@@ -263,8 +300,8 @@ template void export_mesh_file<2>(const Mesh<2>&, const std::filesystem::path&, 
                                   const UserFrame&, std::span<const Point<2>>);
 template void export_mesh_file<3>(const Mesh<3>&, const std::filesystem::path&, std::optional<io::ExportFormat>,
                                   const UserFrame&, std::span<const Point<3>>);
-template void write_preview<2>(const Mesh<2>&, const std::filesystem::path&, const PreviewArgs&);
-template void write_preview<3>(const Mesh<3>&, const std::filesystem::path&, const PreviewArgs&);
+template void write_preview<2>(const Mesh<2>&, const std::filesystem::path&, const PreviewArgs&, const UserFrame*);
+template void write_preview<3>(const Mesh<3>&, const std::filesystem::path&, const PreviewArgs&, const UserFrame*);
 template QualityNumbers quality_numbers<2>(const Mesh<2>&, double, const BoxTransform<2>&, const UserFrame&);
 template QualityNumbers quality_numbers<3>(const Mesh<3>&, double, const BoxTransform<3>&, const UserFrame&);
 

@@ -69,15 +69,23 @@ template <int D>
 void export_mesh_file(const Mesh<D>& mesh, const std::filesystem::path& path, std::optional<io::ExportFormat> format,
                       const UserFrame& frame, std::span<const Point<D>> order = {});
 
+// Depths at the view's nodes from the frame's depth source (empty without one).
+std::vector<double> mesh_depths(const io::MeshView<2>& view, const UserFrame& frame);
+
+// "depths: 1234 nodes, 0.5 .. 1437 m, mean 210.3 m (positive down)\n"; empty for no depths.
+std::string depth_text(std::span<const double> depths);
+
 struct PreviewArgs {
-  std::string colouring = "none";  // none | quality | size
+  std::string colouring = "none";  // none | quality | size | depth
   int width = 1024;
   double rho = 1.4142135623730951;
 };
 io::PreviewOptions preview_options(const PreviewArgs& args);
 
+// `frame` gives the depths for the depth colouring.
 template <int D>
-void write_preview(const Mesh<D>& mesh, const std::filesystem::path& path, const PreviewArgs& args);
+void write_preview(const Mesh<D>& mesh, const std::filesystem::path& path, const PreviewArgs& args,
+                   const UserFrame* frame = nullptr);
 
 // The numbers of the quality summary, for text and JSON.
 struct QualityNumbers {

@@ -2,7 +2,9 @@
 // The user's frame for messages: the units the input came in (metres, pixels, map units) and, for lon/lat
 // input, the projection that took it to metres, so that every coordinate a message prints is one the user
 // recognises (metres with lon/lat beside them, pixels, map units), never the engine's unit box.
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "shoremesh/io/input_set.hpp"
 #include "shoremesh/io/projection.hpp"
@@ -13,8 +15,12 @@ namespace shoremesh::tool {
 struct UserFrame {
   io::Units units = io::Units::MapUnits;
   io::Projection projection;
+  // What exports add to the mesh: depths at its nodes (--dem, --depth-from; null: none) and the points
+  // where the water leaves the data (an open boundary in fort.14).
+  std::shared_ptr<const io::DepthSource> depth;
+  std::vector<Point2> open_points;
 
-  static UserFrame of(const io::InputSet& set) { return {set.units, set.projection}; }
+  static UserFrame of(const io::InputSet& set) { return {set.units, set.projection, set.depth, set.open_points}; }
 
   // "523401.2 m", "3.5 px", "0.25 map units".
   std::string length(double d) const;

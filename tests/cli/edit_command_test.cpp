@@ -7,10 +7,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
+#include <random>
 #include <sstream>
 
 #include "cli_test_util.hpp"
+#include "dem_test_util.hpp"
 #include "shoremesh/io/point_file.hpp"
 #include "shoremesh/io/point_set_csv.hpp"
 
@@ -316,6 +319,52 @@ TEST(EditCommand, LonLatEditsAreProjectedLikeTheInput) {
   const RunResult plain = shoremesh(dir, "edit p.csv --lonlat-edits --edits -", "add 1 1\n");
   EXPECT_EQ(plain.code, 1);
   EXPECT_THAT(plain.err, ::testing::HasSubstr("--lonlat-edits needs 2D lon/lat input"));
+}
+
+// Lemma 7.2 with depths: after each random edit the session's fort.14 (depths from the DEM at every node,
+// moved and new ones included) equals a fresh run's on the edited input, byte for byte.
+TEST(EditCommand, DepthsFollowRandomEditsAndEqualAFreshRunAfterEach) {
+  TempDir dir;
+  std::vector<float> z;  // a sloping sea floor with a trench, heights in metres on 100 x 50 unit cells
+  for (int r = 0; r < 50; ++r)
+    for (int c = 0; c < 100; ++c) z.push_back(static_cast<float>(-5 - 0.4 * c - 30 * std::exp(-0.02 * (r - 25) * (r - 25))));
+  write_dem(dir / "floor.tif", 100, 50, z, std::nullopt, {0, 1, 0, 50, 0, -1});
+  write_file(dir / "p.csv", random_points(200, 100, 50, 5));
+  auto input = read_by_id(dir / "p.csv");
+  std::mt19937 rng(34);
+  std::uniform_real_distribution<double> x(1, 99), y(1, 49);
+  std::string edits;
+  std::size_t next_id = input.size();
+  std::vector<std::map<std::size_t, Point2>> after;
+  for (int k = 0; k < 6; ++k) {
+    auto it = input.begin();
+    std::advance(it, static_cast<long>(rng() % input.size()));
+    const Point2 p{std::round(x(rng) * 100) / 100, std::round(y(rng) * 100) / 100};
+    switch (k % 3) {
+      case 0: edits += "add " + io::format_double(p[0]) + " " + io::format_double(p[1]) + "\n", input[next_id++] = p; break;
+      case 1: edits += "move " + std::to_string(it->first) + " " + io::format_double(p[0]) + " " + io::format_double(p[1]) + "\n", it->second = p; break;
+      default: edits += "remove " + std::to_string(it->first) + "\n", input.erase(it); break;
+    }
+    edits += "export e" + std::to_string(k) + ".14\nexport e" + std::to_string(k) + ".csv\n";
+    after.push_back(input);
+  }
+  const RunResult r = shoremesh(dir, "edit p.csv --depth-from floor.tif --edits -", edits);
+  ASSERT_EQ(r.code, 0) << r.err << r.out;
+  for (int k = 0; k < 6; ++k) {
+    const std::string n = std::to_string(k);
+    write_final_input(dir / ("in" + n + ".csv"), after[static_cast<std::size_t>(k)]);
+    const RunResult fresh = shoremesh(dir, "mesh -q in" + n + ".csv --depth-from floor.tif --box " +
+                                               box_of(dir / ("e" + n + ".csv")) + " -o f" + n + ".14");
+    ASSERT_EQ(fresh.code, 0) << fresh.err;
+    const std::string edited = read_file(dir / ("e" + n + ".14"));
+    EXPECT_EQ(edited, read_file(dir / ("f" + n + ".14"))) << "after edit " << k;
+    // The depths are the DEM's (5 to 75 m here), not the zeros of a fort.14 without a depth source.
+    const auto lines = lines_of(edited);
+    std::istringstream node(lines.at(2));
+    double id = 0, nx = 0, ny = 0, depth = 0;
+    node >> id >> nx >> ny >> depth;
+    EXPECT_GT(depth, 4.9) << lines.at(2);
+  }
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <random>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -106,19 +107,59 @@ TEST(MeshCommand, MeshIsClippedToTheBoxUnlessKeepHull) {
   }
 }
 
-TEST(MeshCommand, ThreeColumnPointFileIn3DAnd2D) {
+TEST(MeshCommand, ThreeColumnPointFileIsSoundingsIn2DAndPointsIn3DWithDim3) {
   TempDir dir;
   write_file(dir / "p3.xyz", scrambled_lattice_3d(60, 61));
-  const RunResult r = shoremesh(dir, "mesh p3.xyz -o p3.vtu");
+  const RunResult r = shoremesh(dir, "mesh p3.xyz --dim 3 -o p3.vtu");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("tetrahedra"));
   EXPECT_GT(fs::file_size(dir / "p3.vtu"), 1000u);
-  const RunResult c = shoremesh(dir, "mesh p3.xyz -o p3.csv");
+  const RunResult c = shoremesh(dir, "mesh p3.xyz --dim 3 -o p3.csv");
   ASSERT_EQ(c.code, 0) << c.err;
   EXPECT_EQ(io::read_point_set_csv<3>(dir / "p3.csv").points.size() >= 60, true);
-  const RunResult flat = shoremesh(dir, "mesh p3.xyz --dim 2 -o flat.msh");
+  // By default the third column is a depth: a 2D mesh, said in the summary.
+  const RunResult flat = shoremesh(dir, "mesh p3.xyz -o flat.msh");
   EXPECT_EQ(flat.code, 0) << flat.err;
   EXPECT_THAT(flat.out, HasSubstr("triangles"));
+  EXPECT_THAT(flat.out, HasSubstr("third column: depths"));
+}
+
+// Soundings x, y, depth: each sounding node keeps its depth exactly; Steiner nodes interpolate linearly, so
+// a planar sea floor (depth = 2 + x/10 + y/20) is reproduced at every node of the fort.14.
+TEST(MeshCommand, SoundingsCarryTheirDepthsOntoTheNodes) {
+  TempDir dir;
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> u(0, 10000);
+  std::string text = "x,y,depth\n";
+  std::map<std::pair<double, double>, double> given;
+  for (int i = 0; i < 200; ++i) {
+    const double x = u(rng) / 100.0, y = u(rng) / 200.0, d = 2 + x / 10 + y / 20;
+    if (!given.emplace(std::pair{x, y}, d).second) continue;
+    text += io::format_double(x) + "," + io::format_double(y) + "," + io::format_double(d) + "\n";
+  }
+  write_file(dir / "soundings.csv", text);
+  const RunResult r = shoremesh(dir, "mesh soundings.csv -o s.14");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("depths: "));
+  std::istringstream in(read_file(dir / "s.14"));
+  std::string line;
+  std::getline(in, line);
+  std::size_t ne = 0, np = 0, at_soundings = 0;
+  in >> ne >> np;
+  std::getline(in, line);
+  for (std::size_t i = 0; i < np; ++i) {
+    std::size_t id;
+    double x, y, depth;
+    in >> id >> x >> y >> depth;
+    const auto it = given.find({x, y});
+    if (it != given.end()) {
+      ++at_soundings;
+      EXPECT_EQ(depth, it->second) << x << ", " << y;
+    } else if (x >= 5 && x <= 95 && y >= 3 && y <= 47) {  // well inside the soundings' hull
+      EXPECT_NEAR(depth, 2 + x / 10 + y / 20, 1e-9) << x << ", " << y;
+    }
+  }
+  EXPECT_EQ(at_soundings, given.size());
 }
 
 TEST(MeshCommand, EveryMeshFormatByExtensionOrFormat) {

@@ -495,16 +495,20 @@ TEST(Georeference, CoordinateSystemsFromPrjAndShortForms) {
       "PROJCS[\"WGS_1984_UTM_Zone_10N\",GEOGCS[\"GCS_WGS_1984\",DATUM[\"D_WGS_1984\",SPHEROID[\"WGS_1984\",6378137,298.257223563]],"
       "PRIMEM[\"Greenwich\",0],UNIT[\"Degree\",0.017453292519943295]],PROJECTION[\"Transverse_Mercator\"],"
       "PARAMETER[\"central_meridian\",-123],UNIT[\"Meter\",1]]");
-  EXPECT_EQ(utm.kind, CoordinateSystem::Kind::Utm);
-  EXPECT_EQ(utm.zone, 10);
+  // A transverse Mercator at -123 without UTM's scale factor and false easting is not UTM zone 10 (PROJ
+  // reads its parameters, not its name): another system, taken through lon/lat.
+  EXPECT_EQ(utm.kind, CoordinateSystem::Kind::Other);
   EXPECT_EQ(parse_coordinate_system("utm 5s").zone, 5);
   EXPECT_FALSE(parse_coordinate_system("UTM zone 16 S").north);
   EXPECT_EQ(parse_coordinate_system("EPSG: 4326").kind, CoordinateSystem::Kind::Geographic);
-  EXPECT_EQ(parse_coordinate_system("PROJCRS[\"WGS 84 / UTM zone 16N\",BASEGEOGCRS[\"WGS 84\"],ID[\"EPSG\",32616]]").zone, 16);
+  // An incomplete WKT is refused even with an ID: PROJ reads the definition, not the label.
+  EXPECT_THROW(parse_coordinate_system("PROJCRS[\"WGS 84 / UTM zone 16N\",BASEGEOGCRS[\"WGS 84\"],ID[\"EPSG\",32616]]"),
+               InputError);
   EXPECT_THROW(parse_coordinate_system("UTM 61N"), InputError);
   EXPECT_THROW(parse_coordinate_system("EPSG:99999999999"), InputError);
   EXPECT_EQ(parse_coordinate_system("WGS84").kind, CoordinateSystem::Kind::Geographic);
-  EXPECT_EQ(parse_coordinate_system("PROJCS[\"NAD83 / Wisconsin Central\",GEOGCS[\"NAD83\"]]").kind, CoordinateSystem::Kind::Unknown);
+  EXPECT_EQ(parse_coordinate_system("EPSG:32116").kind, CoordinateSystem::Kind::Other);  // NAD83 / New York East
+  EXPECT_THROW(parse_coordinate_system("PROJCS[\"NAD83 / Wisconsin Central\",GEOGCS[\"NAD83\"]]"), InputError);
   const auto e = expect_input_error([] { parse_coordinate_system("hello", "x.prj"); });
   EXPECT_EQ(e.file(), "x.prj");
 }

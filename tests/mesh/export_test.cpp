@@ -271,7 +271,7 @@ TEST_F(MeshExport, Fort14ListsShoreAndIslandBoundariesClosed) {
   EXPECT_EQ(count(), 0u);  // NETA
   ASSERT_EQ(count(), 2u);  // NBOU
   EXPECT_EQ(count(), 41u + 9u);  // NVEL: each closed loop repeats its first node
-  for (const auto& [size, type] : {std::pair{41u, 0}, std::pair{9u, 1}}) {
+  for (const auto& [size, type] : {std::pair{41u, 20}, std::pair{9u, 21}}) {  // ADCIRC IBTYPE 20 mainland, 21 island
     std::size_t nvell;
     int ibtype;
     in >> nvell >> ibtype;

@@ -1,6 +1,7 @@
 #include "shoremesh/io/georeference.hpp"
 
-#include <OpenImageIO/imageio.h>
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
 
 #include <algorithm>
 #include <cctype>
@@ -8,9 +9,12 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
+#include "gdal_setup.hpp"
 #include "shoremesh/error.hpp"
 #include "text_util.hpp"
 
@@ -24,147 +28,97 @@ std::string upper(std::string_view s) {
   return out;
 }
 
-// Digits as an int; -1 when out of range (std::stoi would throw on "EPSG:99999999999").
-int small_int(const std::string& digits) {
-  const auto v = detail::parse_integer(digits);
-  return v && *v >= 0 && *v <= 1000000 ? static_cast<int>(*v) : -1;
+// WGS 84, NAD83 and ETRS89 agree within a metre: their lon/lat is taken as WGS 84's.
+bool wgs84_like(const OGRSpatialReference& srs) {
+  const char* datum = srs.GetAttrValue("DATUM");
+  const std::string d = upper(datum ? datum : "");
+  const char* code = srs.GetAuthorityCode("GEOGCS");
+  const std::string c = code ? code : "";
+  return c == "4326" || c == "4269" || c == "4258" || d.find("WGS_1984") != std::string::npos ||
+         d.find("WGS 1984") != std::string::npos || d.find("WORLD GEODETIC SYSTEM 1984") != std::string::npos ||
+         d.find("NORTH_AMERICAN_DATUM_1983") != std::string::npos || d.find("NORTH AMERICAN DATUM 1983") != std::string::npos ||
+         d.find("EUROPEAN_TERRESTRIAL_REFERENCE_SYSTEM_1989") != std::string::npos ||
+         d.find("EUROPEAN TERRESTRIAL REFERENCE SYSTEM 1989") != std::string::npos;
 }
 
-CoordinateSystem from_epsg(int code, const std::string& name) {
+// The short forms PROJ does not read itself, as EPSG codes: "lonlat", "UTM 16N", "utm5s", "UTM zone 16 S".
+std::optional<std::string> short_form(const std::string& text, const std::string& file) {
+  const std::string up = upper(text);
+  if (up == "LONLAT" || up == "LON/LAT" || up == "WGS 84" || up == "CRS84") return std::string("EPSG:4326");
+  if (up.rfind("UTM", 0) != 0) return std::nullopt;
+  std::size_t i = 3;
+  auto blanks = [&] {
+    while (i < up.size() && (up[i] == ' ' || up[i] == '_')) ++i;
+  };
+  blanks();
+  if (up.compare(i, 4, "ZONE") == 0) i += 4, blanks();
+  const std::size_t z0 = i;
+  while (i < up.size() && i - z0 < 3 && std::isdigit(static_cast<unsigned char>(up[i]))) ++i;
+  const std::string zone = up.substr(z0, i - z0);
+  blanks();
+  if (zone.empty() || i + 1 != up.size() || (up[i] != 'N' && up[i] != 'S')) return std::nullopt;
+  const int z = std::stoi(zone);
+  if (z < 1 || z > 60) throw InputError("UTM zone " + zone + " is not 1..60", file);
+  return "EPSG:" + std::to_string((up[i] == 'N' ? 32600 : 32700) + z);
+}
+
+CoordinateSystem from_srs(OGRSpatialReference& srs) {
   CoordinateSystem cs;
-  cs.name = name;
-  if (code == 4326 || code == 4269 || code == 4258) {  // WGS 84, NAD83, ETRS89: within a metre of each other
+  cs.name = srs.GetName() ? srs.GetName() : "unnamed";
+  if (srs.IsLocal()) return cs;  // Kind::Unknown: map units, with its name
+  int north = 1;
+  const int zone = srs.IsProjected() ? srs.GetUTMZone(&north) : 0;
+  if (srs.IsGeographic() && wgs84_like(srs)) {
     cs.kind = CoordinateSystem::Kind::Geographic;
-  } else if ((code > 32600 && code <= 32660) || (code > 32700 && code <= 32760)) {
+  } else if (zone >= 1 && zone <= 60 && wgs84_like(srs)) {
     cs.kind = CoordinateSystem::Kind::Utm;
-    cs.zone = code % 100;
-    cs.north = code < 32700;
+    cs.zone = zone;
+    cs.north = north != 0;
+  } else {
+    cs.kind = CoordinateSystem::Kind::Other;
+    char* wkt = nullptr;
+    const char* options[] = {"FORMAT=WKT2_2019", nullptr};
+    srs.exportToWkt(&wkt, options);
+    cs.wkt = wkt ? wkt : "";
+    CPLFree(wkt);
   }
   return cs;
-}
-
-// A cursor over upper-cased text for the few fixed grammars of coordinate-system names (no std::regex: its
-// libstdc++ implementation recurses per character of the subject).
-struct Scan {
-  std::string_view s;
-  std::size_t i = 0;
-  void blanks() {
-    while (i < s.size() && (s[i] == ' ' || s[i] == '\t' || s[i] == '\r' || s[i] == '\n')) ++i;
-  }
-  bool word(std::string_view w) {
-    if (s.substr(i, w.size()) != w) return false;
-    i += w.size();
-    return true;
-  }
-  bool one_of(std::string_view chars) {
-    if (i < s.size() && chars.find(s[i]) != std::string_view::npos) return ++i, true;
-    return false;
-  }
-  std::string digits(std::size_t max) {
-    const std::size_t j = i;
-    while (i < s.size() && i - j < max && std::isdigit(static_cast<unsigned char>(s[i]))) ++i;
-    return std::string(s.substr(j, i - j));
-  }
-  bool end() const { return i == s.size(); }
-};
-
-// The code of the outermost AUTHORITY["EPSG","n"] / ID["EPSG",n]: the one that closes the WKT ("...]]" at
-// the end).
-std::optional<int> wkt_epsg(const std::string& wkt) {
-  const std::string up = upper(wkt);
-  const auto at = up.rfind("\"EPSG\"");
-  if (at == std::string::npos) return std::nullopt;
-  Scan c{up, at + 6};
-  c.blanks();
-  if (!c.word(",")) return std::nullopt;
-  c.blanks();
-  c.word("\"");
-  const std::string code = c.digits(9);
-  c.word("\"");
-  c.blanks();
-  if (code.empty() || !c.word("]")) return std::nullopt;
-  c.blanks();
-  if (!c.word("]")) return std::nullopt;
-  c.blanks();
-  if (!c.end()) return std::nullopt;
-  const int v = small_int(code);
-  return v >= 0 ? std::optional<int>(v) : std::nullopt;
-}
-
-// "UTM zone 16N" (also "UTM_Zone_16N", "UTM ZONE 16 N") inside a name: zone and hemisphere.
-std::optional<std::pair<int, bool>> utm_in_name(const std::string& name) {
-  const std::string up = upper(name);
-  for (std::size_t at = up.find("UTM"); at != std::string::npos; at = up.find("UTM", at + 1)) {
-    Scan c{up, at + 3};
-    if (!c.one_of(" _") || !c.word("ZONE") || !c.one_of(" _")) continue;
-    const std::string zone = c.digits(2);
-    c.blanks();
-    const std::size_t h = c.i;
-    if (zone.empty() || !c.one_of("NS")) continue;
-    return std::make_pair(small_int(zone), up[h] == 'N');
-  }
-  return std::nullopt;
-}
-
-std::string wkt_name(const std::string& wkt) {
-  const auto q = wkt.find('"');
-  if (q == std::string::npos) return {};
-  const auto q2 = wkt.find('"', q + 1);
-  return q2 == std::string::npos ? std::string() : wkt.substr(q + 1, q2 - q - 1);
 }
 
 }  // namespace
 
 CoordinateSystem parse_coordinate_system(std::string_view text_in, const std::string& file) {
+  detail::register_gdal();
   const std::string text(detail::trim(detail::strip_bom(text_in)));
-  const std::string up = upper(text);
-  {
-    Scan c{up};  // "EPSG:n"
-    if (c.word("EPSG:")) {
-      c.blanks();
-      const std::string code = c.digits(9);
-      if (!code.empty() && c.end()) return from_epsg(small_int(code), text);
-    }
-  }
-  if (up == "WGS84" || up == "WGS 84" || up == "LONLAT" || up == "LON/LAT" || up == "CRS84" || up == "OGC:CRS84")
-    return {CoordinateSystem::Kind::Geographic, 0, true, text};
-  {
-    Scan c{up};  // "UTM 16N", "UTM zone 16 S", "utm5s"
-    if (c.word("UTM")) {
-      c.blanks();
-      if (c.word("ZONE")) c.blanks();
-      const std::string zone = c.digits(2);
-      c.blanks();
-      const std::size_t h = c.i;
-      if (!zone.empty() && c.one_of("NS") && c.end()) {
-        const int z = small_int(zone);
-        if (z < 1 || z > 60) throw InputError("UTM zone " + zone + " is not 1..60", file);
-        return {CoordinateSystem::Kind::Utm, z, up[h] == 'N', text};
-      }
-    }
-  }
-  const bool projected = up.rfind("PROJCS[", 0) == 0 || up.rfind("PROJCRS[", 0) == 0 || up.rfind("PROJECTEDCRS[", 0) == 0;
-  const bool geographic = up.rfind("GEOGCS[", 0) == 0 || up.rfind("GEOGCRS[", 0) == 0 || up.rfind("GEODCRS[", 0) == 0 ||
-                          up.rfind("GEOGRAPHICCRS[", 0) == 0;
-  if (!projected && !geographic)
-    throw InputError("not a coordinate system (expected WKT, EPSG:n, WGS84 or \"UTM 16N\"): " + detail::quoted(text), file);
-  const std::string name = wkt_name(text);
-  if (const auto code = wkt_epsg(text)) {
-    auto cs = from_epsg(*code, name);
-    if (cs.kind != CoordinateSystem::Kind::Unknown) return cs;
-  }
-  if (geographic) {
-    if (up.find("WGS") != std::string::npos && up.find("84") != std::string::npos)
-      return {CoordinateSystem::Kind::Geographic, 0, true, name};
-    if (up.find("NAD83") != std::string::npos || up.find("NORTH_AMERICAN_DATUM_1983") != std::string::npos ||
-        up.find("ETRS") != std::string::npos)
-      return {CoordinateSystem::Kind::Geographic, 0, true, name};
-    return {CoordinateSystem::Kind::Unknown, 0, true, name};
-  }
-  if (const auto utm = utm_in_name(name); utm && up.find("WGS") != std::string::npos) {
-    if (utm->first >= 1 && utm->first <= 60) return {CoordinateSystem::Kind::Utm, utm->first, utm->second, name};
-  }
-  return {CoordinateSystem::Kind::Unknown, 0, true, name};
+  const std::optional<std::string> code = short_form(text, file);
+  OGRSpatialReference srs;
+  CPLErrorReset();
+  // Without file names and URLs: the text is the system itself, never a path PROJ would open.
+  if (text.empty() ||
+      srs.SetFromUserInput(code ? code->c_str() : text.c_str(), OGRSpatialReference::SET_FROM_USER_INPUT_LIMITATIONS) !=
+          OGRERR_NONE)
+    throw InputError("PROJ does not know the coordinate system " + detail::quoted(text.substr(0, 200)) +
+                         " (expected EPSG:n, WKT, a PROJ string, lonlat or \"UTM 16N\")",
+                     file);
+  srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  return from_srs(srs);
+}
+
+std::function<Point2(const Point2&)> lonlat_transform(const CoordinateSystem& crs, const std::string& file) {
+  detail::register_gdal();
+  OGRSpatialReference src, ll;
+  if (crs.wkt.empty() || src.importFromWkt(crs.wkt.c_str()) != OGRERR_NONE)
+    throw InputError("cannot read the coordinate system " + detail::quoted(crs.name), file);
+  ll.SetWellKnownGeogCS("WGS84");
+  for (auto* s : {&src, &ll}) s->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  std::shared_ptr<OGRCoordinateTransformation> t(OGRCreateCoordinateTransformation(&src, &ll));
+  if (!t) throw InputError("PROJ cannot transform " + detail::quoted(crs.name) + " to WGS 84 lon/lat", file);
+  return [t](const Point2& m) {
+    double x = m[0], y = m[1];
+    if (!t->Transform(1, &x, &y) || !std::isfinite(x) || !std::isfinite(y))
+      throw std::domain_error("PROJ cannot take a point to lon/lat");
+    return Point2{x, y};
+  };
 }
 
 Point2 PixelToMap::inverse(const Point2& xy) const {
@@ -197,145 +151,49 @@ PixelToMap parse_world_file_text(std::string_view text, const std::string& name)
   return t;
 }
 
-namespace {
-
-// --- Minimal classic-TIFF directory reader for the three GeoTIFF tags -----------------------------------
-class TiffTags {
- public:
-  explicit TiffTags(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return;
-    data_.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    if (data_.size() < 8) return;
-    if (data_[0] == 'I' && data_[1] == 'I') little_ = true;
-    else if (data_[0] == 'M' && data_[1] == 'M') little_ = false;
-    else return;
-    if (u16(2) != 42) return;  // BigTIFF (43) is not read here
-    const std::size_t ifd = u32(4);
-    if (ifd + 2 > data_.size()) return;
-    const std::size_t n = u16(ifd);
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::size_t e = ifd + 2 + 12 * i;
-      if (e + 12 > data_.size()) return;
-      entries_.push_back({u16(e), u16(e + 2), u32(e + 4), e + 8});
-    }
-    ok_ = true;
-  }
-  bool ok() const { return ok_; }
-
-  std::vector<double> doubles(unsigned tag) const {
-    std::vector<double> out;
-    for (std::uint64_t bits : values(tag, 12, 8)) {  // DOUBLE
-      double d;
-      std::memcpy(&d, &bits, 8);
-      out.push_back(d);
-    }
-    return out;
-  }
-  std::vector<unsigned> shorts(unsigned tag) const {
-    std::vector<unsigned> out;
-    for (std::uint64_t v : values(tag, 3, 2)) out.push_back(static_cast<unsigned>(v));  // SHORT
-    return out;
-  }
-
- private:
-  struct Entry {
-    unsigned tag, type;
-    std::size_t count, value_pos;
-  };
-  const Entry* find(unsigned tag) const {
-    for (const auto& e : entries_)
-      if (e.tag == tag) return &e;
-    return nullptr;
-  }
-  // The values of a tag of TIFF type `type`, `size` bytes each; empty when absent, of another type or truncated.
-  std::vector<std::uint64_t> values(unsigned tag, unsigned type, std::size_t size) const {
-    const Entry* en = find(tag);
-    std::vector<std::uint64_t> out;
-    if (!en || en->type != type || en->count > 100000) return out;
-    const std::size_t off = en->count * size <= 4 ? en->value_pos : u32(en->value_pos);
-    if (off + en->count * size > data_.size()) return out;
-    for (std::size_t k = 0; k < en->count; ++k) out.push_back(uint(off + size * k, size));
-    return out;
-  }
-  std::uint64_t uint(std::size_t p, std::size_t bytes) const {
-    if (p + bytes > data_.size()) return 0;
-    std::uint64_t v = 0;
-    for (std::size_t b = 0; b < bytes; ++b)
-      v |= static_cast<std::uint64_t>(static_cast<unsigned char>(data_[p + (little_ ? b : bytes - 1 - b)])) << (8 * b);
-    return v;
-  }
-  unsigned u16(std::size_t p) const { return static_cast<unsigned>(uint(p, 2)); }
-  std::size_t u32(std::size_t p) const { return static_cast<std::size_t>(uint(p, 4)); }
-  std::string data_;
-  bool little_ = true, ok_ = false;
-  std::vector<Entry> entries_;
-};
-
-// GeoTIFF: pixel scale, tie point (raster i,j -> model x,y), raster type (area: raster (0,0) is the corner of
-// the upper-left pixel; point: its centre) and the coordinate system keys.
-std::optional<Georeference> geotiff_from(const std::vector<double>& scale, const std::vector<double>& tie,
-                                         const std::vector<unsigned>& keys, const std::string& path) {
-  if (scale.size() < 2 || tie.size() < 6 || scale[0] == 0 || scale[1] == 0) return std::nullopt;
-  unsigned model_type = 0, raster_type = 1, geographic = 0, projected = 0;
-  if (keys.size() >= 4) {
-    const std::size_t n = keys[3];
-    for (std::size_t k = 0; k < n && 4 + 4 * k + 3 < keys.size(); ++k) {
-      const unsigned id = keys[4 + 4 * k], loc = keys[4 + 4 * k + 1], value = keys[4 + 4 * k + 3];
-      if (loc != 0) continue;  // values stored elsewhere are not needed
-      if (id == 1024) model_type = value;
-      if (id == 1025) raster_type = value;
-      if (id == 2048) geographic = value;
-      if (id == 3072) projected = value;
-    }
-  }
+std::optional<Georeference> read_geotiff_tags(const std::string& path) {
+  detail::register_gdal();
+  std::unique_ptr<GDALDataset> ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (!ds) return std::nullopt;
+  double t[6];
+  if (ds->GetGeoTransform(t) != CE_None) return std::nullopt;
   Georeference g;
   g.source = Georeference::Source::GeoTiff;
-  const double half = raster_type == 2 ? 0.0 : 0.5;  // PixelIsPoint : PixelIsArea
-  g.pixel_to_map = {scale[0], 0, tie[3] + (half - tie[0]) * scale[0], 0, -scale[1], tie[4] - (half - tie[1]) * scale[1]};
-  if (model_type == 2 || (model_type == 0 && geographic))
-    g.crs = from_epsg(geographic ? static_cast<int>(geographic) : 4326, "EPSG:" + std::to_string(geographic));
-  else if (projected)
-    g.crs = from_epsg(static_cast<int>(projected), "EPSG:" + std::to_string(projected));
-  if (g.crs.kind == CoordinateSystem::Kind::Unknown && g.crs.name.empty()) g.crs.name = "unknown";
-  g.description = "GeoTIFF tags of " + std::filesystem::path(path).filename().string() + " (" + g.crs.name + ")";
+  // GDAL's transform is from the upper-left corner; ours from the upper-left pixel's centre.
+  g.pixel_to_map = {t[1], t[2], t[0] + 0.5 * (t[1] + t[2]), t[4], t[5], t[3] + 0.5 * (t[4] + t[5])};
+  if (const OGRSpatialReference* srs = ds->GetSpatialRef()) {
+    OGRSpatialReference copy(*srs);
+    copy.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    g.crs = from_srs(copy);
+  } else {
+    g.crs.name = "unknown";
+  }
+  g.description = "GeoTIFF keys of " + std::filesystem::path(path).filename().string() + " (" + g.crs.name + ")";
   return g;
 }
 
-}  // namespace
+namespace {
 
-std::optional<Georeference> read_geotiff_tags(const std::string& path) {
-  // OpenImageIO exposes GeoTIFF tags as geotiff:* attributes when built to do so.
-  if (auto in = OIIO::ImageInput::open(path)) {
-    const auto& spec = in->spec();
-    auto get = [&](const char* name) {
-      std::vector<double> v;
-      if (const OIIO::ParamValue* p = spec.find_attribute(name)) {
-        if (p->type().basetype == OIIO::TypeDesc::DOUBLE) {
-          const auto* d = static_cast<const double*>(p->data());
-          v.assign(d, d + p->type().numelements() * p->type().aggregate * p->nvalues());
-        }
-      }
-      return v;
-    };
-    const auto scale = get("geotiff:ModelPixelScale"), tie = get("geotiff:ModelTiePoint");
-    if (!scale.empty() && !tie.empty()) {
-      std::vector<unsigned> keys;
-      if (const OIIO::ParamValue* p = spec.find_attribute("geotiff:GeoKeyDirectory")) {
-        const auto n = p->type().numelements() * p->nvalues();
-        if (p->type().basetype == OIIO::TypeDesc::UINT16)
-          for (std::size_t i = 0; i < n; ++i) keys.push_back(static_cast<const std::uint16_t*>(p->data())[i]);
-      }
-      if (auto g = geotiff_from(scale, tie, keys, path)) return g;
-    }
-    in->close();
+// Other systems go through lon/lat: the tracer projects them like geographic input.
+Georeference with_lonlat(Georeference g, const std::string& file) {
+  if (g.crs.kind == CoordinateSystem::Kind::Other) {
+    g.map_to_lonlat = lonlat_transform(g.crs, file);
+    g.description += ", taken through WGS 84 lon/lat (PROJ)";
   }
-  TiffTags tags(path);
-  if (!tags.ok()) return std::nullopt;
-  return geotiff_from(tags.doubles(33550), tags.doubles(33922), tags.shorts(34735), path);
+  return g;
 }
 
+Georeference find_georeference_of(const std::string& image_path, int width, int height, const GeoreferenceOptions& options);
+
+}  // namespace
+
 Georeference find_georeference(const std::string& image_path, int width, int height, const GeoreferenceOptions& options) {
+  return with_lonlat(find_georeference_of(image_path, width, height, options), image_path);
+}
+
+namespace {
+
+Georeference find_georeference_of(const std::string& image_path, int width, int height, const GeoreferenceOptions& options) {
   namespace fs = std::filesystem;
   Georeference g;
   if (options.box) {
@@ -394,5 +252,7 @@ Georeference find_georeference(const std::string& image_path, int width, int hei
   g.description = "no georeference (no world file, GeoTIFF tags or bounding box): coordinates are pixels";
   return g;
 }
+
+}  // namespace
 
 }  // namespace shoremesh::io

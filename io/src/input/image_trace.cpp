@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -45,8 +46,13 @@ struct Output {
   CoordinateSystem::Kind crs = CoordinateSystem::Kind::Unknown;
   Projection source_utm;  // the image's own UTM zone (crs == Utm)
   Projection projection;  // output projection (None for pixel/map units)
+  std::function<Point2(const Point2&)> map_to_lonlat;  // Georeference::map_to_lonlat
   Point2 operator()(const Point2& px) const {
     const Point2 m = affine(px);
+    if (map_to_lonlat) {
+      const Point2 ll = map_to_lonlat(m);
+      return projection.forward({ll[0], ll[1]});
+    }
     if (crs == CoordinateSystem::Kind::Geographic) return projection.forward({m[0], m[1]});
     if (crs == CoordinateSystem::Kind::Utm && !(source_utm == projection)) return projection.forward(source_utm.reverse(m));
     return m;
@@ -218,7 +224,8 @@ Output make_output(const Georeference& g, const cv::Size& size, const ImageTrace
     out.crs = CoordinateSystem::Kind::Unknown;
     return out;
   }
-  if (g.crs.kind == CoordinateSystem::Kind::Unknown) {
+  out.map_to_lonlat = g.map_to_lonlat;
+  if (g.crs.kind == CoordinateSystem::Kind::Unknown && !g.map_to_lonlat) {
     set.units = Units::MapUnits;
     return out;
   }
@@ -232,7 +239,7 @@ Output make_output(const Georeference& g, const cv::Size& size, const ImageTrace
     std::vector<LonLat> extent;
     for (double c : {-0.5, 0.5 * size.width - 0.5, size.width - 0.5})
       for (double r : {-0.5, 0.5 * size.height - 0.5, size.height - 0.5}) {
-        const Point2 m = g.pixel_to_map(c, r);
+        const Point2 m = g.map_to_lonlat ? g.map_to_lonlat(g.pixel_to_map(c, r)) : g.pixel_to_map(c, r);
         extent.push_back({m[0], m[1]});
       }
     out.projection = Projection::choose(extent, opt.projection_choice, name);
@@ -353,6 +360,19 @@ TracedImage trace_mask(cv::Mat water, const ImageTraceOptions& opt, const Georef
   }
   result.georeference = georef;
   set.dropped_small_islands = result.dropped_small_islands;
+  // Ring points beyond the outermost pixel centres: the ring runs along the land frame there (0.75 pixel
+  // outside them), cuts a corner of the image between two frame stretches, or is where the shore meets the
+  // edge. The water leaves the data there: an open boundary.
+  const double last_col = water.cols - 1, last_row = water.rows - 1;
+  for (const TracedRing& ring : result.rings)
+    for (std::size_t k = 0; k < ring.pixels.size(); ++k) {
+      const Point2& px = ring.pixels[k];
+      if (px[0] < 0 || px[1] < 0 || px[0] > last_col || px[1] > last_row) set.open_points.push_back(ring.points[k]);
+    }
+  std::sort(set.open_points.begin(), set.open_points.end());
+  if (!set.open_points.empty())
+    set.notes.push_back(std::to_string(set.open_points.size()) +
+                        " shore points where the water reaches the edge of the image: an open boundary");
   std::size_t islands = 0;
   for (const auto& r : result.rings) islands += r.role == RingRole::Island;
   set.notes.push_back("traced " + std::to_string(result.rings.size()) + " rings (" + std::to_string(islands) +

@@ -1,5 +1,6 @@
 #include "shoremesh/io/input_set.hpp"
 
+#include <algorithm>
 #include <map>
 
 #include "duplicates.hpp"
@@ -98,7 +99,9 @@ InputSet merge(const std::vector<InputSet>& sets) {
     for (std::size_t off : s.ring_offsets) out.ring_offsets.push_back(off + point_offset);
     out.notes.insert(out.notes.end(), s.notes.begin(), s.notes.end());
     out.dropped_small_islands += s.dropped_small_islands;
+    out.open_points.insert(out.open_points.end(), s.open_points.begin(), s.open_points.end());
   }
+  std::sort(out.open_points.begin(), out.open_points.end());
   const auto dup = out.dimension == 3 ? detail::find_duplicate(out.points3) : detail::find_duplicate(out.points);
   if (dup) {
     const PointOrigin& o = out.origins.at(dup->first);

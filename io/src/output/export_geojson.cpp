@@ -1,7 +1,8 @@
 // GeoJSON (RFC 7946) for QGIS: a FeatureCollection with one Polygon feature per triangle, coordinates in
 // longitude/latitude through the view's to_lonlat, each ring closed and counter-clockwise as the RFC
 // recommends (the triangles are counter-clockwise in the projected plane, and a conformal projection keeps
-// that), with the triangle's minimum angle and its corners' kinds as properties.
+// that), with the triangle's minimum angle, its corners' kinds and (when the view has them) its corners'
+// depths, positive down, as properties.
 #include <string>
 
 #include "shoremesh/error.hpp"
@@ -28,7 +29,13 @@ void write_geojson(const std::filesystem::path& path, const MeshView<2>& view) {
       append_number(s, shape.min_angle);
       std::size_t steiner = 0;
       for (auto n : e) steiner += !view.kinds.empty() && view.kinds[n] == PointKind::Steiner;
-      append(s, ",\"steiner_corners\":", steiner, "},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[[");
+      append(s, ",\"steiner_corners\":", steiner);
+      if (!view.depths.empty()) {
+        s += ",\"depths\":[";
+        for (int k = 0; k < 3; ++k) s += k ? "," : "", append_number(s, view.depths[e[k]]);
+        s += ']';
+      }
+      append(s, "},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[[");
       for (int k = 0; k <= 3; ++k) {
         const Point2& p = lonlat[e[k % 3]];
         s += k ? ",[" : "[";

@@ -1,7 +1,8 @@
 // Gmsh MSH 4.1 (ASCII). 2D: one surface entity "water" with the triangles, one curve entity per boundary
 // loop carrying its edges, in the physical group "shore" or "island". 3D: one volume entity "domain" with
 // the tetrahedra and one surface entity "boundary" with the boundary triangles. All nodes are listed in
-// the block of the top entity; Gmsh and meshio find nodes by tag, wherever they are listed.
+// the block of the top entity; Gmsh and meshio find nodes by tag, wherever they are listed. Depths, when
+// the view has them, follow as the node field "depth" ($NodeData).
 #include <algorithm>
 #include <array>
 #include <limits>
@@ -125,6 +126,13 @@ void write_gmsh(const std::filesystem::path& path, const MeshView<D>& view) {
       }
     }
     s += "$EndElements\n";
+    if (!view.depths.empty()) {
+      // The depths as a node field (string tag "depth", one real tag: time 0, three integer tags: step 0,
+      // one component, the node count).
+      append(s, "$NodeData\n1\n\"depth\"\n1\n0\n3\n0\n1\n", np, '\n');
+      for (std::size_t i = 0; i < np; ++i) append(s, i + 1, ' '), append_number(s, view.depths[i]), s += '\n';
+      s += "$EndNodeData\n";
+    }
     out << s;
   });
 }

@@ -1,5 +1,6 @@
 // VTK XML unstructured grid (.vtu), ASCII: points in 3 components, triangles (VTK type 5) or tetrahedra
-// (type 10), a point array "input" (1 for input points, 0 for Steiner points) and per-element quality
+// (type 10), point arrays "input" (1 for input points, 0 for Steiner points) and "depth" (when the view
+// has depths) and per-element quality
 // ("radius_edge", "min_angle") so that ParaView can colour by them.
 #include <string>
 
@@ -21,7 +22,13 @@ void write_vtu(const std::filesystem::path& path, const MeshView<D>& view) {
     s += "<PointData>\n<DataArray type=\"Int32\" Name=\"input\" format=\"ascii\">\n";
     for (std::size_t i = 0; i < view.points.size(); ++i)
       s += view.kinds.empty() || view.kinds[i] == PointKind::Input ? "1\n" : "0\n";
-    s += "</DataArray>\n</PointData>\n<CellData>\n";
+    s += "</DataArray>\n";
+    if (!view.depths.empty()) {
+      s += "<DataArray type=\"Float64\" Name=\"depth\" format=\"ascii\">\n";
+      for (double d : view.depths) append_number(s, d), s += '\n';
+      s += "</DataArray>\n";
+    }
+    s += "</PointData>\n<CellData>\n";
     std::string radius_edge, min_angle;
     for (const auto& e : view.elements) {
       ElementCorners<D> c;

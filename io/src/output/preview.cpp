@@ -7,6 +7,7 @@
 #include <numbers>
 #include <set>
 
+#include "shoremesh/error.hpp"
 #include "shoremesh/io/preview_canvas.hpp"
 #include "shoremesh/mesh_quality.hpp"
 
@@ -52,10 +53,20 @@ PreviewImage draw_2d(const MeshView<2>& view, const PreviewOptions& o) {
     double small = std::numeric_limits<double>::infinity(), large = 0;
     for (const auto& c : corners) small = std::min(small, element_size(c)), large = std::max(large, element_size(c));
     const double bound = std::asin(std::min(1.0, 1 / (2 * o.rho))) * 180 / std::numbers::pi;
-    for (const auto& c : corners) {
-      const Rgb colour = o.colouring == PreviewColouring::Quality
-                             ? quality_colour(element_shape<2>(c).min_angle, bound, 60)
-                             : size_colour(large > small ? std::log(element_size(c) / small) / std::log(large / small) : 0.5);
+    if (o.colouring == PreviewColouring::Depth && view.depths.size() != view.points.size())
+      throw InputError("colouring by depth needs depths at the nodes (--dem, --depth-from or x,y,depth soundings)");
+    double shallow = std::numeric_limits<double>::infinity(), deep = -shallow;
+    for (double d : view.depths) shallow = std::min(shallow, d), deep = std::max(deep, d);
+    for (std::size_t k = 0; k < corners.size(); ++k) {
+      const auto& c = corners[k];
+      const auto& e = view.elements[k];
+      const Rgb colour =
+          o.colouring == PreviewColouring::Quality ? quality_colour(element_shape<2>(c).min_angle, bound, 60)
+          : o.colouring == PreviewColouring::Depth
+              ? depth_colour(deep > shallow ? ((view.depths[e[0]] + view.depths[e[1]] + view.depths[e[2]]) / 3 - shallow) /
+                                                  (deep - shallow)
+                                            : 0.5)
+              : size_colour(large > small ? std::log(element_size(c) / small) / std::log(large / small) : 0.5);
       canvas.triangle(xy(c[0]), xy(c[1]), xy(c[2]), colour, 0.75);
     }
   }

@@ -129,6 +129,11 @@ Rgb quality_colour(double min_angle, double bound_angle, double best_angle) {
   return mix(yellow, green, std::clamp((min_angle - bound_angle) / (best_angle - bound_angle), 0.0, 1.0));
 }
 
+Rgb depth_colour(double t) {
+  const Rgb shallow{0.8f, 0.92f, 0.98f}, deep{0.03f, 0.15f, 0.45f};
+  return mix(shallow, deep, std::clamp(t, 0.0, 1.0));
+}
+
 Rgb size_colour(double t) {
   const Rgb blue{0.2f, 0.35f, 0.8f}, light{0.9f, 0.9f, 0.85f}, orange{0.95f, 0.55f, 0.1f};
   t = std::clamp(t, 0.0, 1.0);

@@ -24,8 +24,16 @@ struct MeshView {
   std::span<const BoundaryLoop> boundary;    // 2D: closed loops of nodes with their role (shore, island)
   // 2D geographic inputs: the inverse of the projection the engine meshed in, metric -> {lon, lat} degrees.
   std::function<Point2(const Point2&)> to_lonlat;
-  // ADCIRC: depth below the datum at a node (positive down); without it the depth column is 0.
+  // ADCIRC: depth below the datum at a node (positive down); without it (and without `depths`) the depth
+  // column is 0.
   std::function<double(const Point<D>&)> depth;
+  // Depths at the nodes, positive down, parallel to `points` (empty: none): fort.14's depth column (before
+  // `depth`), a "depth" node field in .msh and .vtu, the corners' depths in GeoJSON.
+  std::span<const double> depths;
+  // 2D: per node, 1 where the water leaves the data (a DEM's or image's edge; every node of a mesh without
+  // rings, which ends at the box); a boundary edge between two such nodes
+  // is an open boundary in fort.14 (empty: none).
+  std::span<const std::uint8_t> open_nodes;
 };
 
 // A copy of a Mesh's points, elements, kinds and boundary, and a view of it. Points that no element uses

@@ -4,14 +4,17 @@
 //   1. a bounding box and coordinate system the user gives (GeoreferenceOptions::box / crs),
 //   2. a world file beside the image: same name with .wld, or the image's three-letter code (.pgw/.pngw for
 //      PNG, .jgw/.jpgw for JPEG, .tfw/.tifw for TIFF), with its coordinate system from a .prj sidecar (WKT),
-//   3. GeoTIFF tags (ModelPixelScale + ModelTiepoint + GeoKeyDirectory); OpenImageIO's geotiff:* attributes
-//      are used when the library exposes them, otherwise the tags are read from the TIFF directory directly
-//      (Debian's OpenImageIO 2.4 does not expose them),
+//   3. GeoTIFF keys, read by GDAL,
 //   4. otherwise pixel units, said plainly in the result.
-// Coordinate systems understood: geographic WGS84 lon/lat (EPSG:4326 and WKT GEOGCS of WGS 84 / NAD83 /
-// ETRS89, which agree within a metre), UTM zones (EPSG:326zz/327zz, WKT PROJCS named "UTM zone zzN/S");
-// anything else is kept as "map units" with its name.
+// Coordinate systems are GDAL/OGR spatial references (PROJ underneath): any form PROJ accepts (EPSG:n,
+// WKT 1 or 2, PROJ strings, OGC URNs) plus the short forms "lonlat"/"WGS84" and "UTM 16N". Geographic
+// lon/lat on WGS 84, NAD83 or ETRS89 (within a metre of each other) is projected like GPS input; a UTM zone
+// on those datums is kept as is; any other system PROJ knows (Web Mercator, national grids, other datums)
+// is taken through WGS 84 lon/lat (Georeference::map_to_lonlat) to the projection chosen for the data, so
+// that lengths are true metres. Text PROJ cannot read is an error naming it; a local (engineering) system
+// is kept as map units with its name.
 #include <array>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -21,17 +24,21 @@
 namespace shoremesh::io {
 
 struct CoordinateSystem {
-  enum class Kind { Unknown, Geographic, Utm };
+  enum class Kind { Unknown, Geographic, Utm, Other };
   Kind kind = Kind::Unknown;
   int zone = 0;        // Utm: 1..60
   bool north = true;   // Utm
-  std::string name;    // as given ("WGS 84", "WGS 84 / UTM zone 16N", ...)
+  std::string name;    // as PROJ names it ("WGS 84", "WGS 84 / UTM zone 16N", ...)
+  std::string wkt;     // Other: the system as WKT, for the transformation to lon/lat
 };
 
-// Parses WKT 1/2 (GEOGCS/GEOGCRS/PROJCS/PROJCRS) or short forms: "EPSG:4326", "EPSG:32616", "WGS84", "lonlat",
-// "UTM 16N", "UTM16S". Unrecognised projected systems give Kind::Unknown with the name; text that is not a
-// coordinate system at all throws shoremesh::InputError naming `file`.
+// Parses any coordinate system PROJ accepts (see above) or the short forms "WGS84", "lonlat", "UTM 16N",
+// "UTM16S". Text PROJ cannot read (a junk WKT, EPSG:99999) throws shoremesh::InputError naming the text and
+// `file`.
 CoordinateSystem parse_coordinate_system(std::string_view text, const std::string& file = {});
+
+// For Kind::Other: map coordinates -> {lon, lat} WGS 84 degrees (std::domain_error where PROJ fails).
+std::function<Point2(const Point2&)> lonlat_transform(const CoordinateSystem& crs, const std::string& file = {});
 
 // X = a*col + b*row + c, Y = d*col + e*row + f, where (col, row) = (0, 0) is the centre of the upper-left pixel
 // (the world-file convention).
@@ -47,11 +54,14 @@ struct PixelToMap {
 PixelToMap parse_world_file_text(std::string_view text, const std::string& name);
 
 struct Georeference {
-  enum class Source { None, UserBox, WorldFile, GeoTiff };
+  enum class Source { None, UserBox, WorldFile, GeoTiff, Gdal };
   Source source = Source::None;
   PixelToMap pixel_to_map;  // pixel units (Source::None): x = col + 0.5, y = height - row - 0.5
   CoordinateSystem crs;     // Unknown when none was found
   std::string description;  // e.g. "world file superior.wld with superior.prj (WGS 84)"
+  // Another projected system (a DEM in Web Mercator, a national grid; dem.hpp): map -> {lon, lat} degrees
+  // through GDAL/PROJ. The tracer then projects like geographic input.
+  std::function<Point2(const Point2&)> map_to_lonlat;
 };
 
 // A user's box: the outer edges of the image in map coordinates (xmin/xmax at the left/right edges of the
@@ -68,7 +78,7 @@ struct GeoreferenceOptions {
 Georeference find_georeference(const std::string& image_path, int width, int height,
                                const GeoreferenceOptions& options = {});
 
-// GeoTIFF tags of a TIFF file (classic TIFF, either byte order) as a georeference, if it has them.
+// The georeference GDAL reads from a TIFF file's GeoTIFF keys, if it has them.
 std::optional<Georeference> read_geotiff_tags(const std::string& tiff_path);
 
 }  // namespace shoremesh::io

@@ -34,6 +34,9 @@
 // stays closed with a smooth spacing. `spacing` is in pixels or, with SpacingUnit::Map, in the output units
 // (metres for projected or metric images).
 //
+// Open water. Ring points beyond the outermost pixel centres, where the water reaches the image's edge,
+// are InputSet::open_points: an open boundary in fort.14.
+//
 // Georeferencing (georeference.hpp): world file + .prj, GeoTIFF tags, or a user box; geographic images are
 // projected to metres (Projection, kept in the result); otherwise pixel units, said plainly in the notes.
 #include <array>

@@ -3,6 +3,7 @@
 // the input has rings, where each point came from, the units, and the projection that produced them.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,8 @@
 #include "shoremesh/point.hpp"
 
 namespace shoremesh::io {
+
+struct DepthSource;  // dem.hpp
 
 enum class Units {
   Metres,    // projected lon/lat (see InputSet::projection) or a metric coordinate system (UTM world file)
@@ -47,6 +50,12 @@ struct InputSet {
   Projection projection;              // Kind::None unless lon/lat input was projected
   std::vector<std::string> notes;     // plain statements for the user ("pixel units: no georeference", ...)
   std::size_t dropped_small_islands = 0;  // islands (and water specks) under the minimum area, images only
+  // Ring points where the water reaches the edge of the data (a traced image's or DEM's outer edge): a mesh
+  // boundary edge between two of them is an open (ocean) boundary, not land. Sorted.
+  std::vector<Point2> open_points;
+  // Where depths at mesh nodes come from (--dem, --depth-from, soundings), in the frame of these points;
+  // null: none.
+  std::shared_ptr<const DepthSource> depth;
 
   std::size_t size() const { return dimension == 3 ? points3.size() : points.size(); }
 };

@@ -18,7 +18,7 @@ struct Rgb {
   bool operator==(const Rgb&) const = default;
 };
 
-enum class PreviewColouring { None, Quality, Size };
+enum class PreviewColouring { None, Quality, Size, Depth };
 enum class PreviewView3D { Surface, SliceZ };
 
 struct PreviewOptions {
@@ -29,6 +29,7 @@ struct PreviewOptions {
   double point_radius = 1.6;  // pixels; 0 hides the points
   // Quality: the minimum angle (dihedral in 3D) from red (0) through yellow (the rho bound, 20.7 degrees
   // for rho = sqrt 2) to green (60). Size: the square root of the area, blue (smallest) to orange (largest), log scale.
+  // Depth (2D, the view's depths): the mean of the corners' depths, pale (shallowest) to dark blue (deepest).
   PreviewColouring colouring = PreviewColouring::None;
   double rho = 1.4142135623730951;
   // An image drawn underneath, covering the mesh-coordinate rectangle background_extent

@@ -37,5 +37,7 @@ PreviewImage draw_3d(const MeshView<3>& view, const PreviewOptions& options);
 // Colour ramps for the colouring modes: t in [0, 1].
 Rgb quality_colour(double min_angle, double bound_angle, double best_angle);
 Rgb size_colour(double t);
+// Depth for t in [0, 1] (0: the shallowest, 1: the deepest): pale to dark blue.
+Rgb depth_colour(double t);
 
 }  // namespace shoremesh::io
