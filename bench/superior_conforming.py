@@ -83,6 +83,8 @@ def write_ring_file(path, rings):
 
 def run_timed(cmd, cpu):
     full = ["taskset", "-c", str(cpu), "/usr/bin/time", "-v"] + cmd
+    with open("/proc/loadavg") as f:
+        load = float(f.read().split()[0])  # the 1-minute load when the run starts (2 cores, shared)
     p = subprocess.run(full, capture_output=True, text=True)
     err = p.stderr
     m = re.search(r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): (?:(\d+):)?(\d+):([\d.]+)", err)
@@ -90,7 +92,7 @@ def run_timed(cmd, cpu):
     rss = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", err).group(1)) / 1024
     user = float(re.search(r"User time \(seconds\): ([\d.]+)", err).group(1))
     sys_t = float(re.search(r"System time \(seconds\): ([\d.]+)", err).group(1))
-    return {"cmd": " ".join(full), "rc": p.returncode, "wall_s": wall, "cpu_s": user + sys_t, "rss_mb": rss,
+    return {"cmd": " ".join(full), "rc": p.returncode, "wall_s": wall, "cpu_s": user + sys_t, "rss_mb": rss, "load": load,
             "stdout": p.stdout, "stderr": err}
 
 
@@ -241,14 +243,15 @@ def main():
             r["summary"] = parse_summary(r["stdout"] + r["stderr"])
             runs[label].append(r)
             print(f"[{rep + 1}/{args.repeats}] {label}: rc={r['rc']} wall={r['wall_s']:.2f}s cpu={r['cpu_s']:.2f}s "
-                  f"rss={r['rss_mb']:.1f}MB", flush=True)
+                  f"rss={r['rss_mb']:.1f}MB load={r['load']:.2f}", flush=True)
             if r["rc"] != 0:
                 print(r["stderr"][-3000:], flush=True)
         if args.peer:
             r = run_timed([args.peer, ring_file, "--lonlat"], args.cpu)
             r["peer"], r["line"] = parse_peer(r["stdout"])
             peer_runs.append(r)
-            print(f"[{rep + 1}/{args.repeats}] peer: rc={r['rc']} wall={r['wall_s']:.2f}s rss={r['rss_mb']:.1f}MB "
+            print(f"[{rep + 1}/{args.repeats}] peer: rc={r['rc']} wall={r['wall_s']:.2f}s cpu={r['cpu_s']:.2f}s "
+                  f"rss={r['rss_mb']:.1f}MB load={r['load']:.2f} "
                   f"{r['line']}", flush=True)
 
     print("\n## results")
