@@ -90,8 +90,12 @@ EditSession<D>::EditSession(const io::InputSet& set, double rho, std::optional<B
       keep_hull_(keep_hull),
       preview_(std::move(preview)),
       refinement_([&]() -> std::optional<ShoreRefinement> {
-        if (D != 2 || set.domain.empty()) return std::nullopt;
-        return ShoreRefinement(set.domain, loose_points(set));
+        if constexpr (D != 2) {
+          return std::nullopt;
+        } else {
+          if (set.domain.empty()) return std::nullopt;
+          return ShoreRefinement(set.domain, loose_points(set), refinement_rule(set, box));
+        }
       }()),
       set_([&] {
         // The input points, then the shore's splits (as a fresh `mesh` run gives them to the engine).

@@ -29,7 +29,7 @@ struct MeshOptions {
 
 template <int D>
 int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress) {
-  const EngineInput<D> in = engine_input<D>(set);
+  const EngineInput<D> in = engine_input<D>(set, parse_box<D>(opt.engine.box));
   const std::vector<Point<D>>& points = in.points;
   const UserFrame frame = UserFrame::of(set);
   const std::filesystem::path output = opt.output;

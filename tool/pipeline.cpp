@@ -75,14 +75,19 @@ std::vector<Point2> loose_points(const io::InputSet& set) {
   return out;
 }
 
+RefinementRule refinement_rule(const io::InputSet& set, const std::optional<BoxTransform<2>>& box) {
+  if (box) return RefinementRule::for_box(box->side);
+  return RefinementRule::for_box(set.points.empty() ? 0 : BoxTransform<2>::fit(set.points).side);
+}
+
 template <int D>
-EngineInput<D> engine_input(const io::InputSet& set) {
+EngineInput<D> engine_input(const io::InputSet& set, const std::optional<BoxTransform<D>>& box) {
   EngineInput<D> in;
   in.points = input_points<D>(set);
   in.input_count = in.points.size();
   if constexpr (D == 2) {
     if (!set.domain.empty()) {
-      const ShoreRefinement refinement(set.domain, loose_points(set));
+      const ShoreRefinement refinement(set.domain, loose_points(set), refinement_rule(set, box));
       const std::vector<Point2> splits = refinement.split_points();
       in.points.insert(in.points.end(), splits.begin(), splits.end());
       in.domain = refinement.refined();
@@ -261,8 +266,8 @@ std::string quality_text(const QualityNumbers& q, int dimension) {
     if (q.shore_below_bound)
       out << "\n  at the shore: " << q.shore_below_bound << ' ' << (dimension == 2 ? "triangles" : "tetrahedra")
           << " below the bound are made by the shore's constraints (a point across the shore lies in their "
-             "circumcircle); "
-          << q.interior_below_bound << " others are";
+             "circumcircle); others below the bound: "
+          << q.interior_below_bound;
     out << "\n";
   }
   return out.str();
@@ -290,8 +295,8 @@ template Parameters<2> engine_parameters<2>(double);
 template Parameters<3> engine_parameters<3>(double);
 template std::optional<BoxTransform<2>> parse_box<2>(const std::vector<double>&);
 template std::optional<BoxTransform<3>> parse_box<3>(const std::vector<double>&);
-template EngineInput<2> engine_input<2>(const io::InputSet&);
-template EngineInput<3> engine_input<3>(const io::InputSet&);
+template EngineInput<2> engine_input<2>(const io::InputSet&, const std::optional<BoxTransform<2>>&);
+template EngineInput<3> engine_input<3>(const io::InputSet&, const std::optional<BoxTransform<3>>&);
 template std::vector<Point<2>> input_points<2>(const io::InputSet&);
 template std::vector<Point<3>> input_points<3>(const io::InputSet&);
 template Mesh<2> make_mesh<2>(std::span<const Point<2>>, std::size_t, const Domain2&, const BoxTransform<2>&, bool);

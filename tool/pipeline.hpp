@@ -16,6 +16,7 @@
 #include "shoremesh/io/preview.hpp"
 #include "shoremesh/mesh.hpp"
 #include "shoremesh/parameters.hpp"
+#include "shoremesh/shore_refinement.hpp"
 #include "shoremesh/well_spaced.hpp"
 #include "user_frame.hpp"
 
@@ -51,7 +52,9 @@ struct EngineInput {
   Domain2 domain;               // refined rings (2D), empty otherwise
 };
 template <int D>
-EngineInput<D> engine_input(const io::InputSet& set);
+EngineInput<D> engine_input(const io::InputSet& set, const std::optional<BoxTransform<D>>& box);
+// The shore's split rule for the engine's box (the given one, or the one fitted to the input).
+RefinementRule refinement_rule(const io::InputSet& set, const std::optional<BoxTransform<2>>& box);
 
 // An engine error about particular input points, said with the file and line they came from.
 [[noreturn]] void rethrow_with_origin(const PointInputError& e, const io::InputSet& set);

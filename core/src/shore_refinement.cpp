@@ -156,6 +156,7 @@ struct ShoreRefinement::Impl {
     if (-std::ilogb(n.t1 - n.t0) >= rule.max_depth) return false;
     const Point2 p = at(e, n.t0), q = at(e, n.t1), m = at(e, 0.5 * (n.t0 + n.t1));
     if (m == p || m == q) return false;
+    if (std::hypot(q[0] - p[0], q[1] - p[1]) < rule.min_length) return false;
     const double g2 = rule.gamma * rule.gamma;
     bool hit = false, taken = false;
     for (auto it = points.qbegin(bgi::intersects(disk_box(n))); it != points.qend(); ++it) {
@@ -294,8 +295,10 @@ struct ShoreRefinement::Impl {
 
 ShoreRefinement::ShoreRefinement(const Domain2& rings, std::span<const Point2> loose, RefinementRule rule)
     : impl_(std::make_unique<Impl>()) {
-  if (!(rule.gamma >= 1) || rule.max_depth < 1 || rule.max_depth > 50 || !(rule.min_offset >= 0 && rule.min_offset < 1))
-    throw std::invalid_argument("ShoreRefinement: gamma must be at least 1, max_depth in 1..50, min_offset in [0, 1)");
+  if (!(rule.gamma >= 1) || rule.max_depth < 1 || rule.max_depth > 50 || !(rule.min_offset >= 0 && rule.min_offset < 1) ||
+      !(rule.min_length >= 0))
+    throw std::invalid_argument(
+        "ShoreRefinement: gamma must be at least 1, max_depth in 1..50, min_offset in [0, 1), min_length >= 0");
   impl_->rule = rule;
   impl_->rings = rings;
   impl_->build(loose);

@@ -5,8 +5,7 @@
 // (a ring vertex, a loose point or another split point) lies closer to that midpoint than gamma times half
 // the subsegment's length. Points on the same edge never encroach it, nor do points on the edge that meets
 // it at a corner sharper than 60 degrees (halving there would never end: such corners are the documented
-// exception of every quality mesher), nor does a point within 1/1024 of the subsegment's length of its line
-// (where rings touch, halving would never end). Splitting only ever adds points, so the result is the least fixed
+// exception of every quality mesher), nor a point on its line (where rings touch). Splitting only ever adds points, so the result is the least fixed
 // point of the rule: one set, whatever the order the rule is applied in, and a function of the input
 // alone. The split points become input points of the engine, which therefore keeps Lemma 7.2 unchanged.
 //
@@ -14,6 +13,7 @@
 // edges whose subsegments (at any level) had a removed point in their test disk are reset and closed again
 // with everything else; the result equals a fresh ShoreRefinement of the new input (tests pin it).
 // Every decision is an exact predicate (engine/predicates.hpp: intervals, then GMP).
+#include <cmath>
 #include <cstddef>
 #include <memory>
 #include <span>
@@ -28,8 +28,18 @@ struct RefinementRule {
   double gamma = 1.25;  // 1 is Ruppert's diametral circle; larger grades the shore more
   int max_depth = 24;  // halvings of one ring edge at most
   // How far off a subsegment's line (a fraction of its length) a point must lie to encroach it; 0: any
-  // point not on the line.
-  double min_offset = 1.0 / 1024;
+  // point not on the line (a point on it, where rings touch, would halve it without end).
+  double min_offset = 0;
+  // No subsegment shorter than this is split (0: none): the callers give a fixed fraction of the engine's
+  // box, so that no split comes nearer to a point than the engine resolves.
+  double min_length = 0;
+
+  // The rule for a session or run in `box_side`: no split below 2^-32 of the side.
+  static RefinementRule for_box(double box_side) {
+    RefinementRule r;
+    r.min_length = std::ldexp(box_side, -32);
+    return r;
+  }
 };
 
 struct SplitChange {
