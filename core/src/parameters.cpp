@@ -22,6 +22,7 @@ DerivedParameters<D> DerivedParameters<D>::derive(const Parameters<D>& p) {
   // The canonical rho^2: 2 exactly for the default rho = sqrt(2), so "is v well-spaced" is a polynomial
   // test on the input coordinates; any other rho is taken as the double nearest rho*rho.
   d.rho_squared = (p.rho == std::sqrt(2.0)) ? 2.0 : p.rho * p.rho;
+  d.fill_rho_squared = d.rho_squared * (1 + 0x1p-32);
   d.beta = p.beta;
   d.beta_squared = p.beta * p.beta;
   // Lemma 6.1: same-rank fills of one colour are independent when l(r) < rho^r/sqrt(d) and
