@@ -3,6 +3,8 @@
 # io sources (not through the main CMake build), and runs each one for a bounded time.
 #
 #   FUZZ_SECONDS   seconds per target (default 30)
+#   FUZZ_RUNS      executions per target instead of a time (e.g. 1000000; bench/RESULTS.md records such runs)
+#   FUZZ_MAX_LEN   largest input in bytes (default 65536; smaller inputs run many times faster)
 #   FUZZ_TARGETS   space-separated subset, e.g. "gpx geojson" (default: every fuzz/fuzz_*.cpp)
 #   FUZZ_BUILD     build and corpus directory (default: build-fuzz)
 #   FUZZ_JOBS      parallel compile jobs (default 2)
@@ -14,6 +16,8 @@ set -euo pipefail
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 SECONDS_PER_TARGET=${FUZZ_SECONDS:-30}
+MAX_LEN=${FUZZ_MAX_LEN:-65536}
+if [ -n "${FUZZ_RUNS:-}" ]; then LIMIT="-runs=$FUZZ_RUNS"; else LIMIT="-max_total_time=$SECONDS_PER_TARGET"; fi
 OUT=${FUZZ_BUILD:-$ROOT/build-fuzz}
 JOBS=${FUZZ_JOBS:-2}
 
@@ -89,9 +93,9 @@ for t in "${targets[@]}"; do
   echo "fuzz: building fuzz_$t"
   $CXX $CXXFLAGS -fsanitize=fuzzer "$ROOT/fuzz/fuzz_$t.cpp" "${objs[@]}" $LIBS -o "$bin"
   mkdir -p "$OUT/corpus/$t" "$OUT/crashes/$t"
-  echo "fuzz: running fuzz_$t for ${SECONDS_PER_TARGET}s"
+  echo "fuzz: running fuzz_$t ($LIMIT, -max_len=$MAX_LEN)"
   if ! (cd "$OUT/crashes/$t" && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-        "$bin" -max_total_time="$SECONDS_PER_TARGET" -max_len=65536 -rss_limit_mb=2048 -timeout=10 \
+        "$bin" "$LIMIT" -max_len="$MAX_LEN" -rss_limit_mb=2048 -timeout=10 \
         -print_final_stats=1 "$OUT/corpus/$t" > "$OUT/fuzz_$t.log" 2>&1); then
     echo "fuzz: fuzz_$t FAILED — see $OUT/fuzz_$t.log and $OUT/crashes/$t/"
     tail -40 "$OUT/fuzz_$t.log"

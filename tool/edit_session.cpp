@@ -416,8 +416,8 @@ template <int D>
 json EditSession<D>::move(const std::vector<std::string>& words) {
   if (words.size() < 2) throw InputError(std::string("move takes ID ") + (D == 2 ? "X Y" : "X Y Z"));
   const std::size_t id = parse_id(words[1]);
+  check_id(id);  // before the point: an id that does not exist is the first thing to say
   const Point<D> p = parse_point(words, 2);
-  check_id(id);
   const Point<D> old = set_.input_point(engine_id(id));
   const auto edit_start = Clock::now();
   auto rings = rings_with(io::RingVertexEdit::Kind::Move, id, p);

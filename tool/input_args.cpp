@@ -17,16 +17,28 @@ namespace {
 
 // A number above zero (`positive`) or at least zero, refused in the user's terms: CLI11's PositiveNumber
 // and NonNegativeNumber name a range up to the largest double, printed in full. Text that is not a number
-// is CLI11's to refuse as before, and NaN passes on to the readers, which name it.
+// is CLI11's to refuse as before; NaN and infinity are refused here (a command-line mistake, exit 2).
 CLI::Validator above_zero(bool positive) {
   return CLI::Validator(
       [positive](std::string& text) -> std::string {
         double v = 0;
-        if (!CLI::detail::lexical_cast(text, v) || std::isnan(v)) return {};
+        if (!CLI::detail::lexical_cast(text, v)) return {};
+        if (!std::isfinite(v)) return text + " is not a finite number";
         if (positive ? v > 0 : v >= 0) return {};
         return text + (positive ? " is not above 0" : " is below 0");
       },
       positive ? "POSITIVE" : "NONNEGATIVE");
+}
+
+// Any finite number (CLI11's Range lets NaN through: every comparison with it is false).
+CLI::Validator finite_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(text, v) || std::isfinite(v)) return {};
+        return text + " is not a finite number";
+      },
+      "");
 }
 
 }  // namespace
@@ -36,9 +48,11 @@ void add_quiet_option(CLI::App* cmd, bool& quiet) {
 }
 
 void add_engine_options(CLI::App* cmd, EngineArgs& args) {
-  cmd->add_option("--rho", args.rho, "Quality bound rho > 1 (default sqrt 2: angles >= 20.7 degrees in 2D)");
+  cmd->add_option("--rho", args.rho, "Quality bound rho > 1 (default sqrt 2: angles >= 20.7 degrees in 2D)")
+      ->check(finite_number());
   cmd->add_option("--box", args.box, "Fix the box: X0 Y0 [Z0] SIDE (default: the input's bounding box + 5%)")
-      ->expected(3, 4);
+      ->expected(3, 4)
+      ->check(finite_number());
   cmd->add_option("--dim", args.dim, "Dimension: 2 or 3 (default: the input's; 2 drops z)")->check(CLI::IsMember({2, 3}));
   cmd->add_flag("--keep-hull", args.keep_hull,
                 "Keep the mesh elements whose circumcentre lies outside the box (slivers along its edge, which the "
@@ -68,13 +82,15 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
   group->add_option("--water", a.water,
                     "Images: which side is water, 'light' (default), 'dark', or a colour ('#b0c4de', "
                     "'176,196,222', 'lightsteelblue') for map images");
-  group->add_option("--threshold", a.threshold, "Images: grey level between water and land (default: Otsu)");
+  group->add_option("--threshold", a.threshold, "Images: grey level between water and land (default: Otsu)")
+      ->check(above_zero(false));
   group->add_option("--colour-tolerance", a.colour_tolerance,
-                    "Images with --water COLOUR: RGB distance still counted as water (default 40)");
+                    "Images with --water COLOUR: RGB distance still counted as water (default 40)")
+      ->check(above_zero(false));
   group->add_option("--min-area", a.min_area,
                     "Images and DEMs: drop islands and lakes under this many pixels or DEM cells (default 16; "
                     "images: at least 3)")
-      ->check(CLI::Range(1.0, 1e12));
+      ->check(finite_number() & CLI::Range(1.0, 1e12));
   group->add_flag("--largest-water", a.largest_water, "Images: keep only the largest body of water");
   group->add_option("--open-radius", a.open_radius, "Images: morphological opening in pixels (removes specks of water)")
       ->check(CLI::Range(0, 100));

@@ -1,5 +1,6 @@
 // shoremesh mesh INPUT... -o OUT: inputs to the well-spaced point set, its mesh, a preview and a quality
 // summary. `-o OUT.csv` writes the point set itself ('# box' line, input points, Steiner points).
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -11,6 +12,7 @@
 #include "pipeline.hpp"
 #include "progress.hpp"
 #include "shoremesh/error.hpp"
+#include "shoremesh/io/atomic_file.hpp"
 #include "shoremesh/io/point_set_csv.hpp"
 #include "shoremesh/well_spaced.hpp"
 
@@ -27,6 +29,29 @@ struct MeshOptions {
   std::string format;
 };
 
+// Every output of the run, checked before any work and written together at the end (io::OutputBatch):
+// a run that fails leaves every existing file as it was. The Triangle format is two files.
+struct OutputPaths {
+  std::filesystem::path output, preview;  // the temporaries to write to
+};
+
+OutputPaths plan_outputs(io::OutputBatch& batch, const std::filesystem::path& output, bool point_set,
+                         std::optional<io::ExportFormat> format, const std::string& preview) {
+  OutputPaths paths;
+  if (!point_set && format == io::ExportFormat::Triangle) {
+    std::filesystem::path node = output, ele = output;
+    node.replace_extension(".node");
+    ele.replace_extension(".ele");
+    paths.output = batch.add(node, "-o");
+    std::filesystem::path staged_ele = paths.output;
+    batch.add_written_as(ele, staged_ele.replace_extension(".ele"), "-o");
+  } else {
+    paths.output = batch.add(output, "-o");
+  }
+  if (!preview.empty()) paths.preview = batch.add(preview, "--preview");
+  return paths;
+}
+
 template <int D>
 int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress) {
   const EngineInput<D> in = engine_input<D>(set, parse_box<D>(opt.engine.box));
@@ -34,11 +59,14 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
   const UserFrame frame = UserFrame::of(set);
   const std::filesystem::path output = opt.output;
   const bool point_set = opt.format.empty() && is_point_set_path(output);
+  // Refuse an unknown extension before the work.
   const std::optional<io::ExportFormat> format =
-      opt.format.empty() ? std::nullopt : std::optional(parse_export_format(opt.format));
-  if (!point_set && !format) io::export_format_from_path(output);  // refuse an unknown extension before the work
+      point_set ? std::nullopt
+                : std::optional(opt.format.empty() ? io::export_format_from_path(output) : parse_export_format(opt.format));
   if (opt.preview_args.colouring == "depth" && !set.depth)
     throw ParameterError("--preview-colour depth needs depths: --dem, --depth-from or x,y,depth soundings");
+  io::OutputBatch batch(std::vector<std::filesystem::path>(opt.in.files.begin(), opt.in.files.end()));
+  const OutputPaths staged = plan_outputs(batch, output, point_set, format, opt.preview);
 
   progress.stage("StableWS on " + std::to_string(points.size()) + " points");
   StableResult<D> result;
@@ -49,26 +77,36 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
   }
   progress.stage("meshing " + std::to_string(result.points.size()) + " points");
   const Mesh<D> mesh = make_mesh<D>(result.points, result.input_count, in.domain, result.box, opt.engine.keep_hull);
+  if (mesh.element_count() == 0 && (!point_set || !opt.preview.empty()))
+    throw InputError(std::string("the mesh has no ") + (D == 2 ? "triangle" : "tetrahedron") + ": " +
+                         std::to_string(result.points.size()) + " points" +
+                         (set.domain.empty() ? "" : " in the water") + " span no " +
+                         (D == 2 ? "triangle (give at least 3 points not on one line)"
+                                 : "tetrahedron (give at least 4 points not on one plane)"),
+                     opt.output);
 
   progress.stage("writing " + output.filename().string());
   if (point_set) {
-    io::write_point_set_csv<D>(output, result.box, result.points);
+    io::write_point_set_csv<D>(staged.output, result.box, result.points);
   } else {
-    export_mesh_file<D>(mesh, output, format, frame);
+    export_mesh_file<D>(mesh, staged.output, format, frame);
   }
   if (!opt.preview.empty()) {
     progress.stage("drawing " + std::filesystem::path(opt.preview).filename().string());
     PreviewArgs args = opt.preview_args;
     args.rho = opt.engine.rho;
-    write_preview<D>(mesh, opt.preview, args, &frame);
+    write_preview<D>(mesh, staged.preview, args, &frame);
   }
   progress.stage("measuring quality");
   QualityNumbers quality = quality_numbers<D>(mesh, opt.engine.rho, result.box, frame);
   quality.shore_splits = points.size() - in.input_count;
+  batch.commit();
   progress.finish();
 
+  // The engine's Steiner points fill its whole box; the mesh keeps those its elements use (the water).
   std::cerr << "shoremesh: " << result.input_count << " input points, " << result.points.size() - result.input_count
-            << " Steiner points -> " << opt.output << '\n';
+            << " Steiner points in the box (" << quality.steiner_points << " of them in the mesh) -> " << opt.output
+            << '\n';
   std::cout << describe_input(set);
   std::cout << "box: origin " << frame.point(result.box.origin) << ", side " << frame.length(result.box.side) << '\n';
   std::cout << quality_text(quality, D);

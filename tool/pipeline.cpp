@@ -25,12 +25,12 @@ template <int D>
 std::optional<BoxTransform<D>> parse_box(const std::vector<double>& numbers) {
   if (numbers.empty()) return std::nullopt;
   if (numbers.size() != D + 1)
-    throw InputError("--box takes " + std::to_string(D + 1) + " numbers for " + std::to_string(D) + "D input (X0 Y0" +
+    throw ParameterError("--box takes " + std::to_string(D + 1) + " numbers for " + std::to_string(D) + "D input (X0 Y0" +
                      (D == 3 ? " Z0" : "") + " SIDE)");
   BoxTransform<D> b;
   for (int i = 0; i < D; ++i) b.origin[i] = numbers[std::size_t(i)];
   b.side = numbers[D];
-  if (!(b.side > 0)) throw InputError("--box: the side must be positive");
+  if (!(b.side > 0)) throw ParameterError("--box: the side must be above 0 (got " + approx(b.side) + ")");
   return b;
 }
 

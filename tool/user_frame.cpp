@@ -43,7 +43,9 @@ std::string UserFrame::point(const Point2& p) const {
   if (!s.empty()) out += " " + s;
   if (!projection.is_none()) {
     const io::LonLat ll = projection.reverse(p);
-    out += " = " + degrees(ll.lat, 'N', 'S') + " " + degrees(ll.lon, 'E', 'W');
+    // Far outside the projection's range the inverse has no answer (NaN): say nothing rather than "nanN".
+    if (std::isfinite(ll.lat) && std::isfinite(ll.lon))
+      out += " = " + degrees(ll.lat, 'N', 'S') + " " + degrees(ll.lon, 'E', 'W');
   }
   return out;
 }

@@ -201,6 +201,25 @@ typename ConvexCell<D>::Vertex ConvexCell<D>::make_vertex(const std::array<std::
     }
     vtx.y = solve(n, b);
   }
+  // Nearly dependent planes (grids: two bisectors mirror images across a third, up to the rounding of
+  // the points) give an enclosure far wider than the point: every filter on this vertex then goes exact,
+  // and a construction that reads its midpoint (the Steiner point's direction) aims at nothing near it.
+  // Such a vertex is solved exactly and enclosed tightly; the exact solution depends on the planes only.
+  // Wide: any coordinate's enclosure wider than 2^-20 of the vertex's largest coordinate (relative to the
+  // vertex, not to each coordinate: one near 0 is solved as tightly as the others, in absolute terms).
+  double scale = 0;
+  for (int i = 0; i < D; ++i) scale = std::max({scale, std::abs(vtx.y[i].inf()), std::abs(vtx.y[i].sup())});
+  bool wide = false;
+  for (int i = 0; i < D; ++i)
+    if (!(vtx.y[i].sup() - vtx.y[i].inf() <= 0x1p-20 * scale)) wide = true;
+  if (wide) {
+    ++counters_.exact;
+    const std::array<Exact, D>& exact = exact_position(vtx);
+    for (int i = 0; i < D; ++i) {
+      const std::pair<double, double> r = CGAL::to_interval(exact[i]);
+      vtx.y[i] = Interval(r.first, r.second);
+    }
+  }
   // Rounded upward (the caller holds a RoundingGuard): an upper bound.
   for (int i = 0; i < D; ++i) {
     const double m = std::max(std::abs(vtx.y[i].inf()), std::abs(vtx.y[i].sup()));

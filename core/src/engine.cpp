@@ -841,7 +841,7 @@ void WellSpacedEngine<D>::dispatch(OpId o) {
   // shrank, and v is well-spaced through rank r (Fact 2), so the fill would insert nothing; should a
   // vertex z come nearer first, v's fill at the new rank is the business of z's dispatch (Lemma 4.1).
   const int r = ranks_.rank_of(p, positions_[hood_.nearest], pc);
-  const bool well_spaced = cell_.within_scaled_distance(params_.rho_squared, positions_[hood_.nearest]);
+  const bool well_spaced = cell_.within_scaled_distance(params_.fill_rho_squared, positions_[hood_.nearest]);
   if (r >= op_rank && (params_.literal_stable_ws || !well_spaced)) request_fill(v, r, ops_[o].crowded);
   const double limit2 = 4 * params_.beta_squared * squared_distance(v, hood_.nearest) * (1 + 1e-9);
   cell_.bisector_neighbours(neighbours_);
@@ -889,7 +889,7 @@ void WellSpacedEngine<D>::fill(OpId o) {
   new_children_.clear();
   PredicateCounters& pc = cell_.counters();
   for (int inserted = 0; has_cell && hood_.nearest != kNoVertex &&
-                         !cell_.within_scaled_distance(params_.rho_squared, positions_[hood_.nearest]);
+                         !cell_.within_scaled_distance(params_.fill_rho_squared, positions_[hood_.nearest]);
        ++inserted) {
     if (inserted > 1000) throw std::logic_error("fill inserted over 1000 Steiner points around one vertex");
     const Point<D> w = pick_steiner(v);

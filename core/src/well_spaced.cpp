@@ -9,6 +9,12 @@
 
 namespace shoremesh {
 
+namespace {
+// Beyond these, squared distances, areas and circumradii in the user's units overflow or underflow.
+constexpr double kLargestCoordinate = 1e100;
+constexpr double kSmallestSide = 1e-100;
+}  // namespace
+
 template <int D>
 WellSpacedSet<D>::WellSpacedSet(const Parameters<D>& parameters)
     : engine_(std::make_unique<WellSpacedEngine<D>>(parameters)) {}
@@ -237,13 +243,27 @@ DynamicWellSpaced<D>::DynamicWellSpaced(std::span<const Point<D>> user_points, c
     for (int k = 0; k < D; ++k)
       if (!std::isfinite(user_points[i][k]))
         throw PointInputError("point " + std::to_string(i) + " has a coordinate that is not a finite number", {i});
+  // Coordinates and box sides the engine and the measures after it can represent: squared distances and
+  // areas in the user's units must stay finite and above the smallest normal double.
+  for (std::size_t i = 0; i < user_points.size(); ++i)
+    for (int k = 0; k < D; ++k)
+      if (std::abs(user_points[i][k]) > kLargestCoordinate)
+        throw PointInputError("point " + std::to_string(i) + " has a coordinate of " + readable(user_points[i][k]) +
+                                  ", beyond the largest the engine represents (" + readable(kLargestCoordinate) + ")",
+                              {i});
   if (box) {
     if (!(box->side > 0) || !std::isfinite(box->side)) throw InputError("the box side must be a positive number");
+    if (box->side < kSmallestSide || box->side > 2 * kLargestCoordinate)
+      throw InputError("the box side " + readable(box->side) + " is outside what the engine represents (" +
+                       readable(kSmallestSide) + " to " + readable(2 * kLargestCoordinate) + ")");
     for (std::size_t i = 0; i < user_points.size(); ++i)
       if (!box->contains(user_points[i]))
         throw PointInputError("point " + std::to_string(i) + " lies outside the given box", {i});
   }
   box_ = box ? *box : BoxTransform<D>::fit(user_points);  // a fitted box holds every point
+  if (box_.side < kSmallestSide)
+    throw InputError("the input points span " + readable(box_.side / 1.1) + ", less than the smallest extent the engine "
+                     "represents (" + readable(kSmallestSide) + "): give them in a smaller unit");
   std::vector<Point<D>> unit(user_points.size());
   for (std::size_t i = 0; i < unit.size(); ++i) unit[i] = box_.to_unit(user_points[i]);
   set_.build(unit, purpose);
@@ -256,11 +276,11 @@ Point<D> DynamicWellSpaced<D>::to_unit_checked(const Point<D>& p) const {
     if (!std::isfinite(p[i])) throw InputError("the point has a coordinate that is not a finite number");
   if (!box_.contains(p)) {
     std::string where;
-    for (int i = 0; i < D; ++i) where += (i ? ", " : "") + std::to_string(p[i]);
+    for (int i = 0; i < D; ++i) where += (i ? ", " : "") + readable(p[i]);
     std::string lo, hi;
     for (int i = 0; i < D; ++i) {
-      lo += (i ? ", " : "") + std::to_string(box_.origin[i]);
-      hi += (i ? ", " : "") + std::to_string(box_.origin[i] + box_.side);
+      lo += (i ? ", " : "") + readable(box_.origin[i]);
+      hi += (i ? ", " : "") + readable(box_.origin[i] + box_.side);
     }
     throw InputError("the point (" + where + ") lies outside the box (" + lo + ") .. (" + hi + ")");
   }

@@ -258,7 +258,7 @@ TEST(MeshCommand, GpsWalkClosedByGuessCanBeKeptOpen) {
   ASSERT_TRUE(std::regex_search(open.out, m, std::regex(R"(\(([0-9]+) input, )"))) << open.out;
   EXPECT_GT(std::stoul(m[1]), 303u);
 
-  EXPECT_EQ(shoremesh(dir, "mesh -q " + gpx + " --track-close-distance nan -o walk.msh").code, 1);
+  EXPECT_EQ(shoremesh(dir, "mesh -q " + gpx + " --track-close-distance nan -o walk.msh").code, 2);  // a usage mistake
 }
 
 }  // namespace

@@ -3,12 +3,21 @@
 // boundary and printed for a person. InputError is the user's data (exit code 1); everything else that
 // escapes is an internal error (exit code 3).
 #include <cstddef>
+#include <cstdio>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace shoremesh {
+
+// A number for a message: up to 10 significant digits (1.0000001, 1e+300), not std::to_string's six
+// decimals (1.000000) or a 300-digit integer.
+inline std::string readable(double x) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.10g", x);
+  return buffer;
+}
 
 class InputError : public std::runtime_error {
  public:

@@ -29,6 +29,12 @@ template <int D>
 struct DerivedParameters {
   double rho = 0;         // as given
   double rho_squared = 0; // the canonical value every exact test uses (2 exactly for the default)
+  // The bound a fill enforces: v needs a Steiner point only when its cell reaches beyond
+  // rho_squared * (1 + 2^-32) NN^2 (exact test). Then the picking region holds points that doubles can
+  // represent; without the margin a degenerate cell (grids: a vertex co-spherical with v's nearest
+  // neighbour at exactly rho NN, pushed out by the rounding of the input) leaves a region thinner than an
+  // ulp, with no double in it. Every output vertex is rho (1 + 2^-33)-well-spaced (docs/picking_region.md).
+  double fill_rho_squared = 0;
   double beta = 0;
   double beta_squared = 0;
   int kappa = 0;          // colours per axis: kappa^D periodic tiles (Lemma 6.1)

@@ -135,7 +135,17 @@ class Reader {
 
   void polygon(const json& j, const std::string& path) {
     if (!j.is_array() || j.empty()) fail(path, "a Polygon needs at least one ring");
+    const std::size_t outer = result.rings.size();
     for (std::size_t r = 0; r < j.size(); ++r) ring(j[r], path + "[" + std::to_string(r) + "]");
+    // A hole (ring 1, 2, ...) lies inside its outer ring (RFC 7946, 3.1.6); one outside it would become a
+    // second lake under the even-odd rule. Rings that cross are refused later (check_rings), so one vertex
+    // of the hole decides.
+    std::vector<Point2> shell;
+    for (const auto& q : result.rings[outer]) shell.push_back(q.p);
+    for (std::size_t r = 1; r < j.size(); ++r)
+      if (!ring_contains(shell, result.rings[outer + r].front().p))
+        fail(path + "[" + std::to_string(r) + "]",
+             "hole " + std::to_string(r) + " lies outside the polygon's outer ring (ring 0); a hole must be inside it");
   }
 
   void geometry(const json& g, const std::string& path, int depth) {
@@ -242,7 +252,7 @@ InputSet parse_geojson_text(std::string_view text, const std::string& name, cons
       add(g.points);
       for (const auto& ll : all)
         if (std::abs(ll.lon) > 180 || std::abs(ll.lat) > 90)
-          throw InputError("position " + std::to_string(ll.lon) + ", " + std::to_string(ll.lat) +
+          throw InputError("position " + readable(ll.lon) + ", " + readable(ll.lat) +
                                " is not lon/lat in degrees (GeoJSON is WGS84 lon/lat; name a \"crs\" for projected data)",
                            name);
       set.projection = Projection::choose(all, options.choice, name);

@@ -3,9 +3,11 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <fstream>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -338,7 +340,7 @@ TracedImage trace_mask(cv::Mat water, const ImageTraceOptions& opt, const Georef
     kept = std::move(filtered);
   }
   if (kept.empty())
-    throw InputError("no water region of at least " + std::to_string(min_area) + " pixels (min_area) in the image", name);
+    throw InputError("no water region of at least " + readable(min_area) + " pixels (min_area) in the image", name);
 
   InputSet& set = result.input;
   const Output out = make_output(georef, water.size(), opt, name, set);
@@ -417,6 +419,29 @@ TracedImage trace_water_mask(const WaterMask& mask, const ImageTraceOptions& opt
   return trace_mask(water, options, g, std::move(result));
 }
 
+namespace {
+// libjpeg decodes a JPEG cut short with only a warning ("Premature end of JPEG file") and fills the missing
+// rows with grey, which would become a rectangular lake. A whole JPEG ends with the end-of-image marker
+// FF D9 (ITU T.81, B.2.1), perhaps followed by padding.
+void refuse_cut_jpeg(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char magic[3] = {0, 0, 0};
+  if (!in.read(reinterpret_cast<char*>(magic), 3) || magic[0] != 0xFF || magic[1] != 0xD8 || magic[2] != 0xFF) return;
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  const std::streamoff tail = std::min<std::streamoff>(size, 4096);
+  std::string end(static_cast<std::size_t>(tail), '\0');
+  in.seekg(size - tail);
+  in.read(end.data(), tail);
+  while (!end.empty() && (end.back() == '\0' || std::isspace(static_cast<unsigned char>(end.back())))) end.pop_back();
+  if (end.size() < 2 || static_cast<unsigned char>(end[end.size() - 2]) != 0xFF ||
+      static_cast<unsigned char>(end.back()) != 0xD9)
+    throw InputError("the JPEG is cut short (it does not end with the end-of-image marker): the missing part would be "
+                     "traced as water or land",
+                     path);
+}
+}  // namespace
+
 TracedImage trace_image(const std::string& path, const ImageTraceOptions& opt) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError("cannot open file", path);
@@ -435,6 +460,7 @@ TracedImage trace_image(const std::string& path, const ImageTraceOptions& opt) {
     if (pixels == 0) throw InputError("image has no pixels", path);
     in->close();
   }
+  refuse_cut_jpeg(path);
   cv::Mat img;
   try {
     img = cv::imread(path, cv::IMREAD_UNCHANGED);

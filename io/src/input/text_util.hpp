@@ -1,5 +1,6 @@
 #pragma once
 // Internal helpers shared by the text readers of io/src/input (not installed, not part of the API).
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstddef>
@@ -51,11 +52,24 @@ inline std::string_view strip_comment(std::string_view line) {
 }
 
 // Splits a record into fields: on commas when the line has one (CSV; fields trimmed, empty fields kept so the
-// caller can refuse them), otherwise on blanks (spaces and tabs).
+// caller can refuse them), otherwise on blanks (spaces and tabs). A CSV field in double quotes (RFC 4180)
+// may hold commas: it is one field, given without its quotes (a doubled quote inside stays doubled; an
+// unclosed quote runs to the end of the line).
 inline std::vector<std::string_view> split_fields(std::string_view line) {
   std::vector<std::string_view> out;
   if (line.find(',') != std::string_view::npos) {
     while (true) {
+      std::string_view rest = trim(line);
+      if (!rest.empty() && rest.front() == '"') {
+        std::size_t close = 1;
+        while (close < rest.size() && !(rest[close] == '"' && (close + 1 == rest.size() || rest[close + 1] != '"')))
+          close += rest[close] == '"' ? 2 : 1;
+        out.push_back(rest.substr(1, std::min(close, rest.size()) - 1));
+        const auto c = close < rest.size() ? rest.find(',', close) : std::string_view::npos;
+        if (c == std::string_view::npos) break;
+        line = rest.substr(c + 1);
+        continue;
+      }
       const auto c = line.find(',');
       out.push_back(trim(line.substr(0, c)));
       if (c == std::string_view::npos) break;

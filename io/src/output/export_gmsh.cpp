@@ -28,8 +28,8 @@ template <int D>
 std::string bounding_box(std::span<const Point<D>> points, const std::vector<std::uint32_t>& nodes) {
   std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
   if (!nodes.empty()) {
-    lo.fill(std::numeric_limits<double>::infinity());
-    hi.fill(-std::numeric_limits<double>::infinity());
+    // Only the coordinates the points have: a 2D mesh lies at z = 0, whose box is 0 .. 0 (not inf .. -inf).
+    for (int i = 0; i < D; ++i) lo[i] = std::numeric_limits<double>::infinity(), hi[i] = -lo[i];
     for (auto n : nodes)
       for (int i = 0; i < D; ++i) lo[i] = std::min(lo[i], points[n][i]), hi[i] = std::max(hi[i], points[n][i]);
   }

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <functional>
 #include <ostream>
+#include <string>
+#include <vector>
 
 namespace shoremesh::io {
 
@@ -36,5 +38,38 @@ class AtomicFile {
 // Writes `target` atomically with `write`; any exception from `write` leaves the target untouched and is
 // rethrown as std::runtime_error naming the target (InputError passes through unchanged).
 void write_atomically(const std::filesystem::path& target, const std::function<void(std::ostream&)>& write);
+
+// All the outputs of one run, written or none: each target is checked before any work (its folder exists
+// and is writable, it is not a folder, it is not one of the inputs, through any path), written to a
+// temporary file next to it, and the temporaries are renamed over the targets together at the end. A run
+// that fails before commit() leaves every existing file as it was (the destructor removes the temporaries).
+class OutputBatch {
+ public:
+  // `inputs`: the files the run reads; a target that is one of them is refused.
+  explicit OutputBatch(std::vector<std::filesystem::path> inputs);
+  ~OutputBatch();
+  OutputBatch(const OutputBatch&) = delete;
+  OutputBatch& operator=(const OutputBatch&) = delete;
+
+  // Checks `target` (InputError naming it and the reason) and returns the temporary path to write it to
+  // (same folder, extension kept). `option` names the option it came from, for the message ("-o").
+  std::filesystem::path add(const std::filesystem::path& target, const std::string& option = {});
+  // A target written alongside another one's temporary (Triangle's .ele next to its .node): `staging`
+  // is the path the writer will use.
+  void add_written_as(const std::filesystem::path& target, const std::filesystem::path& staging,
+                      const std::string& option = {});
+  // Renames every temporary over its target. InputError naming the target (with the system's reason)
+  // when a temporary is missing or a rename fails.
+  void commit();
+
+ private:
+  void check(const std::filesystem::path& target, const std::string& option) const;
+  struct Entry {
+    std::filesystem::path target, staging;
+  };
+  std::vector<std::filesystem::path> inputs_;
+  std::vector<Entry> entries_;
+  bool committed_ = false;
+};
 
 }  // namespace shoremesh::io
