@@ -90,21 +90,14 @@ EditSession<D>::EditSession(const io::InputSet& set, double rho, std::optional<B
       keep_hull_(keep_hull),
       preview_(std::move(preview)),
       refinement_([&]() -> std::optional<ShoreRefinement> {
-        if constexpr (D != 2) {
-          return std::nullopt;
-        } else {
-          if (set.domain.empty()) return std::nullopt;
-          return ShoreRefinement(set.domain, loose_points(set), refinement_rule(set, box));
-        }
+        if constexpr (D == 2) return shore_refinement(set, box);
+        return std::nullopt;
       }()),
       set_([&] {
-        // The input points, then the shore's splits (as a fresh `mesh` run gives them to the engine).
-        std::vector<Point<D>> points = input_points<D>(set);
-        if constexpr (D == 2)
-          if (refinement_)
-            for (const Point2& p : refinement_->split_points()) points.push_back(p);
         try {
-          return DynamicWellSpaced<D>(points, engine_parameters<D>(rho), box);
+          // As a fresh `mesh` run gives them to the engine: the input points, then the shore's splits.
+          return DynamicWellSpaced<D>(engine_points<D>(set, refinement_ ? &*refinement_ : nullptr),
+                                      engine_parameters<D>(rho), box);
         } catch (const PointInputError& e) {
           rethrow_with_origin(e, set);
         }

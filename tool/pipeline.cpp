@@ -75,24 +75,30 @@ std::vector<Point2> loose_points(const io::InputSet& set) {
   return out;
 }
 
-RefinementRule refinement_rule(const io::InputSet& set, const std::optional<BoxTransform<2>>& box) {
-  if (box) return RefinementRule::for_box(box->side);
-  return RefinementRule::for_box(set.points.empty() ? 0 : BoxTransform<2>::fit(set.points).side);
+std::optional<ShoreRefinement> shore_refinement(const io::InputSet& set, const std::optional<BoxTransform<2>>& box) {
+  if (set.dimension != 2 || set.domain.empty()) return std::nullopt;
+  // No split below 2^-32 of the engine's box: the given one, or the one the engine fits to the input.
+  const double side = box ? box->side : BoxTransform<2>::fit(set.points).side;
+  return ShoreRefinement(set.domain, loose_points(set), RefinementRule::for_box(side));
+}
+
+template <int D>
+std::vector<Point<D>> engine_points(const io::InputSet& set, const ShoreRefinement* refinement) {
+  std::vector<Point<D>> points = input_points<D>(set);
+  if constexpr (D == 2)
+    if (refinement)
+      for (const Point2& p : refinement->split_points()) points.push_back(p);
+  return points;
 }
 
 template <int D>
 EngineInput<D> engine_input(const io::InputSet& set, const std::optional<BoxTransform<D>>& box) {
   EngineInput<D> in;
-  in.points = input_points<D>(set);
-  in.input_count = in.points.size();
-  if constexpr (D == 2) {
-    if (!set.domain.empty()) {
-      const ShoreRefinement refinement(set.domain, loose_points(set), refinement_rule(set, box));
-      const std::vector<Point2> splits = refinement.split_points();
-      in.points.insert(in.points.end(), splits.begin(), splits.end());
-      in.domain = refinement.refined();
-    }
-  }
+  std::optional<ShoreRefinement> refinement;
+  if constexpr (D == 2) refinement = shore_refinement(set, box);
+  in.points = engine_points<D>(set, refinement ? &*refinement : nullptr);
+  in.input_count = set.size();
+  if (refinement) in.domain = refinement->refined();
   return in;
 }
 
@@ -295,6 +301,8 @@ template Parameters<2> engine_parameters<2>(double);
 template Parameters<3> engine_parameters<3>(double);
 template std::optional<BoxTransform<2>> parse_box<2>(const std::vector<double>&);
 template std::optional<BoxTransform<3>> parse_box<3>(const std::vector<double>&);
+template std::vector<Point<2>> engine_points<2>(const io::InputSet&, const ShoreRefinement*);
+template std::vector<Point<3>> engine_points<3>(const io::InputSet&, const ShoreRefinement*);
 template EngineInput<2> engine_input<2>(const io::InputSet&, const std::optional<BoxTransform<2>>&);
 template EngineInput<3> engine_input<3>(const io::InputSet&, const std::optional<BoxTransform<3>>&);
 template std::vector<Point<2>> input_points<2>(const io::InputSet&);

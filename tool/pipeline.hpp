@@ -53,8 +53,12 @@ struct EngineInput {
 };
 template <int D>
 EngineInput<D> engine_input(const io::InputSet& set, const std::optional<BoxTransform<D>>& box);
-// The shore's split rule for the engine's box (the given one, or the one fitted to the input).
-RefinementRule refinement_rule(const io::InputSet& set, const std::optional<BoxTransform<2>>& box);
+// The canonical splits of a 2D input's rings for the engine's `box` (the given one, or the one fitted to
+// the input); nullopt without rings.
+std::optional<ShoreRefinement> shore_refinement(const io::InputSet& set, const std::optional<BoxTransform<2>>& box);
+// The engine's input: the input points, then the refinement's splits (none without one).
+template <int D>
+std::vector<Point<D>> engine_points(const io::InputSet& set, const ShoreRefinement* refinement);
 
 // An engine error about particular input points, said with the file and line they came from.
 [[noreturn]] void rethrow_with_origin(const PointInputError& e, const io::InputSet& set);

@@ -311,15 +311,15 @@ class MeshTriangulation {
     }
   };
 
-
-  void build(std::span<const Point<D>> points, const Domain2& domain_) {
+  // The mesh of `points`; in 2D every segment of `domain`'s rings is a constraint.
+  void build(std::span<const Point<D>> points, const Domain2& domain) {
     std::vector<std::pair<decltype(C::to_cgal(points[0])), std::uint32_t>> input;
     input.reserve(points.size());
     for (std::uint32_t i = 0; i < points.size(); ++i) input.emplace_back(C::to_cgal(points[i]), i);
     triangulation.insert(input.begin(), input.end());  // spatially sorted bulk insertion
     for (Vertex v : triangulation.finite_vertex_handles()) vertex_of.emplace(C::from_cgal(v->point()), v);
     if constexpr (D == 2)
-      for (const Ring& ring : domain_.rings)
+      for (const Ring& ring : domain.rings)
         for (std::size_t k = 0; k < ring.points.size(); ++k) {
           const Point2& a = ring.points[k];
           const Point2& b = ring.points[(k + 1) % ring.points.size()];
@@ -400,9 +400,8 @@ class MeshTriangulation {
       if (!triangulation.is_infinite(f) && kept(f)) acc.remove(key(f));
   }
 
-  // The constraints become those of `after`'s changed stretches (`change`): the segments only `before`
-  // has stop being constrained (those of removed points go with them), the new ones are inserted.
-  // Called between the point removals and insertions: `stage` 0 drops, 1 inserts.
+  // The shore segments that went stop being constraints (after the point removals, which took the segments
+  // of removed points with them); add_constraints inserts the new ones after the point insertions.
   void drop_constraints(const std::vector<std::pair<Point2, Point2>>& segments, Accumulator& acc)
     requires(D == 2)
   {
@@ -468,8 +467,8 @@ class MeshTriangulation {
     if constexpr (D == 2) f->info().stamp = stamp_of(f);
   }
 
-  // The water side of a triangle is the side of its centroid: the mesh's elements do not cross the rings
-  // when the sampling is fine enough (shoreline_crossings says where it is not).
+  // The water side of a triangle is the side of its centroid: with the ring segments as constraints no
+  // element crosses a ring (shoreline_crossings reports a ring vertex that is not a mesh point).
   std::uint8_t water_side(Face f) const {
     if constexpr (D == 2) {
       const auto c = CGAL::centroid(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
@@ -510,11 +509,11 @@ class MeshTriangulation {
     const std::uint32_t slot = v->info();
     if constexpr (D == 2) {
       // Its segments go first, with CGAL's flips: points they hid become visible to faces outside the star.
-      if (triangulation.dimension() == 2 && triangulation.are_there_incident_constraints(v)) {
+      if (triangulation.dimension() < 2) {
+        triangulation.unmark_incident_constraints(v);
+      } else if (triangulation.are_there_incident_constraints(v)) {
         triangulation.remove_incident_constraints(v);
         sweep({v}, acc);
-      } else {
-        triangulation.unmark_incident_constraints(v);
       }
     }
     if (triangulation.dimension() < D) {
@@ -564,6 +563,15 @@ class MeshTriangulation {
     kinds.pop_back();
   }
 
+  // A new vertex joins the point list (its slot is its info) and the map; the next walk starts at it.
+  void adopt(Vertex v, const Point<D>& p, PointKind kind, std::vector<Point<D>>& points, std::vector<PointKind>& kinds) {
+    hint_ = v;
+    v->info() = static_cast<std::uint32_t>(points.size());
+    points.push_back(p);
+    kinds.push_back(kind);
+    vertex_of.emplace(p, v);
+  }
+
   void insert(const Point<D>& p, PointKind kind, std::vector<Point<D>>& points, std::vector<PointKind>& kinds,
               Accumulator& acc) {
     const auto cp = C::to_cgal(p);
@@ -571,11 +579,7 @@ class MeshTriangulation {
     if constexpr (D == 2) {
       if (full) {  // CGAL splits and flips faces in place here, and deletes none: the sweep sees it all
         const Vertex v = triangulation.insert(cp, C::locate(triangulation, cp, hint_));
-        hint_ = v;
-        v->info() = static_cast<std::uint32_t>(points.size());
-        points.push_back(p);
-        kinds.push_back(kind);
-        vertex_of.emplace(p, v);
+        adopt(v, p, kind, points, kinds);
         sweep({v}, acc);
         return;
       }
@@ -592,11 +596,7 @@ class MeshTriangulation {
       before = all_keys();
     }
     const Vertex v = full ? triangulation.insert(cp, start) : triangulation.insert(cp);
-    hint_ = v;
-    v->info() = static_cast<std::uint32_t>(points.size());
-    points.push_back(p);
-    kinds.push_back(kind);
-    vertex_of.emplace(p, v);
+    adopt(v, p, kind, points, kinds);
     if (full) {
       C::for_each_incident_finite_face(triangulation, v, [&](Face f) {
         classify(f);

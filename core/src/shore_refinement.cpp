@@ -140,14 +140,13 @@ struct ShoreRefinement::Impl {
     return !excluded;
   }
 
+  // Whether x lies off the line through p and q (a point on it, where rings touch, would halve a subsegment
+  // without end).
   bool off_line(const Point2& p, const Point2& q, const Point2& x) const {
-    const double k = rule.min_offset > 0 ? 1 / (rule.min_offset * rule.min_offset) : 0;
     return engine::filtered_sign(counters, [&](auto zero) {
              using NT = decltype(zero);
-             const NT cross = (NT(q[0]) - NT(p[0])) * (NT(x[1]) - NT(p[1])) - (NT(q[1]) - NT(p[1])) * (NT(x[0]) - NT(p[0]));
-             const NT l2 = engine::squared_distance<NT, 2>(p, q);
-             return rule.min_offset > 0 ? NT(k) * cross * cross - l2 * l2 : cross * cross;
-           }) > (rule.min_offset > 0 ? -1 : 0);
+             return (NT(q[0]) - NT(p[0])) * (NT(x[1]) - NT(p[1])) - (NT(q[1]) - NT(p[1])) * (NT(x[0]) - NT(p[0]));
+           }) != 0;
   }
 
   // Whether leaf n must be halved (and can be: its midpoint is a new point strictly between its ends).
@@ -156,7 +155,7 @@ struct ShoreRefinement::Impl {
     if (-std::ilogb(n.t1 - n.t0) >= rule.max_depth) return false;
     const Point2 p = at(e, n.t0), q = at(e, n.t1), m = at(e, 0.5 * (n.t0 + n.t1));
     if (m == p || m == q) return false;
-    if (std::hypot(q[0] - p[0], q[1] - p[1]) < rule.min_length) return false;
+    if (engine::compare_squared_distance_to<2>(counters, p, q, rule.min_length * rule.min_length) < 0) return false;
     const double g2 = rule.gamma * rule.gamma;
     bool hit = false, taken = false;
     for (auto it = points.qbegin(bgi::intersects(disk_box(n))); it != points.qend(); ++it) {
@@ -168,8 +167,6 @@ struct ShoreRefinement::Impl {
               return NT(g2) * engine::squared_distance<NT, 2>(p, q) -
                      NT(4) * engine::squared_distance<NT, 2>(x, m);
             }) > 0 &&
-            // x off the line by min_offset of the length: a point on the line (rings that touch) or nearly
-            // so would halve it without end.
             off_line(p, q, x);
     }
     return hit && !taken;  // a midpoint that is already an input point cannot be a new one
@@ -295,10 +292,8 @@ struct ShoreRefinement::Impl {
 
 ShoreRefinement::ShoreRefinement(const Domain2& rings, std::span<const Point2> loose, RefinementRule rule)
     : impl_(std::make_unique<Impl>()) {
-  if (!(rule.gamma >= 1) || rule.max_depth < 1 || rule.max_depth > 50 || !(rule.min_offset >= 0 && rule.min_offset < 1) ||
-      !(rule.min_length >= 0))
-    throw std::invalid_argument(
-        "ShoreRefinement: gamma must be at least 1, max_depth in 1..50, min_offset in [0, 1), min_length >= 0");
+  if (!(rule.gamma >= 1) || rule.max_depth < 1 || rule.max_depth > 50 || !(rule.min_length >= 0))
+    throw std::invalid_argument("ShoreRefinement: gamma must be at least 1, max_depth in 1..50, min_length >= 0");
   impl_->rule = rule;
   impl_->rings = rings;
   impl_->build(loose);

@@ -27,9 +27,6 @@ namespace shoremesh {
 struct RefinementRule {
   double gamma = 1.25;  // 1 is Ruppert's diametral circle; larger grades the shore more
   int max_depth = 24;  // halvings of one ring edge at most
-  // How far off a subsegment's line (a fraction of its length) a point must lie to encroach it; 0: any
-  // point not on the line (a point on it, where rings touch, would halve it without end).
-  double min_offset = 0;
   // No subsegment shorter than this is split (0: none): the callers give a fixed fraction of the engine's
   // box, so that no split comes nearer to a point than the engine resolves.
   double min_length = 0;
