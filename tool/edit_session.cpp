@@ -8,7 +8,7 @@
 
 #include "shoremesh/error.hpp"
 #include "shoremesh/io/point_set_csv.hpp"
-#include "shoremesh/io/ring_edge_index.hpp"
+#include "shoremesh/ring_edge_index.hpp"
 #include "shoremesh/io/ring_file.hpp"
 
 namespace shoremesh::tool {
@@ -52,31 +52,23 @@ double parse_number(const std::string& word) {
 }
 
 template <int D>
-std::vector<ElementCorners<D>> sorted_corners(const Mesh<D>& mesh) {
-  std::vector<ElementCorners<D>> out;
-  const auto& points = mesh.points();
-  for (const auto& e : mesh.elements()) {
-    ElementCorners<D> c;
-    for (int i = 0; i <= D; ++i) c[std::size_t(i)] = points[e[std::size_t(i)]];
-    std::sort(c.begin(), c.end());
-    out.push_back(c);
+SessionInput<D> session_input(const io::InputSet& set) {
+  SessionInput<D> in;
+  in.points = input_points<D>(set);
+  if constexpr (D == 2) {
+    in.rings = set.domain;
+    in.ring_offsets = set.ring_offsets;
   }
-  std::sort(out.begin(), out.end());
-  return out;
+  return in;
 }
 
 template <int D>
-MeshDelta<D> diff(const std::vector<ElementCorners<D>>& before, const std::vector<ElementCorners<D>>& after) {
-  MeshDelta<D> d;
-  std::set_difference(before.begin(), before.end(), after.begin(), after.end(), std::back_inserter(d.removed));
-  std::set_difference(after.begin(), after.end(), before.begin(), before.end(), std::back_inserter(d.added));
-  return d;
-}
-
-template <int D>
-Domain2 initial_domain(const io::InputSet& set) {
-  if constexpr (D == 2) return set.domain;
-  return {};
+typename ShoreSession<D>::Options session_options(double rho, std::optional<BoxTransform<D>> box, bool keep_hull) {
+  typename ShoreSession<D>::Options o;
+  o.rho = rho;
+  o.box = box;
+  o.keep_hull = keep_hull;
+  return o;
 }
 
 }  // namespace
@@ -86,90 +78,26 @@ EditSession<D>::EditSession(const io::InputSet& set, double rho, std::optional<B
                             PreviewArgs preview, bool lonlat_edits)
     : frame_(UserFrame::of(set)),
       lonlat_edits_(lonlat_edits),
-      rho_(rho),
-      keep_hull_(keep_hull),
       preview_(std::move(preview)),
-      refinement_([&]() -> std::optional<ShoreRefinement> {
-        if constexpr (D == 2) return shore_refinement(set, box);
-        return std::nullopt;
-      }()),
-      set_([&] {
+      session_([&] {
         try {
-          // As a fresh `mesh` run gives them to the engine: the input points, then the shore's splits.
-          return DynamicWellSpaced<D>(engine_points<D>(set, refinement_ ? &*refinement_ : nullptr),
-                                      engine_parameters<D>(rho), box);
+          return ShoreSession<D>(session_input<D>(set), session_options<D>(rho, box, keep_hull));
         } catch (const PointInputError& e) {
           rethrow_with_origin(e, set);
         }
-      }()),
-      mesh_(make_mesh<D>(set_.points(), set_.input_count(), refinement_ ? refinement_->refined() : Domain2{},
-                         set_.box(), keep_hull_)),
-      next_id_(set.size()) {
+      }()) {
   preview_.rho = rho;
-  for (std::size_t id = 0; id < set.size(); ++id) engine_of_user_.push_back(id);
-  if (refinement_) {
-    const std::vector<Point2> splits = refinement_->split_points();
-    for (std::size_t j = 0; j < splits.size(); ++j) split_id_.emplace(splits[j], set.size() + j);
-  }
-  const Domain2& domain = initial_domain<D>(set);
-  if (!domain.rings.empty()) ring_index_.emplace(domain);
-  for (std::size_t r = 0; r < domain.rings.size(); ++r) {
-    std::vector<std::size_t> ids;
-    for (std::size_t k = 0; k < domain.rings[r].points.size(); ++k) {
-      const std::size_t id = set.ring_offsets.at(r) + k;
-      ids.push_back(id);
-      ring_of_[id] = {r, k};
-    }
-    ring_ids_.push_back(std::move(ids));
-  }
-}
-
-template <int D>
-std::vector<std::size_t> EditSession<D>::apply_edits(std::vector<Edit<D>> edits, const Domain2* rings,
-                                                     std::vector<Point<D>> loose_removed,
-                                                     std::vector<Point<D>> loose_added,
-                                                     std::vector<Point<D>>& inputs_removed,
-                                                     std::vector<Point<D>>& inputs_added, UpdateReport<D>& report) {
-  const std::size_t user_adds = static_cast<std::size_t>(
-      std::count_if(edits.begin(), edits.end(), [](const Edit<D>& e) { return e.kind == Edit<D>::Kind::Add; }));
-  if constexpr (D == 2) {
-    if (refinement_) {
-      const Domain2 before = refinement_->rings();
-      const SplitChange change = refinement_->update(rings ? *rings : before, loose_removed, loose_added);
-      for (const Point2& p : change.removed) {
-        edits.push_back({Edit<D>::Kind::Remove, split_id_.at(p), {}});
-        inputs_removed.push_back(p);
-      }
-      for (const Point2& p : change.added) {
-        edits.push_back({Edit<D>::Kind::Add, 0, p});
-        inputs_added.push_back(p);
-      }
-      std::vector<std::size_t> ids;
-      try {
-        ids = set_.apply(edits, &report);
-      } catch (...) {
-        refinement_->update(before, loose_added, loose_removed);  // the inverse edit: the same splits as before
-        throw;
-      }
-      for (const Point2& p : change.removed) split_id_.erase(p);
-      for (std::size_t j = 0; j < change.added.size(); ++j) split_id_.emplace(change.added[j], ids[user_adds + j]);
-      ids.resize(user_adds);
-      return ids;
-    }
-  }
-  (void)rings, (void)loose_removed, (void)loose_added;
-  return set_.apply(edits, &report);
 }
 
 template <int D>
 json EditSession<D>::build_reply(double ms) const {
   json r = {{"line", 0}, {"ok", true}, {"op", "build"}};
-  r["input_points"] = user_input_count();
-  r["shore_splits"] = split_id_.size();
-  r["steiner_points"] = set_.steiner_count();
-  r["elements"] = mesh_.element_count();
-  std::vector<double> box(set_.box().origin.begin(), set_.box().origin.end());
-  box.push_back(set_.box().side);
+  r["input_points"] = session_.input_count();
+  r["shore_splits"] = session_.split_count();
+  r["steiner_points"] = session_.steiner_count();
+  r["elements"] = session_.mesh().element_count();
+  std::vector<double> box(session_.box().origin.begin(), session_.box().origin.end());
+  box.push_back(session_.box().side);
   r["box"] = box;
   r["units"] = io::to_string(frame_.units);
   if (!frame_.projection.is_none()) r["projection"] = frame_.projection.describe();
@@ -187,6 +115,8 @@ std::optional<json> EditSession<D>::run(std::size_t line, const std::string& tex
     if (op == "add") reply = add(words);
     else if (op == "remove") reply = remove(words);
     else if (op == "move") reply = move(words);
+    else if (op == "add-ring") reply = add_ring(words, rest_after_op(text));
+    else if (op == "remove-ring") reply = remove_ring(words);
     else if (op == "export") reply = export_to({op, rest_after_op(text)});
     else if (op == "preview") reply = preview({op, rest_after_op(text)});
     else if (op == "preview-change") reply = preview_change({op, rest_after_op(text)});
@@ -194,7 +124,8 @@ std::optional<json> EditSession<D>::run(std::size_t line, const std::string& tex
       if (words.size() != 1) throw InputError("stats takes no arguments");
       reply = stats();
     } else {
-      throw InputError("unknown edit '" + op + "' (add, remove, move, export, preview, preview-change, stats)");
+      throw InputError("unknown edit '" + op +
+                       "' (add, remove, move, add-ring, remove-ring, export, preview, preview-change, stats)");
     }
   } catch (const InputError& e) {
     return json{{"line", line}, {"ok", false}, {"op", op}, {"error", e.what()}};
@@ -207,13 +138,7 @@ std::optional<json> EditSession<D>::run(std::size_t line, const std::string& tex
 }
 
 template <int D>
-Point<D> EditSession<D>::parse_point(const std::vector<std::string>& words, std::size_t first) const {
-  const std::size_t given = words.size() - first;
-  if (given != std::size_t(D))
-    throw InputError(words[0] + " takes " + (first == 2 ? "ID " : "") + (D == 2 ? "X Y" : "X Y Z") +
-                     (words[0] == "add" && D == 2 ? " [after ID]" : "") + " in a " + std::to_string(D) + "D session");
-  Point<D> p;
-  for (int i = 0; i < D; ++i) p[std::size_t(i)] = parse_number(words[first + std::size_t(i)]);
+Point<D> EditSession<D>::user_point(Point<D> p) const {
   if constexpr (D == 2) {
     if (lonlat_edits_) {
       try {
@@ -223,13 +148,25 @@ Point<D> EditSession<D>::parse_point(const std::vector<std::string>& words, std:
       }
     }
   }
-  if (!set_.box().contains(p)) {
-    Point<D> hi = set_.box().origin;
-    for (auto& x : hi) x += set_.box().side;
-    throw InputError("the point " + frame_.point(p) + " is outside the session's box, " + frame_.point(set_.box().origin) +
-                     " to " + frame_.point(hi) + "; the box never grows (start the session with a larger --box)");
+  if (!session_.box().contains(p)) {
+    Point<D> hi = session_.box().origin;
+    for (auto& x : hi) x += session_.box().side;
+    throw InputError("the point " + frame_.point(p) + " is outside the session's box, " +
+                     frame_.point(session_.box().origin) + " to " + frame_.point(hi) +
+                     "; the box never grows (start the session with a larger --box)");
   }
   return p;
+}
+
+template <int D>
+Point<D> EditSession<D>::parse_point(const std::vector<std::string>& words, std::size_t first) const {
+  const std::size_t given = words.size() - first;
+  if (given != std::size_t(D))
+    throw InputError(words[0] + " takes " + (first == 2 ? "ID " : "") + (D == 2 ? "X Y" : "X Y Z") +
+                     (words[0] == "add" && D == 2 ? " [after ID]" : "") + " in a " + std::to_string(D) + "D session");
+  Point<D> p;
+  for (int i = 0; i < D; ++i) p[std::size_t(i)] = parse_number(words[first + std::size_t(i)]);
+  return user_point(p);
 }
 
 template <int D>
@@ -241,106 +178,22 @@ std::size_t EditSession<D>::parse_id(const std::string& word) const {
 }
 
 template <int D>
-void EditSession<D>::check_id(std::size_t id) const {
-  if (id < engine_of_user_.size() && engine_of_user_[id] != kRemoved) return;
-  if (id < next_id_) throw InputError("input point " + std::to_string(id) + " was removed");
-  throw InputError("no input point " + std::to_string(id) + " (ids so far: 0.." + std::to_string(next_id_ - 1) + ")");
-}
-
-template <int D>
-std::optional<typename EditSession<D>::RingChange> EditSession<D>::rings_with(io::RingVertexEdit::Kind kind,
-                                                                             std::size_t id, const Point<D>& p) const {
-  using Kind = io::RingVertexEdit::Kind;
-  if constexpr (D != 2) {
-    return std::nullopt;
-  } else {
-    const auto it = ring_of_.find(id);
-    if (it == ring_of_.end()) return std::nullopt;
-    const auto [r, k] = it->second;
-    const Domain2& now = refinement_->rings();
-    RingChange change{now, {kind, r, k, now.rings[r].points[k]}};
-    auto& ring = change.domain.rings[r].points;
-    // The rings were valid before: only the edges at the changed vertex (or across the gap the removed
-    // one leaves, from the vertex before it) are new, and only they need a look (the ring index).
-    if (kind == Kind::Move) {
-      ring[k] = p;
-    } else if (kind == Kind::Insert) {
-      ring.insert(ring.begin() + static_cast<std::ptrdiff_t>(k + 1), p);
-      change.edit.vertex = k + 1;
-    } else {
-      if (ring.size() <= 3)
-        throw InputError("input point " + std::to_string(id) + " is one of the last three points of ring " +
-                         std::to_string(r + 1) + "; it cannot be removed");
-      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
-      change.edit.vertex = (k + ring.size() - 1) % ring.size();
-    }
-    if (const auto defect = ring_index_->defect_at(change.domain, change.edit)) {
-      const std::string what = kind == Kind::Move     ? "moving input point " + std::to_string(id)
-                               : kind == Kind::Insert ? "adding a point after input point " + std::to_string(id)
-                                                      : "removing input point " + std::to_string(id);
-      throw InputError(what + " would break the shoreline: " + defect->describe());
-    }
-    return change;
-  }
-}
-
-template <int D>
-void EditSession<D>::commit_ring_ids(const RingChange& change, std::size_t id) {
-  using Kind = io::RingVertexEdit::Kind;
-  const std::size_t r = change.edit.ring;
-  auto& ids = ring_ids_[r];
-  std::size_t first = 0;  // the ids from here on changed position
-  if (change.edit.kind == Kind::Insert) {
-    first = change.edit.vertex;
-    ids.insert(ids.begin() + static_cast<std::ptrdiff_t>(first), id);
-  } else if (change.edit.kind == Kind::Remove) {
-    first = ring_of_.at(id).second;
-    ring_of_.erase(id);
-    ids.erase(ids.begin() + static_cast<std::ptrdiff_t>(first));
-  } else {
-    return;
-  }
-  for (std::size_t j = first; j < ids.size(); ++j) ring_of_[ids[j]] = {r, j};
-}
-
-template <int D>
-void EditSession<D>::update_mesh(const UpdateReport<D>& report, std::vector<Point<D>> inputs_removed,
-                                 std::vector<Point<D>> inputs_added, std::optional<RingChange> rings,
-                                 Clock::time_point edit_start, Clock::time_point engine_start, json& reply) {
-  reply["rings_ms"] = std::chrono::duration<double, std::milli>(engine_start - edit_start).count();
-  reply["engine_ms"] = ms_since(engine_start);
-  reply["steiner_added"] = report.steiner_added.size();
-  reply["steiner_removed"] = report.steiner_removed.size();
-  reply["operations"] = report.operations_touched();
-  const auto change = PointChange<D>::from_update(report, std::move(inputs_removed), std::move(inputs_added));
-  const auto start = Clock::now();
-  bool rebuilt = false;
-  try {
-    // A shore point moved, removed or added changes the rings too: the mesh takes them with the points
-    // and classifies again only the triangles near the changed stretch.
-    if constexpr (D == 2) last_delta_ = refinement_ ? mesh_.apply(change, refinement_->refined()) : mesh_.apply(change);
-    else last_delta_ = mesh_.apply(change);
-  } catch (const InputError&) {
-    rebuilt = true;  // the mesh and the engine disagree (nothing was changed): rebuild from the engine's points
-  }
-  if (rings) ring_index_->commit(rings->domain, rings->edit);
-  if (rebuilt) {
-    const auto before = sorted_corners<D>(mesh_);
-    Domain2 domain;
-    if constexpr (D == 2)
-      if (refinement_) domain = refinement_->refined();
-    mesh_ = make_mesh<D>(set_.points(), set_.input_count(), domain, set_.box(), keep_hull_);
-    last_delta_ = diff<D>(before, sorted_corners<D>(mesh_));
-  }
-  reply["elements_removed"] = last_delta_.removed.size();
-  reply["elements_added"] = last_delta_.added.size();
-  reply["elements_changed"] = last_delta_.removed.size() + last_delta_.added.size();
-  reply["elements"] = mesh_.element_count();
-  reply["input_points"] = user_input_count();
-  reply["shore_splits"] = split_id_.size();
-  reply["steiner_points"] = set_.steiner_count();
-  reply["mesh_ms"] = ms_since(start);
-  reply["ms"] = ms_since(edit_start);
+void EditSession<D>::record(const SessionEdit<D>& edit, json& reply) {
+  last_delta_ = edit.mesh;
+  reply["rings_ms"] = edit.rings_ms;
+  reply["engine_ms"] = edit.engine_ms;
+  reply["steiner_added"] = edit.engine.steiner_added.size();
+  reply["steiner_removed"] = edit.engine.steiner_removed.size();
+  reply["operations"] = edit.engine.operations_touched();
+  reply["elements_removed"] = edit.mesh.removed.size();
+  reply["elements_added"] = edit.mesh.added.size();
+  reply["elements_changed"] = edit.mesh.removed.size() + edit.mesh.added.size();
+  reply["elements"] = session_.mesh().element_count();
+  reply["input_points"] = session_.input_count();
+  reply["shore_splits"] = session_.split_count();
+  reply["steiner_points"] = session_.steiner_count();
+  reply["mesh_ms"] = edit.mesh_ms;
+  reply["ms"] = edit.ms;
 }
 
 template <int D>
@@ -359,29 +212,19 @@ json EditSession<D>::add(const std::vector<std::string>& words) {
     point_words.resize(point_words.size() - 2);
   }
   const Point<D> p = parse_point(point_words, 1);
-  const auto edit_start = Clock::now();
-  std::optional<RingChange> rings;
   if (after) {
-    check_id(*after);
-    rings = rings_with(io::RingVertexEdit::Kind::Insert, *after, p);
-    if (!rings)
+    session_.check_id(*after);
+    if (!session_.ring_of(*after))
       throw InputError("input point " + std::to_string(*after) +
                        " is on no shoreline (a loose point); 'add X Y' without 'after' adds a loose point");
   }
-  const auto start = Clock::now();
-  UpdateReport<D> report;
-  std::vector<Point<D>> removed, added{p};
-  const auto ids = apply_edits({{Edit<D>::Kind::Add, 0, p}}, rings ? &rings->domain : nullptr, {},
-                               rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{p}, removed, added, report);
-  const std::size_t id = next_id_++;
-  engine_of_user_.push_back(ids.at(0));
-  json reply = {{"id", id}, {"point", point_json(p)}, {"at", frame_.point(p)}};
-  if (rings) {
-    commit_ring_ids(*rings, id);
+  const SessionEdit<D> edit = after ? session_.add_after(*after, p) : session_.add(p);
+  json reply = {{"id", edit.id}, {"point", point_json(p)}, {"at", frame_.point(p)}};
+  if (after) {
     reply["after"] = *after;
-    reply["ring"] = rings->edit.ring + 1;
+    reply["ring"] = *edit.ring + 1;
   }
-  update_mesh(report, std::move(removed), std::move(added), std::move(rings), edit_start, start, reply);
+  record(edit, reply);
   return reply;
 }
 
@@ -389,19 +232,10 @@ template <int D>
 json EditSession<D>::remove(const std::vector<std::string>& words) {
   if (words.size() != 2) throw InputError("remove takes one ID");
   const std::size_t id = parse_id(words[1]);
-  check_id(id);
-  const Point<D> old = set_.input_point(engine_id(id));
-  const auto edit_start = Clock::now();
-  auto rings = rings_with(io::RingVertexEdit::Kind::Remove, id, old);
-  const auto start = Clock::now();
-  UpdateReport<D> report;
-  std::vector<Point<D>> removed{old}, added;
-  apply_edits({{Edit<D>::Kind::Remove, engine_id(id), {}}}, rings ? &rings->domain : nullptr,
-              rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{old}, {}, removed, added, report);
-  engine_of_user_[id] = kRemoved;
-  if (rings) commit_ring_ids(*rings, id);
+  const Point<D> old = session_.input_point(id);
+  const SessionEdit<D> edit = session_.remove(id);
   json reply = {{"id", id}, {"point", point_json(old)}, {"at", frame_.point(old)}};
-  update_mesh(report, std::move(removed), std::move(added), std::move(rings), edit_start, start, reply);
+  record(edit, reply);
   return reply;
 }
 
@@ -409,34 +243,53 @@ template <int D>
 json EditSession<D>::move(const std::vector<std::string>& words) {
   if (words.size() < 2) throw InputError(std::string("move takes ID ") + (D == 2 ? "X Y" : "X Y Z"));
   const std::size_t id = parse_id(words[1]);
-  check_id(id);  // before the point: an id that does not exist is the first thing to say
+  session_.check_id(id);  // before the point: an id that does not exist is the first thing to say
   const Point<D> p = parse_point(words, 2);
-  const Point<D> old = set_.input_point(engine_id(id));
-  const auto edit_start = Clock::now();
-  auto rings = rings_with(io::RingVertexEdit::Kind::Move, id, p);
-  const auto start = Clock::now();
-  UpdateReport<D> report;
-  std::vector<Point<D>> removed{old}, added{p};
-  apply_edits({{Edit<D>::Kind::Move, engine_id(id), p}}, rings ? &rings->domain : nullptr,
-              rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{old},
-              rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{p}, removed, added, report);
+  const Point<D> old = session_.input_point(id);
+  const SessionEdit<D> edit = session_.move(id, p);
   json reply = {{"id", id}, {"point", point_json(p)}, {"at", frame_.point(p)}, {"from", frame_.point(old)}};
-  update_mesh(report, std::move(removed), std::move(added), std::move(rings), edit_start, start, reply);
+  record(edit, reply);
   return reply;
 }
 
 template <int D>
-std::vector<Point<D>> EditSession<D>::canonical_points() const {
-  const std::vector<Point<D>> all = set_.points();
-  std::vector<Point<D>> out;
-  out.reserve(all.size());
-  for (std::size_t eid : engine_of_user_)
-    if (eid != kRemoved) out.push_back(set_.input_point(eid));
-  if constexpr (D == 2)
-    if (refinement_)
-      for (const Point2& p : refinement_->split_points()) out.push_back(p);
-  out.insert(out.end(), all.begin() + static_cast<std::ptrdiff_t>(set_.input_count()), all.end());
-  return out;
+json EditSession<D>::add_ring(const std::vector<std::string>& words, const std::string& rest) {
+  // add-ring X1 Y1 X2 Y2 X3 Y3 ... (closed implicitly), or add-ring FILE (a ring file holding one ring).
+  if constexpr (D != 2) {
+    (void)words, (void)rest;
+    throw InputError("add-ring: rings are for 2D sessions");
+  } else {
+    std::vector<Point2> points;
+    if (words.size() == 2 || (words.size() > 2 && !std::isdigit(static_cast<unsigned char>(rest[0])) && rest[0] != '-' &&
+                              rest[0] != '+' && rest[0] != '.')) {
+      const io::RingFile file = io::read_ring_file(rest);
+      if (file.rings.size() != 1)
+        throw InputError("add-ring takes a ring file with one ring; it holds " + std::to_string(file.rings.size()), rest);
+      for (const Point2& p : file.rings.front()) points.push_back(user_point(p));
+    } else {
+      if (words.size() < 7 || (words.size() - 1) % 2 != 0)
+        throw InputError("add-ring takes X1 Y1 X2 Y2 X3 Y3 ... (at least three points, closed implicitly) or a FILE");
+      for (std::size_t i = 1; i + 1 < words.size(); i += 2)
+        points.push_back(user_point({parse_number(words[i]), parse_number(words[i + 1])}));
+      if (points.size() > 3 && points.front() == points.back()) points.pop_back();  // closed explicitly
+    }
+    const SessionEdit<D> edit = session_.add_ring(points);
+    json reply = {{"id", edit.id}, {"ring", *edit.ring + 1}, {"ids", edit.ring_ids}, {"points", points.size()}};
+    reply["role"] = session_.refined_rings().rings.at(*edit.ring).role == RingRole::Island ? "island" : "shore";
+    record(edit, reply);
+    return reply;
+  }
+}
+
+template <int D>
+json EditSession<D>::remove_ring(const std::vector<std::string>& words) {
+  if (words.size() != 2) throw InputError("remove-ring takes a ring NUMBER (1 for the first ring)");
+  const std::size_t number = parse_id(words[1]);
+  if (number == 0) throw InputError("rings are numbered from 1");
+  const SessionEdit<D> edit = session_.remove_ring(number - 1);
+  json reply = {{"ring", number}, {"ids", edit.ring_ids}, {"points", edit.ring_ids.size()}};
+  record(edit, reply);
+  return reply;
 }
 
 template <int D>
@@ -448,17 +301,18 @@ json EditSession<D>::export_to(const std::vector<std::string>& words) {
   json reply = {{"path", path.string()}};
   std::string ext = path.extension().string();
   if (ext == ".rings") {
-    if (!refinement_) throw InputError("export PATH.rings: this session has no shoreline");
-    io::write_ring_file(path, refinement_->rings());
-    reply["rings"] = refinement_->rings().rings.size();
+    if (!session_.has_rings()) throw InputError("export PATH.rings: this session has no shoreline");
+    const Domain2 rings = session_.rings();
+    io::write_ring_file(path, rings);
+    reply["rings"] = rings.rings.size();
   } else if (is_point_set_path(path)) {
-    const auto points = canonical_points();
-    io::write_point_set_csv<D>(path, set_.box(), points);
+    const auto points = session_.canonical_points();
+    io::write_point_set_csv<D>(path, session_.box(), points);
     reply["points"] = points.size();
   } else {
     // Numbered like a fresh run's export on the current input: its canonical point list.
-    export_mesh_file<D>(mesh_, path, std::nullopt, frame_, canonical_points());
-    reply["elements"] = mesh_.element_count();
+    export_mesh_file<D>(session_.mesh(), path, std::nullopt, frame_, session_.canonical_points());
+    reply["elements"] = session_.mesh().element_count();
   }
   reply["ms"] = ms_since(start);
   return reply;
@@ -468,7 +322,7 @@ template <int D>
 json EditSession<D>::preview(const std::vector<std::string>& words) {
   if (words.size() != 2 || words[1].empty()) throw InputError("preview takes a PATH (.png)");
   const auto start = Clock::now();
-  write_preview<D>(mesh_, words[1], preview_);
+  write_preview<D>(session_.mesh(), words[1], preview_);
   return {{"path", words[1]}, {"ms", ms_since(start)}};
 }
 
@@ -488,7 +342,7 @@ json EditSession<D>::preview_change(const std::vector<std::string>& words) {
             lo[i] = std::min(lo[i], p[i]);
             hi[i] = std::max(hi[i], p[i]);
           }
-    const auto elements = mesh_.elements();
+    const auto elements = session_.mesh().elements();
     std::vector<Element<2>> near;
     if (last_delta_.empty()) {
       near = elements;
@@ -497,7 +351,7 @@ json EditSession<D>::preview_change(const std::vector<std::string>& words) {
       for (const auto& e : elements) {
         bool inside = false;
         for (auto v : e) {
-          const Point2& p = mesh_.points()[v];
+          const Point2& p = session_.mesh().points()[v];
           inside = inside || (p[0] >= lo[0] - grow && p[0] <= hi[0] + grow && p[1] >= lo[1] - grow && p[1] <= hi[1] + grow);
         }
         if (inside) near.push_back(e);
@@ -511,8 +365,8 @@ json EditSession<D>::preview_change(const std::vector<std::string>& words) {
     std::vector<Point2> points;
     std::vector<PointKind> kinds;
     for (auto v : used) {
-      points.push_back(mesh_.points()[v]);
-      kinds.push_back(mesh_.kinds()[v]);
+      points.push_back(session_.mesh().points()[v]);
+      kinds.push_back(session_.mesh().kinds()[v]);
     }
     for (auto& e : near)
       for (auto& v : e) v = static_cast<std::uint32_t>(std::lower_bound(used.begin(), used.end(), v) - used.begin());
@@ -526,12 +380,12 @@ json EditSession<D>::preview_change(const std::vector<std::string>& words) {
 template <int D>
 json EditSession<D>::stats() const {
   const auto start = Clock::now();
-  const QualityNumbers q = quality_numbers<D>(mesh_, rho_, set_.box(), frame_);
+  const QualityNumbers q = quality_numbers<D>(session_.mesh(), session_.rho(), session_.box(), frame_);
   json r;
-  r["input_points"] = user_input_count();
-  r["shore_splits"] = split_id_.size();
-  r["steiner_points"] = set_.steiner_count();
-  r["next_id"] = next_id_;
+  r["input_points"] = session_.input_count();
+  r["shore_splits"] = session_.split_count();
+  r["steiner_points"] = session_.steiner_count();
+  r["next_id"] = session_.next_id();
   r["elements"] = q.elements;
   r["min_angle"] = q.min_angle;
   r["max_angle"] = q.max_angle;
@@ -543,7 +397,7 @@ json EditSession<D>::stats() const {
   if (q.left_out_at_box_edge) r["left_out_at_box_edge"] = *q.left_out_at_box_edge;
   if (q.shore_segments) {
     r["shore_below_bound"] = q.shore_below_bound;
-    r["shore_splits"] = split_id_.size();
+    r["shore_splits"] = session_.split_count();
     r["shore_segments"] = *q.shore_segments;
     r["shore_covered"] = *q.shore_covered;
     r["shore_conforming"] = *q.shore_covered == *q.shore_segments;

@@ -43,7 +43,7 @@ struct EngineArgs {
   double rho = 1.4142135623730951;
   std::vector<double> box;
   int dim = 0;             // 0: the input's
-  bool keep_hull = false;  // the mesh keeps the slivers along the box's edge (make_mesh)
+  bool keep_hull = false;  // the mesh keeps the slivers along the box's edge (well_spaced_mesh)
 };
 void add_engine_options(CLI::App* cmd, EngineArgs& args);
 

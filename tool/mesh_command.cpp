@@ -71,12 +71,12 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
   progress.stage("StableWS on " + std::to_string(points.size()) + " points");
   StableResult<D> result;
   try {
-    result = stable_well_spaced<D>(points, engine_parameters<D>(opt.engine.rho), parse_box<D>(opt.engine.box));
+    result = stable_well_spaced<D>(points, session_parameters<D>(opt.engine.rho), parse_box<D>(opt.engine.box));
   } catch (const PointInputError& e) {
     rethrow_with_origin(e, set);
   }
   progress.stage("meshing " + std::to_string(result.points.size()) + " points");
-  const Mesh<D> mesh = make_mesh<D>(result.points, result.input_count, in.domain, result.box, opt.engine.keep_hull);
+  const Mesh<D> mesh = well_spaced_mesh<D>(result.points, result.input_count, in.domain, result.box, opt.engine.keep_hull);
   if (mesh.element_count() == 0 && (!point_set || !opt.preview.empty()))
     throw InputError(std::string("the mesh has no ") + (D == 2 ? "triangle" : "tetrahedron") + ": " +
                          std::to_string(result.points.size()) + " points" +

@@ -10,16 +10,9 @@
 #include "shoremesh/io/soundings.hpp"
 #include "shoremesh/mesh_quality.hpp"
 #include "shoremesh/shore_refinement.hpp"
+#include "shoremesh/shore_session.hpp"
 
 namespace shoremesh::tool {
-
-template <int D>
-Parameters<D> engine_parameters(double rho) {
-  Parameters<D> parameters;
-  parameters.rho = rho;
-  if (parameters.beta <= rho) parameters.beta = 1.5 * rho;  // keep the picking region non-empty
-  return parameters;
-}
 
 template <int D>
 std::optional<BoxTransform<D>> parse_box(const std::vector<double>& numbers) {
@@ -78,8 +71,7 @@ std::vector<Point2> loose_points(const io::InputSet& set) {
 std::optional<ShoreRefinement> shore_refinement(const io::InputSet& set, const std::optional<BoxTransform<2>>& box) {
   if (set.dimension != 2 || set.domain.empty()) return std::nullopt;
   // No split below 2^-32 of the engine's box: the given one, or the one the engine fits to the input.
-  const double side = box ? box->side : BoxTransform<2>::fit(set.points).side;
-  return ShoreRefinement(set.domain, loose_points(set), RefinementRule::for_box(side));
+  return refine_shore(set.domain, loose_points(set), box ? box->side : BoxTransform<2>::fit(set.points).side);
 }
 
 template <int D>
@@ -109,17 +101,6 @@ void rethrow_with_origin(const PointInputError& e, const io::InputSet& set) {
   if (s.location == io::Source::Location::Line && o.ring == io::PointOrigin::kNoRing)
     throw InputError(e.message(), s.file, o.location);
   throw InputError(io::describe_origin(set, e.points().front()) + ": " + e.message());
-}
-
-template <int D>
-Mesh<D> make_mesh(std::span<const Point<D>> points, std::size_t input_count, const Domain2& domain,
-                  const BoxTransform<D>& box, bool keep_hull) {
-  const std::optional<BoxTransform<D>> covered = keep_hull ? std::nullopt : std::optional(box);
-  // With a shore, the mesh is all of the water: clipping to the box would cut it where the shore touches
-  // the box (the box is fitted to the input), so nothing is clipped.
-  if constexpr (D == 2)
-    if (!domain.empty()) return Mesh<2>(points, input_count, domain);
-  return Mesh<D>(points, input_count, covered);
 }
 
 template <int D>
@@ -297,8 +278,6 @@ std::string describe_input(const io::InputSet& set) {
   return out.str();
 }
 
-template Parameters<2> engine_parameters<2>(double);
-template Parameters<3> engine_parameters<3>(double);
 template std::optional<BoxTransform<2>> parse_box<2>(const std::vector<double>&);
 template std::optional<BoxTransform<3>> parse_box<3>(const std::vector<double>&);
 template std::vector<Point<2>> engine_points<2>(const io::InputSet&, const ShoreRefinement*);
@@ -307,8 +286,6 @@ template EngineInput<2> engine_input<2>(const io::InputSet&, const std::optional
 template EngineInput<3> engine_input<3>(const io::InputSet&, const std::optional<BoxTransform<3>>&);
 template std::vector<Point<2>> input_points<2>(const io::InputSet&);
 template std::vector<Point<3>> input_points<3>(const io::InputSet&);
-template Mesh<2> make_mesh<2>(std::span<const Point<2>>, std::size_t, const Domain2&, const BoxTransform<2>&, bool);
-template Mesh<3> make_mesh<3>(std::span<const Point<3>>, std::size_t, const Domain2&, const BoxTransform<3>&, bool);
 template void export_mesh_file<2>(const Mesh<2>&, const std::filesystem::path&, std::optional<io::ExportFormat>,
                                   const UserFrame&, std::span<const Point<2>>);
 template void export_mesh_file<3>(const Mesh<3>&, const std::filesystem::path&, std::optional<io::ExportFormat>,

@@ -17,13 +17,11 @@
 #include "shoremesh/mesh.hpp"
 #include "shoremesh/parameters.hpp"
 #include "shoremesh/shore_refinement.hpp"
+#include "shoremesh/shore_session.hpp"
 #include "shoremesh/well_spaced.hpp"
 #include "user_frame.hpp"
 
 namespace shoremesh::tool {
-
-template <int D>
-Parameters<D> engine_parameters(double rho);
 
 // --box X0 Y0 [Z0] SIDE (empty: none). InputError for the wrong count or a non-positive side.
 template <int D>
@@ -62,13 +60,6 @@ std::vector<Point<D>> engine_points(const io::InputSet& set, const ShoreRefineme
 
 // An engine error about particular input points, said with the file and line they came from.
 [[noreturn]] void rethrow_with_origin(const PointInputError& e, const io::InputSet& set);
-
-// The Delaunay mesh of `points` (the first `input_count` are input points); in 2D only the water of
-// `domain` when it has rings. Only the elements whose circumcentre lies in the engine's `box` (those
-// rho-well-spacing covers), unless `keep_hull`: the others are slivers along the box's edge.
-template <int D>
-Mesh<D> make_mesh(std::span<const Point<D>> points, std::size_t input_count, const Domain2& domain,
-                  const BoxTransform<D>& box, bool keep_hull);
 
 // Exports `mesh` to `path` (format from the extension unless given); GeoJSON and fort.14 in lon/lat when
 // the input was projected. Points numbered in `order` when given (io::MeshSnapshot).

@@ -187,20 +187,25 @@ bool finite(const Point<D>& p) {
 }
 
 // Where the water of `after` can differ from that of `before`: the bounding box of each ring's changed
-// stretch with its two unchanged ends, old and new points, and a point of it (an unchanged end) to start
-// a walk from. Empty when the rings are the same; nullopt when the rings themselves differ in number
-// (then anything may have changed).
+// stretch with its two unchanged ends, old and new points (a whole ring when it came or went: a ring past
+// the other's last, or one without points), and a point of it (an unchanged end) to start a walk from.
+// Empty when the rings are the same.
 struct ChangedWater {
   bool changed = false;
   Point2 lo{}, hi{}, seed{};
   struct Stretch {
     std::size_t ring, prefix, suffix;  // the ring's vertices other than its first prefix and last suffix
+    bool whole = false;                // the ring came or went
   };
   std::vector<Stretch> stretches;
 };
 
-std::optional<ChangedWater> changed_water(const Domain2& before, const Domain2& after) {
-  if (before.rings.size() != after.rings.size()) return std::nullopt;
+const std::vector<Point2>& ring_points(const Domain2& domain, std::size_t r) {
+  static const std::vector<Point2> none;
+  return r < domain.rings.size() ? domain.rings[r].points : none;
+}
+
+ChangedWater changed_water(const Domain2& before, const Domain2& after) {
   ChangedWater w;
   w.lo = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   w.hi = {-w.lo[0], -w.lo[1]};
@@ -210,11 +215,18 @@ std::optional<ChangedWater> changed_water(const Domain2& before, const Domain2& 
       w.hi[std::size_t(i)] = std::max(w.hi[std::size_t(i)], p[std::size_t(i)]);
     }
   };
-  for (std::size_t r = 0; r < before.rings.size(); ++r) {
-    const auto& o = before.rings[r].points;
-    const auto& n = after.rings[r].points;
+  for (std::size_t r = 0; r < std::max(before.rings.size(), after.rings.size()); ++r) {
+    const auto& o = ring_points(before, r);
+    const auto& n = ring_points(after, r);
     if (o == n) continue;
-    if (o.empty() || n.empty()) return std::nullopt;
+    w.changed = true;
+    if (o.empty() || n.empty()) {  // a ring came or went: the water flips inside it only
+      for (const Point2& p : o) take(p);
+      for (const Point2& p : n) take(p);
+      w.seed = o.empty() ? n.front() : o.front();
+      w.stretches.push_back({r, 0, 0, true});
+      continue;
+    }
     // The common prefix and suffix; the stretch between them changed, with the edges to its ends.
     const std::size_t common = std::min(o.size(), n.size());
     std::size_t prefix = 0, suffix = 0;
@@ -226,16 +238,14 @@ std::optional<ChangedWater> changed_water(const Domain2& before, const Domain2& 
       for (std::size_t k = prefix + m - 1; k <= 2 * m - suffix; ++k) take((*ring)[k % m]);
     }
     w.seed = o[(prefix + o.size() - 1) % o.size()];
-    w.changed = true;
     w.stretches.push_back({r, prefix, suffix});
   }
   return w;
 }
 
 // The shore segments of `before` that `after` no longer has and those it gained: from each changed stretch
-// (the segments from the vertex before it to the vertex after it), or all of them when the rings differ
-// in number.
-void changed_segments(const Domain2& before, const Domain2& after, const std::optional<ChangedWater>& water,
+// (the segments from the vertex before it to the vertex after it; all of a ring that came or went).
+void changed_segments(const Domain2& before, const Domain2& after, const ChangedWater& water,
                       std::vector<std::pair<Point2, Point2>>& dropped, std::vector<std::pair<Point2, Point2>>& inserted) {
   using Segment = std::pair<Point2, Point2>;
   auto segments = [](const std::vector<Point2>& ring, std::size_t prefix, std::size_t suffix, std::vector<Segment>& out) {
@@ -248,14 +258,9 @@ void changed_segments(const Domain2& before, const Domain2& after, const std::op
     }
   };
   std::vector<Segment> old_segments, new_segments;
-  if (water) {
-    for (const auto& st : water->stretches) {
-      segments(before.rings[st.ring].points, st.prefix, st.suffix, old_segments);
-      segments(after.rings[st.ring].points, st.prefix, st.suffix, new_segments);
-    }
-  } else {
-    for (const Ring& r : before.rings) segments(r.points, 0, 0, old_segments);
-    for (const Ring& r : after.rings) segments(r.points, 0, 0, new_segments);
+  for (const auto& st : water.stretches) {
+    segments(ring_points(before, st.ring), st.prefix, st.suffix, old_segments);
+    segments(ring_points(after, st.ring), st.prefix, st.suffix, new_segments);
   }
   std::sort(old_segments.begin(), old_segments.end());
   std::sort(new_segments.begin(), new_segments.end());
@@ -330,7 +335,7 @@ class MeshTriangulation {
     C::for_each_finite_face(triangulation, [&](Face f) { classify(f); });
   }
 
-  // Constraints never cross when the rings are valid (io::find_ring_defect); CGAL's refusal to construct a
+  // Constraints never cross when the rings are valid (find_ring_defect); CGAL's refusal to construct a
   // crossing is turned into an error that says so.
   void insert_constraint(Vertex a, Vertex b)
     requires(D == 2)
@@ -624,12 +629,13 @@ class MeshTriangulation {
     C::for_each_finite_face(triangulation, [&](Face f) { reclassify(f, acc); });
   }
 
-  // The water becomes that of `domain`: new faces are classified against it from now on.
-  void set_water(const Domain2& domain) { water_ = WaterTest(domain); }
-  // The same after a change of stretches of its rings (changed_water), without a rebuild.
+  // The water becomes that of `after` (changed_water from `before`): new faces are classified against it
+  // from now on, without a rebuild.
   void update_water(const Domain2& before, const Domain2& after, const ChangedWater& change) {
-    for (const auto& s : change.stretches)
-      water_.replace_stretch(s.ring, before.rings[s.ring].points, after.rings[s.ring].points, s.prefix, s.suffix);
+    for (const auto& s : change.stretches) {
+      if (s.whole) water_.replace_ring(s.ring, ring_points(after, s.ring));
+      else water_.replace_stretch(s.ring, before.rings[s.ring].points, after.rings[s.ring].points, s.prefix, s.suffix);
+    }
   }
 
   // Classifies again the faces whose bounding box meets [lo, hi] (a walk from the face at `seed`, a point
@@ -796,10 +802,9 @@ MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domai
   if constexpr (D == 2) {
     if (domain) {
       water = changed_water(domain_, *domain);
-      changed_segments(domain_, *domain, water, dropped, inserted);
+      changed_segments(domain_, *domain, *water, dropped, inserted);
       // The faces the change creates are classified against the new rings.
-      if (water) t.update_water(domain_, *domain, *water);
-      else t.set_water(*domain);
+      t.update_water(domain_, *domain, *water);
       domain_ = *domain;
     }
   }
@@ -810,8 +815,7 @@ MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domai
     t.insert(change.added[i], i < change.added_input_count ? PointKind::Input : PointKind::Steiner, points_, kinds_, acc);
   if constexpr (D == 2) t.add_constraints(inserted, acc);
   if constexpr (D == 2) {
-    if (domain && !water) t.reclassify_all(acc);
-    else if (domain && water->changed) t.reclassify_within(water->lo, water->hi, water->seed, acc);
+    if (water && water->changed) t.reclassify_within(water->lo, water->hi, water->seed, acc);
   }
   MeshDelta<D> delta = acc.net();
   element_count_ = element_count_ + delta.added.size() - delta.removed.size();

@@ -1,19 +1,11 @@
 #include "shoremesh/mesh_water.hpp"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-
 #include <algorithm>
 #include <cmath>
 
+#include "ring_geometry.hpp"
+
 namespace shoremesh {
-
-namespace {
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-
-CGAL::Orientation orientation(const Point2& a, const Point2& b, const Point2& c) {
-  return CGAL::orientation(Kernel::Point_2(a[0], a[1]), Kernel::Point_2(b[0], b[1]), Kernel::Point_2(c[0], c[1]));
-}
-}  // namespace
 
 WaterTest::WaterTest(const Domain2& domain) {
   double y_high = 0;
@@ -104,6 +96,35 @@ void WaterTest::replace_stretch(std::size_t r, const std::vector<Point2>& before
   old_ids = std::move(ids);
 }
 
+void WaterTest::replace_ring(std::size_t r, const std::vector<Point2>& after) {
+  if (r >= ring_edges_.size()) ring_edges_.resize(r + 1);
+  for (std::uint32_t e : ring_edges_[r]) {
+    remove_from_slabs(e);
+    free_edges_.push_back(e);
+  }
+  ring_edges_[r].clear();
+  if (after.empty()) return;
+  if (empty_) {  // no slab yet: one, which every edge joins (slab_of clamps)
+    empty_ = false;
+    y_low_ = after[0][1];
+    slab_height_ = 1;
+    slabs_.assign(1, {});
+  }
+  for (std::size_t k = 0; k < after.size(); ++k) {
+    std::uint32_t e;
+    if (free_edges_.empty()) {
+      e = static_cast<std::uint32_t>(edges_.size());
+      edges_.push_back({});
+    } else {
+      e = free_edges_.back();
+      free_edges_.pop_back();
+    }
+    edges_[e] = {after[k], after[(k + 1) % after.size()]};
+    add_to_slabs(e);
+    ring_edges_[r].push_back(e);
+  }
+}
+
 // Monotone in y, so an edge spanning [lo, hi] is found from any query height inside that range.
 std::size_t WaterTest::slab_of(double y) const {
   const double s = std::floor((y - y_low_) / slab_height_);
@@ -126,10 +147,10 @@ WaterSide WaterTest::classify(const Point2& p) const {
         return WaterSide::OnRing;
       continue;
     }
-    const CGAL::Orientation o = orientation(a, b, p);
-    if (o == CGAL::COLLINEAR) return WaterSide::OnRing;
+    const int o = detail::orient(a, b, p);
+    if (o == 0) return WaterSide::OnRing;
     // The edge crosses the rightward ray from p iff p is left of an upward edge or right of a downward one.
-    if ((b_above && o == CGAL::LEFT_TURN) || (a_above && o == CGAL::RIGHT_TURN)) inside = !inside;
+    if ((b_above && o > 0) || (a_above && o < 0)) inside = !inside;
   }
   return inside ? WaterSide::Water : WaterSide::Land;
 }

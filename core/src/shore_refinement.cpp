@@ -342,8 +342,6 @@ std::size_t ShoreRefinement::split_count() const { return impl_->split_owner.siz
 SplitChange ShoreRefinement::update(const Domain2& rings, std::span<const Point2> loose_removed,
                                     std::span<const Point2> loose_added) {
   Impl& m = *impl_;
-  if (rings.rings.size() != m.rings.rings.size())
-    throw std::invalid_argument("ShoreRefinement::update: the number of rings changed");
   m.made.clear();
   m.undone.clear();
 
@@ -354,10 +352,28 @@ SplitChange ShoreRefinement::update(const Domain2& rings, std::span<const Point2
   std::vector<EdgeKey> new_edges;
   std::vector<Point2> removed_points(loose_removed.begin(), loose_removed.end());
   std::vector<Point2> added_points(loose_added.begin(), loose_added.end());
-  for (std::size_t r = 0; r < rings.rings.size(); ++r) {
-    const auto& o = m.rings.rings[r].points;
-    const auto& n = rings.rings[r].points;
+  static const std::vector<Point2> no_ring;
+  for (std::size_t r = 0; r < std::max(rings.rings.size(), m.rings.rings.size()); ++r) {
+    const auto& o = r < m.rings.rings.size() ? m.rings.rings[r].points : no_ring;
+    const auto& n = r < rings.rings.size() ? rings.rings[r].points : no_ring;
     if (o == n) continue;
+    if (o.empty() || n.empty()) {  // a ring came or went: all of its vertices and edges
+      for (const Point2& p : o) {
+        removed_points.push_back(p);
+        m.ring_vertex.erase(p);
+      }
+      for (std::size_t k = 0; k < o.size(); ++k) {
+        const auto it = m.edge_of.find(edge_key(o[k], o[(k + 1) % o.size()]));
+        if (it == m.edge_of.end()) continue;
+        old_stretch.insert(it->second);
+        if (is_dirty.insert(it->second).second) dirty.push_back(it->second);
+      }
+      added_points.insert(added_points.end(), n.begin(), n.end());
+      for (std::size_t k = 0; k < n.size(); ++k)
+        if (n[k] != n[(k + 1) % n.size()]) new_edges.push_back(edge_key(n[k], n[(k + 1) % n.size()]));
+      if (!n.empty()) m.add_ring_vertices(rings.rings[r], 0, n.size());
+      continue;
+    }
     const std::size_t common = std::min(o.size(), n.size());
     std::size_t prefix = 0, suffix = 0;
     while (prefix < common && o[prefix] == n[prefix]) ++prefix;

@@ -1,5 +1,6 @@
-#include "shoremesh/io/ring_check.hpp"
-#include "shoremesh/io/ring_edge_index.hpp"
+#include "shoremesh/domain.hpp"
+#include "shoremesh/engine/predicates.hpp"
+#include "shoremesh/ring_edge_index.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -8,7 +9,6 @@
 #include <cmath>
 #include <random>
 
-#include "../../io/src/input/exact_orient.hpp"
 #include "io_test_names.hpp"
 #include "shoremesh/io/input_set.hpp"
 
@@ -35,6 +35,7 @@ TEST(ExactOrient, MatchesInt128OnNearlyCollinearPoints) {
   std::mt19937_64 rng(7);
   std::uniform_int_distribution<long long> coord(-(1LL << 50), 1LL << 50), small(-3, 3);
   int naive_wrong = 0;
+  shoremesh::engine::PredicateCounters counters;
   for (int i = 0; i < 200000; ++i) {
     const long long ax = coord(rng), ay = coord(rng), bx = coord(rng), by = coord(rng);
     // c near the line ab, between a and b.
@@ -42,7 +43,7 @@ TEST(ExactOrient, MatchesInt128OnNearlyCollinearPoints) {
     const double s = std::ldexp(1.0, -40);
     const Point2 a{ax * s, ay * s}, b{bx * s, by * s}, c{cx * s, cy * s};
     const int expect = exact_int128_sign(ax, ay, bx, by, cx, cy);
-    ASSERT_EQ(detail::orient2d_sign(a, b, c), expect) << i;
+    ASSERT_EQ(shoremesh::engine::orient2d(counters, a, b, c), expect) << i;
     const double naive = (a[0] - c[0]) * (b[1] - c[1]) - (a[1] - c[1]) * (b[0] - c[0]);
     naive_wrong += ((naive > 0) - (naive < 0)) != expect;
   }

@@ -15,7 +15,7 @@
 #include <utility>
 
 #include "mesh_test_util.hpp"
-#include "shoremesh/io/ring_check.hpp"
+#include "shoremesh/domain.hpp"
 #include "shoremesh/mesh.hpp"
 #include "shoremesh/mesh_quality.hpp"
 #include "shoremesh/mesh_water.hpp"
@@ -162,7 +162,7 @@ TEST(ConformingMesh, ShoreSegmentsAreChainsOfMeshEdgesAndTheAreaIsTheRings) {
       {"Lake Superior (GSHHG, 46 rings)", superior()},
   };
   for (const auto& [what, rings] : cases) {
-    ASSERT_FALSE(io::find_ring_defect(rings)) << what;
+    ASSERT_FALSE(find_ring_defect(rings)) << what;
     const FreshRun run = fresh_run(rings);
     run.mesh.check_valid();
     EXPECT_TRUE(run.mesh.shoreline_crossings().ok()) << what;
@@ -216,7 +216,7 @@ TEST(ConformingMesh, RandomShoreEditsOnSuperiorEqualAFreshRun) {
       edit.push_back({Edit<2>::Kind::Remove, 0, {}});
       removed.push_back(a);
     }
-    if (io::find_ring_defect(edited) || id_of.count(added.empty() ? Point2{} : added.front())) continue;
+    if (find_ring_defect(edited) || id_of.count(added.empty() ? Point2{} : added.front())) continue;
     if (!edit.empty() && edit[0].kind != Edit<2>::Kind::Add) edit[0].id = id_of.at(a);
 
     // The splits follow the rings; the engine takes the edit and the splits' change in one update.

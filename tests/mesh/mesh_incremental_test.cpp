@@ -12,7 +12,7 @@
 #include "mesh_test_util.hpp"
 #include "shoremesh/error.hpp"
 #include "shoremesh/families.hpp"
-#include "shoremesh/io/ring_check.hpp"
+#include "shoremesh/domain.hpp"
 #include "shoremesh/mesh.hpp"
 #include "shoremesh/well_spaced.hpp"
 
@@ -174,7 +174,7 @@ void check_ring_edits(std::optional<BoxTransform<2>> box) {
       edited.rings.push_back(Ring{{{0.2, 0.2}, {0.3, 0.2}, {0.25, 0.3}}, RingRole::Shore});
     }
     // The rings must stay valid (constraints never cross): an edit that breaks them is not made.
-    if (io::find_ring_defect(edited)) continue;
+    if (find_ring_defect(edited)) continue;
     change.added_input_count = change.added.size();
     for (const Point2& p : change.removed) erase_point(p);
     points.insert(points.end(), change.added.begin(), change.added.end());

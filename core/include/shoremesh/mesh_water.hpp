@@ -27,6 +27,9 @@ class WaterTest {
   // answers as WaterTest(new domain) does.
   void replace_stretch(std::size_t r, const std::vector<Point2>& before, const std::vector<Point2>& after,
                        std::size_t prefix, std::size_t suffix);
+  // Ring r (a new one past the last, or an existing one) becomes `after` (empty: it went), in
+  // O(its edges + the slabs they span).
+  void replace_ring(std::size_t r, const std::vector<Point2>& after);
 
  private:
   struct Edge {

@@ -46,7 +46,7 @@ struct SplitChange {
 
 class ShoreRefinement {
  public:
-  // `rings` must be valid (io::find_ring_defect finds nothing); `loose` are the input points on no ring.
+  // `rings` must be valid (find_ring_defect finds nothing); `loose` are the input points on no ring.
   explicit ShoreRefinement(const Domain2& rings, std::span<const Point2> loose = {}, RefinementRule rule = {});
   ~ShoreRefinement();
   ShoreRefinement(ShoreRefinement&&) noexcept;
@@ -59,7 +59,8 @@ class ShoreRefinement {
   std::vector<Point2> split_points() const;
   std::size_t split_count() const;
 
-  // The rings become `rings` (the same number, each ring edited anywhere) and the loose points lose
+  // The rings become `rings` (each ring edited anywhere; a ring past the last is new, and a ring
+  // left without points went; rings are matched by their place) and the loose points lose
   // `loose_removed` and gain `loose_added`. Returns the split points that went and came (none in both).
   SplitChange update(const Domain2& rings, std::span<const Point2> loose_removed = {},
                      std::span<const Point2> loose_added = {});

@@ -10,7 +10,7 @@
 #include "input_builder.hpp"
 #include "shoremesh/error.hpp"
 #include "shoremesh/io/georeference.hpp"
-#include "shoremesh/io/ring_check.hpp"
+#include "shoremesh/domain.hpp"
 #include "text_util.hpp"
 
 namespace shoremesh::io {

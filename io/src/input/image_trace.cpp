@@ -15,7 +15,7 @@
 
 #include "input_builder.hpp"
 #include "shoremesh/error.hpp"
-#include "shoremesh/io/ring_check.hpp"
+#include "shoremesh/domain.hpp"
 
 namespace shoremesh::io {
 

@@ -5,7 +5,7 @@
 
 #include "duplicates.hpp"
 #include "shoremesh/error.hpp"
-#include "shoremesh/io/ring_check.hpp"
+#include "shoremesh/domain.hpp"
 
 namespace shoremesh::io {
 

@@ -7,7 +7,7 @@
 #include "duplicates.hpp"
 #include "input_builder.hpp"
 #include "shoremesh/error.hpp"
-#include "shoremesh/io/ring_check.hpp"
+#include "shoremesh/domain.hpp"
 #include "text_util.hpp"
 
 namespace shoremesh::io {

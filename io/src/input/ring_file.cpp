@@ -6,7 +6,7 @@
 #include "shoremesh/error.hpp"
 #include "shoremesh/io/atomic_file.hpp"
 #include "shoremesh/io/point_set_csv.hpp"
-#include "shoremesh/io/ring_check.hpp"
+#include "shoremesh/domain.hpp"
 #include "text_util.hpp"
 
 namespace shoremesh::io {

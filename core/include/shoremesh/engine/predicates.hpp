@@ -8,6 +8,7 @@
 #include <CGAL/Interval_nt.h>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <type_traits>
 
@@ -106,6 +107,28 @@ int compare_squared_distance_to(PredicateCounters& counters, const Point<D>& a, 
   return filtered_sign(counters, fast, [&](auto zero) {
     using NT = decltype(zero);
     return squared_distance<NT, D>(a, b) - NT(t);
+  });
+}
+
+// sign((a - c) x (b - c)): +1 when a, b, c turn counter-clockwise, -1 clockwise, 0 collinear; exact.
+// Plain doubles decide first with Shewchuk's static error bound (orient2dfast; no rounding mode needed), then
+// intervals under a RoundingGuard of its own, then rationals.
+inline int orient2d(PredicateCounters& counters, const Point2& a, const Point2& b, const Point2& c) {
+  ++counters.calls;
+  const double detleft = (a[0] - c[0]) * (b[1] - c[1]);
+  const double detright = (a[1] - c[1]) * (b[0] - c[0]);
+  const double det = detleft - detright;
+  const double errbound = 3.3306690738754716e-16 * (std::abs(detleft) + std::abs(detright));  // (3 + 16 eps) eps
+  // The bound is relative: it holds only while no product underflows.
+  if (errbound > 1e-280) {
+    if (det > errbound) return 1;
+    if (-det > errbound) return -1;
+  }
+  --counters.calls;
+  const RoundingGuard guard;
+  return filtered_sign(counters, [&](auto zero) {
+    using NT = decltype(zero);
+    return (NT(a[0]) - NT(c[0])) * (NT(b[1]) - NT(c[1])) - (NT(a[1]) - NT(c[1])) * (NT(b[0]) - NT(c[0]));
   });
 }
 

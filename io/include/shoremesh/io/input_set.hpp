@@ -65,7 +65,7 @@ struct InputSet {
 // Exact duplicate points across the sets are an error that names both origins.
 InputSet merge(const std::vector<InputSet>& sets);
 
-// Checks the rings (shoremesh::io::find_ring_defect) and throws shoremesh::InputError naming the file and the
+// Checks the rings (shoremesh::find_ring_defect) and throws shoremesh::InputError naming the file and the
 // line or element of the first offending vertex, e.g. "lake.poly:12: ring 1 edge 3-4 crosses ring 2 edge 1-2".
 void check_rings(const InputSet& set);
 

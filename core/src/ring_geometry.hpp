@@ -1,14 +1,19 @@
 #pragma once
 // Internal: the segment tests of the ring checks (the whole check, and the index an edit session keeps),
-// exact through orient2d_sign.
+// exact through the engine's orient2d.
 #include <algorithm>
 #include <cstddef>
 #include <utility>
 
-#include "exact_orient.hpp"
-#include "shoremesh/io/ring_check.hpp"
+#include "shoremesh/domain.hpp"
+#include "shoremesh/engine/predicates.hpp"
 
-namespace shoremesh::io::detail {
+namespace shoremesh::detail {
+
+inline int orient(const Point2& a, const Point2& b, const Point2& c) {
+  thread_local engine::PredicateCounters counters;
+  return engine::orient2d(counters, a, b, c);
+}
 
 // Collinear point p lies within the closed box of segment ab (exact: comparisons only).
 inline bool within_box(const Point2& a, const Point2& b, const Point2& p) {
@@ -18,9 +23,8 @@ inline bool within_box(const Point2& a, const Point2& b, const Point2& p) {
 
 // Closed segments ab and cd share at least one point (exact).
 inline bool segments_meet(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
-  using detail::orient2d_sign;
-  const int o1 = orient2d_sign(a, b, c), o2 = orient2d_sign(a, b, d);
-  const int o3 = orient2d_sign(c, d, a), o4 = orient2d_sign(c, d, b);
+  const int o1 = orient(a, b, c), o2 = orient(a, b, d);
+  const int o3 = orient(c, d, a), o4 = orient(c, d, b);
   if (o1 * o2 < 0 && o3 * o4 < 0) return true;
   if (o1 == 0 && within_box(a, b, c)) return true;
   if (o2 == 0 && within_box(a, b, d)) return true;
@@ -31,7 +35,7 @@ inline bool segments_meet(const Point2& a, const Point2& b, const Point2& c, con
 
 // Consecutive edges a->b and b->c meet only at b unless c folds back along a->b (collinear, same side of b).
 inline bool adjacent_edges_overlap(const Point2& a, const Point2& b, const Point2& c) {
-  if (detail::orient2d_sign(a, b, c) != 0) return false;
+  if (orient(a, b, c) != 0) return false;
   auto side = [](double u, double v) { return (u > v) - (u < v); };
   const int sa = a[0] != b[0] ? side(a[0], b[0]) : side(a[1], b[1]);
   const int sc = a[0] != b[0] ? side(c[0], b[0]) : side(c[1], b[1]);
@@ -50,4 +54,17 @@ inline RingDefect crossing(std::size_t ring_a, std::size_t vertex_a, std::size_t
   return RingDefect{RingDefect::Kind::Intersection, ring_a, vertex_a, ring_b, vertex_b};
 }
 
-}  // namespace shoremesh::io::detail
+// The local defects of ring r (fewer than three points, a repeated vertex, a fold at a vertex), the first
+// in vertex order.
+inline std::optional<RingDefect> local_ring_defect(const std::vector<Point2>& pts, std::size_t r) {
+  if (pts.size() < 3) return RingDefect{RingDefect::Kind::TooFewPoints, r, 0, r, 0};
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const std::size_t j = (i + 1) % pts.size();
+    if (pts[i] == pts[j]) return RingDefect{RingDefect::Kind::RepeatedVertex, r, i, r, j};
+    if (adjacent_edges_overlap(pts[i], pts[j], pts[(j + 1) % pts.size()]))
+      return RingDefect{RingDefect::Kind::Intersection, r, i, r, j};
+  }
+  return std::nullopt;
+}
+
+}  // namespace shoremesh::detail

@@ -1,21 +1,20 @@
 #pragma once
-// The edges of a water domain's rings in an R-tree (Boost.Geometry), kept up to date through edits of one
-// vertex at a time: an edit session checks a moved, removed or added shore point against the edges near its
-// new edges only. Checking them against every edge (O(n) an edit) took about a tenth of a shore edit at
-// 171k shore points (0.8 to 0.9 ms of 8, bench/RESULTS.md); with the tree it is O(log n) plus the edges
-// the new ones come near.
+// The edges of a water domain's rings in an R-tree (Boost.Geometry): the whole check of a domain
+// (find_ring_defect), and an edit session's check of one vertex moved, removed or added, or of a ring
+// added, against the edges near the new ones only. Checking them against every edge (O(n) an edit) took
+// about a tenth of a shore edit at 171k shore points (0.8 to 0.9 ms of 8, bench/RESULTS.md); with the
+// tree it is O(log n) plus the edges the new ones come near.
 //
 // The rings must be valid (find_ring_defect finds nothing) when the index is built, and each edit checked
 // here before it is committed. Ring vertices are distinct points (the engine refuses duplicates), so an
-// edge is known by its ring and its two end points.
+// edge is known by its ring and its two end points. Rings without points (removed ones) hold no edge.
 #include <cstddef>
 #include <memory>
 #include <optional>
 
 #include "shoremesh/domain.hpp"
-#include "shoremesh/io/ring_check.hpp"
 
-namespace shoremesh::io {
+namespace shoremesh {
 
 // One vertex's edit of ring `ring`, with `vertex` an index in the ring after it:
 //  - Move: vertex `vertex` moved from `gone`;
@@ -36,6 +35,10 @@ class RingEdgeIndex {
   RingEdgeIndex(RingEdgeIndex&&) noexcept;
   RingEdgeIndex& operator=(RingEdgeIndex&&) noexcept;
 
+  // The first crossing of the indexed rings (`domain`, as indexed) in (ring, edge) order, or nothing:
+  // each edge against the edges its box meets. Local defects (folds, repeats) are find_ring_defect's.
+  std::optional<RingDefect> first_crossing(const Domain2& domain) const;
+
   // The first defect of `after` (the indexed rings with `edit` made), as find_ring_defect would report
   // it for a defect the edit makes, or nothing: the edges at the changed vertex against the edges their
   // boxes meet, and the folds at it and its neighbours.
@@ -45,6 +48,17 @@ class RingEdgeIndex {
   // vertex splits), those at the changed vertex of `after` come.
   void commit(const Domain2& after, const RingVertexEdit& edit);
 
+  // Ring `ring` of `after` is new (it holds no indexed edge): its first defect, on its own or against the
+  // indexed edges, as find_ring_defect would report it for `after`, or nothing.
+  std::optional<RingDefect> defect_of_new_ring(const Domain2& after, std::size_t ring) const;
+  // Ring `ring` with `points` comes (checked) or goes.
+  void insert_ring(std::size_t ring, const std::vector<Point2>& points);
+  void erase_ring(std::size_t ring, const std::vector<Point2>& points);
+
+  // Whether p lies inside an odd number of the indexed rings (the even-odd rule): the edges whose boxes
+  // meet the rightward ray from p, each decided exactly. p on an edge counts as inside.
+  bool inside(const Point2& p) const;
+
   std::size_t size() const;  // edges indexed
 
  private:
@@ -52,4 +66,4 @@ class RingEdgeIndex {
   std::unique_ptr<Tree> tree_;
 };
 
-}  // namespace shoremesh::io
+}  // namespace shoremesh

@@ -1,30 +1,13 @@
-#include "shoremesh/io/ring_check.hpp"
-
 #include <algorithm>
 #include <array>
 #include <utility>
 #include <vector>
 
-#include "exact_orient.hpp"
 #include "ring_geometry.hpp"
+#include "shoremesh/domain.hpp"
+#include "shoremesh/ring_edge_index.hpp"
 
-namespace shoremesh::io {
-
-using detail::adjacent_edges_overlap;
-using detail::consecutive_edges;
-using detail::crossing;
-using detail::segments_meet;
-using detail::within_box;
-
-namespace {
-
-struct Edge {
-  std::size_t ring, index;  // edge index -> index + 1 (mod n)
-  Point2 a, b;
-  double xmin, xmax, ymin, ymax;
-};
-
-}  // namespace
+namespace shoremesh {
 
 std::string RingDefect::describe() const {
   auto edge = [](std::size_t r, std::size_t v) {
@@ -42,37 +25,9 @@ std::string RingDefect::describe() const {
 }
 
 std::optional<RingDefect> find_ring_defect(const Domain2& domain) {
-  std::vector<Edge> edges;
-  for (std::size_t r = 0; r < domain.rings.size(); ++r) {
-    const auto& pts = domain.rings[r].points;
-    if (pts.size() < 3) return RingDefect{RingDefect::Kind::TooFewPoints, r, 0, r, 0};
-    for (std::size_t i = 0; i < pts.size(); ++i) {
-      const std::size_t j = (i + 1) % pts.size();
-      if (pts[i] == pts[j]) return RingDefect{RingDefect::Kind::RepeatedVertex, r, i, r, j};
-      const Point2 &a = pts[i], &b = pts[j];
-      edges.push_back({r, i, a, b, std::min(a[0], b[0]), std::max(a[0], b[0]), std::min(a[1], b[1]), std::max(a[1], b[1])});
-      if (adjacent_edges_overlap(a, b, pts[(j + 1) % pts.size()]))
-        return RingDefect{RingDefect::Kind::Intersection, r, i, r, j};
-    }
-  }
-  std::sort(edges.begin(), edges.end(), [](const Edge& e, const Edge& f) { return e.xmin < f.xmin; });
-  std::vector<std::size_t> active;
-  for (std::size_t k = 0; k < edges.size(); ++k) {
-    const Edge& e = edges[k];
-    std::size_t keep = 0;
-    for (std::size_t idx : active) {
-      const Edge& f = edges[idx];
-      if (f.xmax < e.xmin) continue;  // left behind by the sweep
-      active[keep++] = idx;
-      if (f.ymax < e.ymin || e.ymax < f.ymin) continue;
-      // Neighbours in a ring: checked above.
-      if (e.ring == f.ring && consecutive_edges(e.index, f.index, domain.rings[e.ring].points.size())) continue;
-      if (segments_meet(e.a, e.b, f.a, f.b)) return crossing(f.ring, f.index, e.ring, e.index);
-    }
-    active.resize(keep);
-    active.push_back(k);
-  }
-  return std::nullopt;
+  for (std::size_t r = 0; r < domain.rings.size(); ++r)
+    if (auto d = detail::local_ring_defect(domain.rings[r].points, r)) return d;
+  return RingEdgeIndex(domain).first_crossing(domain);
 }
 
 bool ring_contains(const std::vector<Point2>& ring, const Point2& p) {
@@ -80,12 +35,11 @@ bool ring_contains(const std::vector<Point2>& ring, const Point2& p) {
   const std::size_t n = ring.size();
   for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
     const Point2 &a = ring[j], &b = ring[i];
-    if (detail::orient2d_sign(a, b, p) == 0 && within_box(a, b, p)) return true;
+    const int o = detail::orient(a, b, p);
+    if (o == 0 && detail::within_box(a, b, p)) return true;
     // Edge crosses the horizontal ray to the right of p (half-open rule on y).
-    if ((a[1] > p[1]) != (b[1] > p[1])) {
-      const int o = detail::orient2d_sign(a, b, p);
+    if ((a[1] > p[1]) != (b[1] > p[1]))
       if ((b[1] > a[1]) ? o > 0 : o < 0) inside = !inside;
-    }
   }
   return inside;
 }
@@ -111,4 +65,4 @@ void assign_roles_by_nesting(Domain2& domain) {
   }
 }
 
-}  // namespace shoremesh::io
+}  // namespace shoremesh

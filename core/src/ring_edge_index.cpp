@@ -1,17 +1,19 @@
-#include "shoremesh/io/ring_edge_index.hpp"
+#include "shoremesh/ring_edge_index.hpp"
 
 #include <boost/geometry.hpp>
 #include <boost/geometry/index/rtree.hpp>
 
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 #include <vector>
 
 #include "ring_geometry.hpp"
 
-namespace shoremesh::io {
+namespace shoremesh {
 
 namespace bg = boost::geometry;
 namespace bgi = boost::geometry::index;
@@ -36,6 +38,13 @@ Box box_of(const Point2& a, const Point2& b) {
 
 Entry entry(std::size_t ring, const Point2& a, const Point2& b) { return {box_of(a, b), IndexedEdge{ring, a, b}}; }
 
+std::vector<Entry> ring_entries(std::size_t ring, const std::vector<Point2>& pts) {
+  std::vector<Entry> out;
+  out.reserve(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i) out.push_back(entry(ring, pts[i], pts[(i + 1) % pts.size()]));
+  return out;
+}
+
 // The index in `ring` of the edge a -> b (the error path only: a linear scan).
 std::size_t edge_index(const std::vector<Point2>& ring, const Point2& a, const Point2& b) {
   for (std::size_t i = 0; i < ring.size(); ++i)
@@ -47,13 +56,34 @@ std::size_t edge_index(const std::vector<Point2>& ring, const Point2& a, const P
 
 struct RingEdgeIndex::Tree {
   bgi::rtree<Entry, bgi::quadratic<16>> rtree;
+
+  // Among the indexed edges meeting edge e of ring `ring` in `rings` (other than e itself and its two
+  // neighbours), the first in (ring, edge) order.
+  std::optional<std::pair<std::size_t, std::size_t>> first_met(const Domain2& rings, std::size_t ring,
+                                                               std::size_t e) const {
+    const auto& pts = rings.rings[ring].points;
+    const std::size_t n = pts.size();
+    const Point2 &a = pts[e], &b = pts[(e + 1) % n];
+    const Point2 &prev = pts[(e + n - 1) % n], &next = pts[(e + 2) % n];
+    std::vector<Entry> near;
+    rtree.query(bgi::intersects(box_of(a, b)), std::back_inserter(near));
+    std::optional<std::pair<std::size_t, std::size_t>> first;
+    for (const auto& [box, f] : near) {
+      if (f.ring == ring && ((f.a == a && f.b == b) || (f.a == prev && f.b == a) || (f.a == b && f.b == next)))
+        continue;  // itself, its neighbours
+      if (!detail::segments_meet(a, b, f.a, f.b)) continue;
+      const std::pair<std::size_t, std::size_t> at{f.ring, edge_index(rings.rings.at(f.ring).points, f.a, f.b)};
+      if (!first || at < *first) first = at;
+    }
+    return first;
+  }
 };
 
 RingEdgeIndex::RingEdgeIndex(const Domain2& domain) : tree_(std::make_unique<Tree>()) {
   std::vector<Entry> entries;
   for (std::size_t r = 0; r < domain.rings.size(); ++r) {
-    const auto& pts = domain.rings[r].points;
-    for (std::size_t i = 0; i < pts.size(); ++i) entries.push_back(entry(r, pts[i], pts[(i + 1) % pts.size()]));
+    auto e = ring_entries(r, domain.rings[r].points);
+    entries.insert(entries.end(), e.begin(), e.end());
   }
   tree_->rtree = decltype(tree_->rtree)(entries.begin(), entries.end());  // packed: a bulk load
 }
@@ -63,6 +93,15 @@ RingEdgeIndex::RingEdgeIndex(RingEdgeIndex&&) noexcept = default;
 RingEdgeIndex& RingEdgeIndex::operator=(RingEdgeIndex&&) noexcept = default;
 
 std::size_t RingEdgeIndex::size() const { return tree_->rtree.size(); }
+
+std::optional<RingDefect> RingEdgeIndex::first_crossing(const Domain2& domain) const {
+  // The first edge in (ring, edge) order that meets another: its partner comes later in that order (an
+  // earlier one would have been found at the partner).
+  for (std::size_t r = 0; r < domain.rings.size(); ++r)
+    for (std::size_t e = 0; e < domain.rings[r].points.size(); ++e)
+      if (const auto f = tree_->first_met(domain, r, e)) return detail::crossing(r, e, f->first, f->second);
+  return std::nullopt;
+}
 
 std::optional<RingDefect> RingEdgeIndex::defect_at(const Domain2& after, const RingVertexEdit& edit) const {
   const std::size_t ring = edit.ring;
@@ -124,4 +163,47 @@ void RingEdgeIndex::commit(const Domain2& after, const RingVertexEdit& edit) {
   tree_->rtree.insert(entry(edit.ring, pts[edit.vertex], pts[(edit.vertex + 1) % n]));
 }
 
-}  // namespace shoremesh::io
+std::optional<RingDefect> RingEdgeIndex::defect_of_new_ring(const Domain2& after, std::size_t ring) const {
+  const auto& pts = after.rings.at(ring).points;
+  if (auto d = detail::local_ring_defect(pts, ring)) return d;
+  // Its own crossings, through an index of the ring alone, then against the indexed edges: the first
+  // crossing in (ring, edge) order over both.
+  Domain2 alone;
+  alone.rings.resize(ring + 1);
+  alone.rings[ring].points = pts;
+  std::optional<RingDefect> first = RingEdgeIndex(alone).first_crossing(alone);
+  for (std::size_t e = 0; e < pts.size(); ++e)
+    if (const auto f = tree_->first_met(after, ring, e)) {
+      const RingDefect d = detail::crossing(ring, e, f->first, f->second);
+      if (!first || std::tie(d.ring_a, d.vertex_a, d.ring_b, d.vertex_b) <
+                        std::tie(first->ring_a, first->vertex_a, first->ring_b, first->vertex_b))
+        first = d;
+    }
+  return first;
+}
+
+void RingEdgeIndex::insert_ring(std::size_t ring, const std::vector<Point2>& points) {
+  const auto entries = ring_entries(ring, points);
+  tree_->rtree.insert(entries.begin(), entries.end());
+}
+
+void RingEdgeIndex::erase_ring(std::size_t ring, const std::vector<Point2>& points) {
+  const auto entries = ring_entries(ring, points);
+  if (tree_->rtree.remove(entries.begin(), entries.end()) != entries.size())
+    throw std::logic_error("ring edge index: a removed ring's edge was not indexed");
+}
+
+bool RingEdgeIndex::inside(const Point2& p) const {
+  const Box ray(BoxCorner(p[0], p[1]), BoxCorner(std::numeric_limits<double>::max(), p[1]));
+  bool in = false;
+  for (auto it = tree_->rtree.qbegin(bgi::intersects(ray)); it != tree_->rtree.qend(); ++it) {
+    const Point2 &a = it->second.a, &b = it->second.b;
+    const int o = detail::orient(a, b, p);
+    if (o == 0 && detail::within_box(a, b, p)) return true;
+    // Half-open rule on y (exact comparisons): a vertex at the ray's height is counted once.
+    if ((a[1] > p[1]) != (b[1] > p[1]) && ((b[1] > a[1]) ? o > 0 : o < 0)) in = !in;
+  }
+  return in;
+}
+
+}  // namespace shoremesh

@@ -1,0 +1,585 @@
+#include "shoremesh/shore_session.hpp"
+
+#include <algorithm>
+#include <iterator>
+#include <string>
+#include <unordered_map>
+#include <utility>
+
+#include "shoremesh/error.hpp"
+#include "shoremesh/ring_edge_index.hpp"
+
+namespace shoremesh {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+// Exact coordinates as a key.
+struct ExactHash {
+  std::size_t operator()(const Point2& p) const {
+    return std::hash<double>{}(p[0] + 0.0) * 0x9E3779B97F4A7C15ull ^ std::hash<double>{}(p[1] + 0.0);
+  }
+};
+
+template <int D>
+std::vector<ElementCorners<D>> sorted_corners(const Mesh<D>& mesh) {
+  std::vector<ElementCorners<D>> out;
+  const auto& points = mesh.points();
+  for (const auto& e : mesh.elements()) {
+    ElementCorners<D> c;
+    for (int i = 0; i <= D; ++i) c[std::size_t(i)] = points[e[std::size_t(i)]];
+    std::sort(c.begin(), c.end());
+    out.push_back(c);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+template <int D>
+std::string describe_point(const Point<D>& p) {
+  std::string s = "(";
+  for (int i = 0; i < D; ++i) s += (i ? ", " : "") + std::to_string(p[std::size_t(i)]);
+  return s + ")";
+}
+
+}  // namespace
+
+template <int D>
+Parameters<D> session_parameters(double rho) {
+  Parameters<D> parameters;
+  parameters.rho = rho;
+  if (parameters.beta <= rho) parameters.beta = 1.5 * rho;  // keep the picking region non-empty
+  return parameters;
+}
+
+std::optional<ShoreRefinement> refine_shore(const Domain2& rings, std::span<const Point2> loose, double box_side) {
+  if (rings.empty()) return std::nullopt;
+  return ShoreRefinement(rings, loose, RefinementRule::for_box(box_side));
+}
+
+template <int D>
+Mesh<D> well_spaced_mesh(std::span<const Point<D>> points, std::size_t input_count, const Domain2& domain,
+                         const BoxTransform<D>& box, bool keep_hull) {
+  if constexpr (D == 2)
+    if (!domain.empty()) return Mesh<2>(points, input_count, domain);
+  const std::optional<BoxTransform<D>> covered = keep_hull ? std::nullopt : std::optional(box);
+  return Mesh<D>(points, input_count, covered);
+}
+
+template <int D>
+struct ShoreSession<D>::Impl {
+  static constexpr std::size_t kRemoved = static_cast<std::size_t>(-1);
+
+  Options options;
+  std::optional<ShoreRefinement> refinement;  // 2D with rings: the user's rings and their canonical splits
+  std::optional<DynamicWellSpaced<D>> set;
+  std::unordered_map<Point2, std::size_t, ExactHash> split_id;  // a split point's engine id
+  std::vector<std::size_t> engine_of_user;  // by user id: the engine's input id (kRemoved once removed)
+  std::optional<RingEdgeIndex> ring_index;  // the edges of the user's rings
+  std::vector<std::vector<std::size_t>> ring_ids;  // ring r's vertices as input ids (empty: removed)
+  std::unordered_map<std::size_t, std::pair<std::size_t, std::size_t>> ring_of;  // id -> (ring, position)
+  std::optional<Mesh<D>> mesh;
+
+  std::size_t engine_id(std::size_t id) const { return engine_of_user.at(id); }
+
+  // A change of the user's rings, checked, as the refinement, the index and the ids take it.
+  struct RingChange {
+    Domain2 domain;                    // all the rings after it
+    std::optional<RingVertexEdit> edit;  // one vertex's edit (nullopt: a ring came or went)
+    std::size_t ring = 0;
+  };
+
+  // The rings after a vertex edit at input `id`: moved to `p`, removed, or a new vertex at `p` after it.
+  // InputError when they would be invalid; nullopt when `id` is on no ring.
+  std::optional<RingChange> vertex_change(RingVertexEdit::Kind kind, std::size_t id, const Point<D>& p) const {
+    using Kind = RingVertexEdit::Kind;
+    if constexpr (D != 2) {
+      return std::nullopt;
+    } else {
+      const auto it = ring_of.find(id);
+      if (it == ring_of.end()) return std::nullopt;
+      const auto [r, k] = it->second;
+      const Domain2& now = refinement->rings();
+      RingChange change{now, RingVertexEdit{kind, r, k, now.rings[r].points[k]}, r};
+      auto& ring = change.domain.rings[r].points;
+      // The rings were valid before: only the edges at the changed vertex (or across the gap the removed
+      // one leaves, from the vertex before it) are new, and only they need a look (the ring index).
+      if (kind == Kind::Move) {
+        ring[k] = p;
+      } else if (kind == Kind::Insert) {
+        ring.insert(ring.begin() + static_cast<std::ptrdiff_t>(k + 1), p);
+        change.edit->vertex = k + 1;
+      } else {
+        if (ring.size() <= 3)
+          throw InputError("input point " + std::to_string(id) + " is one of the last three points of ring " +
+                           std::to_string(r + 1) + "; it cannot be removed (remove the ring instead)");
+        ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
+        change.edit->vertex = (k + ring.size() - 1) % ring.size();
+      }
+      if (const auto defect = ring_index->defect_at(change.domain, *change.edit)) {
+        const std::string what = kind == Kind::Move     ? "moving input point " + std::to_string(id)
+                                 : kind == Kind::Insert ? "adding a point after input point " + std::to_string(id)
+                                                        : "removing input point " + std::to_string(id);
+        throw InputError(what + " would break the shoreline: " + defect->describe());
+      }
+      return change;
+    }
+  }
+
+  // Takes a committed change into the ids: `id` removed from its ring, or inserted as the new vertex.
+  void commit_vertex_ids(const RingChange& change, std::size_t id) {
+    using Kind = RingVertexEdit::Kind;
+    const std::size_t r = change.ring;
+    auto& ids = ring_ids[r];
+    std::size_t first = 0;  // the ids from here on changed position
+    if (change.edit->kind == Kind::Insert) {
+      first = change.edit->vertex;
+      ids.insert(ids.begin() + static_cast<std::ptrdiff_t>(first), id);
+    } else if (change.edit->kind == Kind::Remove) {
+      first = ring_of.at(id).second;
+      ring_of.erase(id);
+      ids.erase(ids.begin() + static_cast<std::ptrdiff_t>(first));
+    } else {
+      return;
+    }
+    for (std::size_t j = first; j < ids.size(); ++j) ring_of[ids[j]] = {r, j};
+  }
+
+  // Applies the user's edits of the engine's input (engine ids) together with what they do to the shore's
+  // canonical splits, in one propagation: `rings` are the user's rings after the edit (null: unchanged),
+  // `loose_removed`/`loose_added` the loose points the edit takes and gives. The input points that went
+  // and came (splits included) are added to `removed`/`added`; returns the engine ids of the edits' added
+  // points, in order. On an error nothing changed.
+  std::vector<std::size_t> apply_edits(std::vector<Edit<D>> edits, const Domain2* rings,
+                                       std::vector<Point<D>> loose_removed, std::vector<Point<D>> loose_added,
+                                       std::vector<Point<D>>& removed, std::vector<Point<D>>& added,
+                                       UpdateReport<D>& report) {
+    const std::size_t user_adds = static_cast<std::size_t>(
+        std::count_if(edits.begin(), edits.end(), [](const Edit<D>& e) { return e.kind == Edit<D>::Kind::Add; }));
+    if constexpr (D == 2) {
+      if (refinement) {
+        const Domain2 before = refinement->rings();
+        const SplitChange change = refinement->update(rings ? *rings : before, loose_removed, loose_added);
+        for (const Point2& p : change.removed) {
+          edits.push_back({Edit<D>::Kind::Remove, split_id.at(p), {}});
+          removed.push_back(p);
+        }
+        for (const Point2& p : change.added) {
+          edits.push_back({Edit<D>::Kind::Add, 0, p});
+          added.push_back(p);
+        }
+        std::vector<std::size_t> ids;
+        try {
+          ids = set->apply(edits, &report);
+        } catch (...) {
+          refinement->update(before, loose_added, loose_removed);  // the inverse edit: the same splits as before
+          throw;
+        }
+        for (const Point2& p : change.removed) split_id.erase(p);
+        for (std::size_t j = 0; j < change.added.size(); ++j) split_id.emplace(change.added[j], ids[user_adds + j]);
+        ids.resize(user_adds);
+        return ids;
+      }
+    }
+    (void)rings, (void)loose_removed, (void)loose_added;
+    return set->apply(edits, &report);
+  }
+
+  // After the engine took an edit: the mesh takes the engine's Steiner changes plus the input points that
+  // went and came, and the refined rings (any edit near the shore may change its splits), and the edit
+  // its counts and times.
+  void update_mesh(std::vector<Point<D>> removed, std::vector<Point<D>> added, Clock::time_point edit_start,
+                   Clock::time_point engine_start, SessionEdit<D>& out) {
+    const auto mesh_start = Clock::now();
+    out.rings_ms = ms_between(edit_start, engine_start);
+    out.engine_ms = ms_between(engine_start, mesh_start);
+    out.inputs_removed = removed.size();
+    out.inputs_added = added.size();
+    const auto change = PointChange<D>::from_update(out.engine, std::move(removed), std::move(added));
+    Domain2 refined;
+    if constexpr (D == 2)
+      if (refinement) refined = refinement->refined();
+    try {
+      if constexpr (D == 2) out.mesh = refinement ? mesh->apply(change, refined) : mesh->apply(change);
+      else out.mesh = mesh->apply(change);
+    } catch (const InputError&) {
+      // The mesh and the engine disagree (the mesh changed nothing): rebuild from the engine's points.
+      out.rebuilt = true;
+      const auto before = sorted_corners<D>(*mesh);
+      const auto points = set->points();
+      mesh = well_spaced_mesh<D>(points, set->input_count(), refined, set->box(), options.keep_hull);
+      const auto after = sorted_corners<D>(*mesh);
+      out.mesh = {};
+      std::set_difference(before.begin(), before.end(), after.begin(), after.end(), std::back_inserter(out.mesh.removed));
+      std::set_difference(after.begin(), after.end(), before.begin(), before.end(), std::back_inserter(out.mesh.added));
+    }
+    const auto end = Clock::now();
+    out.mesh_ms = ms_between(mesh_start, end);
+    out.ms = ms_between(edit_start, end);
+  }
+
+  void check_in_box(const Point<D>& p) const {
+    if (set->box().contains(p)) return;
+    Point<D> hi = set->box().origin;
+    for (auto& x : hi) x += set->box().side;
+    throw InputError("the point " + describe_point<D>(p) + " is outside the session's box, " +
+                     describe_point<D>(set->box().origin) + " to " + describe_point<D>(hi) +
+                     "; the box never grows (start the session with a larger box)");
+  }
+
+  std::size_t live_rings() const {
+    return static_cast<std::size_t>(std::count_if(ring_ids.begin(), ring_ids.end(), [](auto& r) { return !r.empty(); }));
+  }
+};
+
+template <int D>
+ShoreSession<D>::ShoreSession(const SessionInput<D>& input, const Options& options)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  m.options = options;
+  const std::size_t n = input.points.size();
+  if constexpr (D == 2) {
+    if (!input.rings.empty()) {
+      if (input.ring_offsets.size() != input.rings.rings.size())
+        throw InputError("session input: " + std::to_string(input.rings.rings.size()) + " rings but " +
+                         std::to_string(input.ring_offsets.size()) + " ring offsets");
+      if (const auto defect = find_ring_defect(input.rings)) throw InputError("invalid rings: " + defect->describe());
+      std::vector<bool> on_ring(n, false);
+      for (std::size_t r = 0; r < input.rings.rings.size(); ++r) {
+        std::vector<std::size_t> ids;
+        const auto& pts = input.rings.rings[r].points;
+        for (std::size_t k = 0; k < pts.size(); ++k) {
+          const std::size_t id = input.ring_offsets[r] + k;
+          if (id >= n || input.points[id] != pts[k] || on_ring[id])
+            throw InputError("session input: ring " + std::to_string(r + 1) + " vertex " + std::to_string(k + 1) +
+                             " is not input point " + std::to_string(id));
+          on_ring[id] = true;
+          ids.push_back(id);
+          m.ring_of[id] = {r, k};
+        }
+        m.ring_ids.push_back(std::move(ids));
+      }
+      std::vector<Point2> loose;
+      for (std::size_t i = 0; i < n; ++i)
+        if (!on_ring[i]) loose.push_back(input.points[i]);
+      // No split below 2^-32 of the engine's box: the given one, or the one the engine fits to the input.
+      const double side = options.box ? options.box->side : BoxTransform<2>::fit(input.points).side;
+      m.refinement = refine_shore(input.rings, loose, side);
+      m.ring_index.emplace(input.rings);
+    }
+  }
+  // As a fresh run gives them to the engine: the input points, then the shore's splits.
+  std::vector<Point<D>> engine_points = input.points;
+  std::vector<Point2> splits;
+  if constexpr (D == 2)
+    if (m.refinement) splits = m.refinement->split_points();
+  if constexpr (D == 2) engine_points.insert(engine_points.end(), splits.begin(), splits.end());
+  m.set.emplace(engine_points, session_parameters<D>(options.rho), options.box);
+  for (std::size_t id = 0; id < n; ++id) m.engine_of_user.push_back(id);
+  for (std::size_t j = 0; j < splits.size(); ++j) m.split_id.emplace(splits[j], n + j);
+  Domain2 refined;
+  if constexpr (D == 2)
+    if (m.refinement) refined = m.refinement->refined();
+  const auto points = m.set->points();
+  m.mesh.emplace(well_spaced_mesh<D>(points, m.set->input_count(), refined, m.set->box(), options.keep_hull));
+}
+
+template <int D>
+ShoreSession<D>::~ShoreSession() = default;
+template <int D>
+ShoreSession<D>::ShoreSession(ShoreSession&&) noexcept = default;
+template <int D>
+ShoreSession<D>& ShoreSession<D>::operator=(ShoreSession&&) noexcept = default;
+
+template <int D>
+SessionEdit<D> ShoreSession<D>::add(const Point<D>& p) {
+  Impl& m = *impl_;
+  m.check_in_box(p);
+  SessionEdit<D> out;
+  const auto start = Clock::now();
+  std::vector<Point<D>> removed, added{p};
+  const auto ids = m.apply_edits({{Edit<D>::Kind::Add, 0, p}}, nullptr, {}, {p}, removed, added, out.engine);
+  out.id = m.engine_of_user.size();
+  m.engine_of_user.push_back(ids.at(0));
+  m.update_mesh(std::move(removed), std::move(added), start, start, out);
+  return out;
+}
+
+template <int D>
+SessionEdit<D> ShoreSession<D>::add_after(std::size_t after, const Point<D>& p) {
+  Impl& m = *impl_;
+  if constexpr (D != 2) throw InputError("a point after another is a shoreline edit, for 2D sessions");
+  check_id(after);
+  m.check_in_box(p);
+  const auto edit_start = Clock::now();
+  auto rings = m.vertex_change(RingVertexEdit::Kind::Insert, after, p);
+  if (!rings)
+    throw InputError("input point " + std::to_string(after) +
+                     " is on no shoreline (a loose point); a point after it would be on none either");
+  SessionEdit<D> out;
+  const auto start = Clock::now();
+  std::vector<Point<D>> removed, added{p};
+  const auto ids = m.apply_edits({{Edit<D>::Kind::Add, 0, p}}, &rings->domain, {}, {}, removed, added, out.engine);
+  out.id = m.engine_of_user.size();
+  out.ring = rings->ring;
+  m.engine_of_user.push_back(ids.at(0));
+  m.commit_vertex_ids(*rings, out.id);
+  m.ring_index->commit(rings->domain, *rings->edit);
+  m.update_mesh(std::move(removed), std::move(added), edit_start, start, out);
+  return out;
+}
+
+template <int D>
+SessionEdit<D> ShoreSession<D>::move(std::size_t id, const Point<D>& p) {
+  Impl& m = *impl_;
+  check_id(id);
+  m.check_in_box(p);
+  const Point<D> old = m.set->input_point(m.engine_id(id));
+  const auto edit_start = Clock::now();
+  auto rings = m.vertex_change(RingVertexEdit::Kind::Move, id, p);
+  SessionEdit<D> out;
+  out.id = id;
+  const auto start = Clock::now();
+  std::vector<Point<D>> removed{old}, added{p};
+  m.apply_edits({{Edit<D>::Kind::Move, m.engine_id(id), p}}, rings ? &rings->domain : nullptr,
+                rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{old},
+                rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{p}, removed, added, out.engine);
+  if (rings) {
+    out.ring = rings->ring;
+    m.ring_index->commit(rings->domain, *rings->edit);
+  }
+  m.update_mesh(std::move(removed), std::move(added), edit_start, start, out);
+  return out;
+}
+
+template <int D>
+SessionEdit<D> ShoreSession<D>::remove(std::size_t id) {
+  Impl& m = *impl_;
+  check_id(id);
+  const Point<D> old = m.set->input_point(m.engine_id(id));
+  const auto edit_start = Clock::now();
+  auto rings = m.vertex_change(RingVertexEdit::Kind::Remove, id, old);
+  SessionEdit<D> out;
+  out.id = id;
+  const auto start = Clock::now();
+  std::vector<Point<D>> removed{old}, added;
+  m.apply_edits({{Edit<D>::Kind::Remove, m.engine_id(id), {}}}, rings ? &rings->domain : nullptr,
+                rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{old}, {}, removed, added, out.engine);
+  m.engine_of_user[id] = Impl::kRemoved;
+  if (rings) {
+    out.ring = rings->ring;
+    m.commit_vertex_ids(*rings, id);
+    m.ring_index->commit(rings->domain, *rings->edit);
+  }
+  m.update_mesh(std::move(removed), std::move(added), edit_start, start, out);
+  return out;
+}
+
+template <int D>
+SessionEdit<D> ShoreSession<D>::add_ring(std::span<const Point2> points) {
+  Impl& m = *impl_;
+  if constexpr (D != 2) {
+    (void)points;
+    throw InputError("rings are for 2D sessions");
+  } else {
+    if (!m.refinement) throw InputError("this session has no shoreline: a ring needs rings to join");
+    for (const Point2& p : points) m.check_in_box(p);
+    const auto edit_start = Clock::now();
+    const std::size_t r = m.ring_ids.size();
+    Domain2 after = m.refinement->rings();
+    after.rings.push_back({std::vector<Point2>(points.begin(), points.end()), RingRole::Shore});
+    if (const auto defect = m.ring_index->defect_of_new_ring(after, r))
+      throw InputError("the new ring (ring " + std::to_string(r + 1) + ") would break the shoreline: " + defect->describe());
+    // Its role from its nesting: inside an odd number of rings it bounds land (an island).
+    after.rings[r].role = m.ring_index->inside(points.front()) ? RingRole::Island : RingRole::Shore;
+    SessionEdit<D> out;
+    const auto start = Clock::now();
+    std::vector<Edit<D>> edits;
+    for (const Point2& p : points) edits.push_back({Edit<D>::Kind::Add, 0, p});
+    std::vector<Point<D>> removed, added(points.begin(), points.end());
+    const auto ids = m.apply_edits(std::move(edits), &after, {}, {}, removed, added, out.engine);
+    std::vector<std::size_t> user_ids;
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+      const std::size_t id = m.engine_of_user.size();
+      m.engine_of_user.push_back(ids[k]);
+      m.ring_of[id] = {r, k};
+      user_ids.push_back(id);
+    }
+    m.ring_ids.push_back(user_ids);
+    m.ring_index->insert_ring(r, after.rings[r].points);
+    out.id = user_ids.front();
+    out.ring = r;
+    out.ring_ids = std::move(user_ids);
+    m.update_mesh(std::move(removed), std::move(added), edit_start, start, out);
+    return out;
+  }
+}
+
+template <int D>
+SessionEdit<D> ShoreSession<D>::remove_ring(std::size_t r) {
+  Impl& m = *impl_;
+  if constexpr (D != 2) {
+    (void)r;
+    throw InputError("rings are for 2D sessions");
+  } else {
+    if (!m.refinement) throw InputError("this session has no shoreline");
+    if (r >= m.ring_ids.size()) throw InputError("no ring " + std::to_string(r + 1) + " (rings 1.." + std::to_string(m.ring_ids.size()) + ")");
+    if (m.ring_ids[r].empty()) throw InputError("ring " + std::to_string(r + 1) + " was removed");
+    if (m.live_rings() == 1) throw InputError("ring " + std::to_string(r + 1) + " is the last ring; without one the water is undefined");
+    const auto edit_start = Clock::now();
+    Domain2 after = m.refinement->rings();
+    const std::vector<Point2> gone = after.rings[r].points;
+    after.rings[r].points.clear();
+    SessionEdit<D> out;
+    out.ring = r;
+    out.id = m.ring_ids[r].front();
+    const auto start = Clock::now();
+    std::vector<Edit<D>> edits;
+    for (std::size_t id : m.ring_ids[r]) edits.push_back({Edit<D>::Kind::Remove, m.engine_id(id), {}});
+    std::vector<Point<D>> removed(gone.begin(), gone.end()), added;
+    m.apply_edits(std::move(edits), &after, {}, {}, removed, added, out.engine);
+    for (std::size_t id : m.ring_ids[r]) {
+      m.engine_of_user[id] = Impl::kRemoved;
+      m.ring_of.erase(id);
+    }
+    out.ring_ids = std::move(m.ring_ids[r]);
+    m.ring_ids[r].clear();
+    m.ring_index->erase_ring(r, gone);
+    m.update_mesh(std::move(removed), std::move(added), edit_start, start, out);
+    return out;
+  }
+}
+
+template <int D>
+const Mesh<D>& ShoreSession<D>::mesh() const { return *impl_->mesh; }
+template <int D>
+const BoxTransform<D>& ShoreSession<D>::box() const { return impl_->set->box(); }
+template <int D>
+double ShoreSession<D>::rho() const { return impl_->options.rho; }
+template <int D>
+bool ShoreSession<D>::has_rings() const { return impl_->refinement.has_value(); }
+
+template <int D>
+bool ShoreSession<D>::contains(std::size_t id) const {
+  return id < impl_->engine_of_user.size() && impl_->engine_of_user[id] != Impl::kRemoved;
+}
+
+template <int D>
+void ShoreSession<D>::check_id(std::size_t id) const {
+  if (contains(id)) return;
+  const std::size_t next = next_id();
+  if (id < next) throw InputError("input point " + std::to_string(id) + " was removed");
+  throw InputError("no input point " + std::to_string(id) +
+                   (next ? " (ids so far: 0.." + std::to_string(next - 1) + ")" : std::string(" (no ids yet)")));
+}
+
+template <int D>
+Point<D> ShoreSession<D>::input_point(std::size_t id) const {
+  check_id(id);
+  return impl_->set->input_point(impl_->engine_id(id));
+}
+
+template <int D>
+std::optional<std::pair<std::size_t, std::size_t>> ShoreSession<D>::ring_of(std::size_t id) const {
+  const auto it = impl_->ring_of.find(id);
+  if (it == impl_->ring_of.end()) return std::nullopt;
+  return it->second;
+}
+
+template <int D>
+std::size_t ShoreSession<D>::next_id() const { return impl_->engine_of_user.size(); }
+template <int D>
+std::size_t ShoreSession<D>::input_count() const { return impl_->set->input_count() - impl_->split_id.size(); }
+template <int D>
+std::size_t ShoreSession<D>::split_count() const { return impl_->split_id.size(); }
+template <int D>
+std::size_t ShoreSession<D>::steiner_count() const { return impl_->set->steiner_count(); }
+
+template <int D>
+Domain2 ShoreSession<D>::rings() const {
+  Domain2 out;
+  if (impl_->refinement)
+    for (const Ring& r : impl_->refinement->rings().rings)
+      if (!r.points.empty()) out.rings.push_back(r);
+  return out;
+}
+
+template <int D>
+const Domain2& ShoreSession<D>::refined_rings() const { return impl_->mesh->domain(); }
+
+template <int D>
+std::vector<Point<D>> ShoreSession<D>::canonical_points() const {
+  const Impl& m = *impl_;
+  const std::vector<Point<D>> all = m.set->points();
+  std::vector<Point<D>> out;
+  out.reserve(all.size());
+  for (std::size_t eid : m.engine_of_user)
+    if (eid != Impl::kRemoved) out.push_back(m.set->input_point(eid));
+  if constexpr (D == 2)
+    if (m.refinement)
+      for (const Point2& p : m.refinement->split_points()) out.push_back(p);
+  out.insert(out.end(), all.begin() + static_cast<std::ptrdiff_t>(m.set->input_count()), all.end());
+  return out;
+}
+
+template <int D>
+SessionInput<D> ShoreSession<D>::current_input() const {
+  const Impl& m = *impl_;
+  SessionInput<D> in;
+  std::vector<std::size_t> renumbered(m.engine_of_user.size(), Impl::kRemoved);
+  for (std::size_t id = 0; id < m.engine_of_user.size(); ++id)
+    if (m.engine_of_user[id] != Impl::kRemoved) {
+      renumbered[id] = in.points.size();
+      in.points.push_back(m.set->input_point(m.engine_of_user[id]));
+    }
+  if constexpr (D == 2) {
+    // Rings as runs of ids: a fresh run reads each ring's points in ring order, so the points move
+    // there: ring vertices first (ring by ring), then the loose points, each group in id order.
+    if (m.refinement) {
+      SessionInput<D> ringed;
+      std::vector<bool> on_ring(m.engine_of_user.size(), false);
+      for (std::size_t r = 0; r < m.ring_ids.size(); ++r) {
+        if (m.ring_ids[r].empty()) continue;
+        ringed.ring_offsets.push_back(ringed.points.size());
+        Ring ring{{}, m.refinement->rings().rings[r].role};
+        for (std::size_t id : m.ring_ids[r]) {
+          on_ring[id] = true;
+          ring.points.push_back(in.points[renumbered[id]]);
+          ringed.points.push_back(ring.points.back());
+        }
+        ringed.rings.rings.push_back(std::move(ring));
+      }
+      for (std::size_t id = 0; id < m.engine_of_user.size(); ++id)
+        if (renumbered[id] != Impl::kRemoved && !on_ring[id]) ringed.points.push_back(in.points[renumbered[id]]);
+      return ringed;
+    }
+  }
+  return in;
+}
+
+template <int D>
+ShorelineStatus ShoreSession<D>::shoreline() const {
+  ShorelineStatus s;
+  if constexpr (D == 2) {
+    if (!impl_->refinement) return s;
+    const ShorelineReport r = impl_->mesh->shoreline_crossings();
+    s.segments = r.segments;
+    s.covered = r.covered;
+    s.splits = split_count();
+  }
+  return s;
+}
+
+template Parameters<2> session_parameters<2>(double);
+template Parameters<3> session_parameters<3>(double);
+template Mesh<2> well_spaced_mesh<2>(std::span<const Point<2>>, std::size_t, const Domain2&, const BoxTransform<2>&, bool);
+template Mesh<3> well_spaced_mesh<3>(std::span<const Point<3>>, std::size_t, const Domain2&, const BoxTransform<3>&, bool);
+template class ShoreSession<2>;
+template class ShoreSession<3>;
+
+}  // namespace shoremesh
