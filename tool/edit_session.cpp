@@ -428,6 +428,15 @@ std::string reply_text(const json& r) {
            (r.contains("after") ? " to ring " + count(r, "ring") + " after id " + count(r, "after") : std::string()) +
            change();
   if (op == "remove") return line + "removed id " + count(r, "id") + change();
+  auto id_range = [&] {
+    const auto& ids = r["ids"];
+    return ids.empty() ? std::string() : ", ids " + ids.front().dump() + ".." + ids.back().dump();
+  };
+  if (op == "add-ring")
+    return line + "added ring " + count(r, "ring") + " (" + r.value("role", "") + ", " + count(r, "points") + " points" +
+           id_range() + ")" + change();
+  if (op == "remove-ring")
+    return line + "removed ring " + count(r, "ring") + " (" + count(r, "points") + " points" + id_range() + ")" + change();
   if (op == "move") return line + "moved id " + count(r, "id") + " to " + r.value("at", "") + change();
   if (op == "export" || op == "preview" || op == "preview-change")
     return line + "wrote " + r.value("path", "") + ", " + millis(r);

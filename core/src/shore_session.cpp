@@ -510,6 +510,16 @@ Domain2 ShoreSession<D>::rings() const {
 }
 
 template <int D>
+std::size_t ShoreSession<D>::ring_count() const { return impl_->ring_ids.size(); }
+
+template <int D>
+const std::vector<Point2>& ShoreSession<D>::ring(std::size_t r) const {
+  if (!impl_->refinement || r >= impl_->refinement->rings().rings.size())
+    throw InputError("no ring " + std::to_string(r + 1));
+  return impl_->refinement->rings().rings[r].points;
+}
+
+template <int D>
 const Domain2& ShoreSession<D>::refined_rings() const { return impl_->mesh->domain(); }
 
 template <int D>

@@ -307,6 +307,61 @@ TEST(EditCommand, APointAddedAfterAShorePointJoinsItsShoreline) {
   EXPECT_NE(edited_mesh, off_triangles(dir / "old.off"));
 }
 
+// Islands added (inline coordinates, a ring file) and removed by ring number: the replies say the ring,
+// its ids and its role; a ring that would cross the shore and a ring that does not exist are refused;
+// the session's mesh equals a fresh run on the shoreline it exports.
+TEST(EditCommand, RingsAddedAndRemovedEqualAFreshRunOnTheExportedShoreline) {
+  TempDir dir;
+  std::string lake;
+  for (int i = 0; i <= 16; ++i) {
+    const double t = 2 * 3.141592653589793 * (i % 16) / 16;
+    lake += io::format_double(200 + 100 * std::cos(t)) + "," + io::format_double(200 + 100 * std::sin(t)) + "\n";
+  }
+  write_file(dir / "lake.txt", lake + "\n170,190\n190,190\n190,210\n170,210\n170,190\n");
+  write_file(dir / "islet.txt", "240,160\n250,160\n245,170\n240,160\n");
+  const std::string edits =
+      "add-ring 230 230 245 230 245 245 230 245\n"  // ring 3, an island: ids 20..23
+      "add-ring islet.txt\n"                        // ring 4, from a file: ids 24..26
+      "add-ring 150 150 300 150 250 180\n"          // crosses the shore: refused
+      "remove-ring 2\n"                             // the square island goes
+      "remove-ring 2\n"                             // again: refused
+      "remove-ring 9\n"                             // no such ring: refused
+      "move 21 246 229\n"                           // the new island's vertex moves with its ring
+      "stats\nexport final.off\nexport final.rings\n";
+  const RunResult r = shoremesh(dir, "edit lake.txt --json --edits -", edits);
+  EXPECT_EQ(r.code, 1) << r.err;
+  const auto replies = json_lines(r.out);
+  ASSERT_EQ(replies.size(), 11u) << r.out;
+  ASSERT_TRUE(replies[1]["ok"].get<bool>()) << replies[1];
+  EXPECT_EQ(replies[1]["ring"], 3);
+  EXPECT_EQ(replies[1]["ids"], json({20, 21, 22, 23}));
+  EXPECT_EQ(replies[1]["role"], "island");
+  ASSERT_TRUE(replies[2]["ok"].get<bool>()) << replies[2];
+  EXPECT_EQ(replies[2]["ring"], 4);
+  EXPECT_EQ(replies[2]["ids"], json({24, 25, 26}));
+  EXPECT_FALSE(replies[3]["ok"].get<bool>());
+  EXPECT_THAT(replies[3]["error"].get<std::string>(), HasSubstr("the new ring (ring 5) would break the shoreline: ring 1 edge"));
+  ASSERT_TRUE(replies[4]["ok"].get<bool>()) << replies[4];
+  EXPECT_EQ(replies[4]["ids"], json({16, 17, 18, 19}));
+  EXPECT_THAT(replies[5]["error"].get<std::string>(), HasSubstr("ring 2 was removed"));
+  EXPECT_THAT(replies[6]["error"].get<std::string>(), HasSubstr("no ring 9"));
+  ASSERT_TRUE(replies[7]["ok"].get<bool>()) << replies[7];
+  EXPECT_EQ(replies[8]["shore_segments"].get<std::size_t>(), replies[8]["shore_covered"].get<std::size_t>());
+  EXPECT_TRUE(replies[8]["shore_conforming"].get<bool>());
+  // The exported shoreline: the lake, the moved island, the islet (the square island gone).
+  const std::string rings = read_file(dir / "final.rings");
+  EXPECT_THAT(rings, HasSubstr("246,229"));
+  EXPECT_THAT(rings, HasSubstr("250,160"));
+  EXPECT_EQ(rings.find("190,210"), std::string::npos);
+  const RunResult fresh = shoremesh(dir, "mesh -q final.rings --box " + replies[0]["box"][0].dump() + " " +
+                                             replies[0]["box"][1].dump() + " " + replies[0]["box"][2].dump() +
+                                             " -o fresh.off");
+  ASSERT_EQ(fresh.code, 0) << fresh.err;
+  const auto edited_mesh = off_triangles(dir / "final.off");
+  EXPECT_GT(edited_mesh.size(), 30u);
+  EXPECT_EQ(edited_mesh, off_triangles(dir / "fresh.off"));
+}
+
 TEST(EditCommand, LonLatEditsAreProjectedLikeTheInput) {
   TempDir dir;
   const std::string read = quote(superior_mask()) + " --largest-water --spacing 8000";

@@ -105,8 +105,8 @@ TEST(RingCheck, CheckRingsNamesFileAndLine) {
   EXPECT_THAT(e.message(), HasSubstr("self-intersecting rings: ring 1 edge 1-2 crosses its own ring 1 edge 3-4 (at lake.poly:22"));
 }
 
-TEST(RingCheck, ManyEdgesSweepIsFast) {
-  // A 200,000-vertex star-shaped ring: valid, checked in well under a second.
+TEST(RingCheck, AValidRingOf200000EdgesHasNoDefect) {
+  // A 200,000-vertex star-shaped ring.
   std::vector<Point2> ring;
   for (int i = 0; i < 200000; ++i) {
     const double t = 2 * 3.141592653589793 * i / 200000, r = 1000 + 10 * std::sin(50 * t);
@@ -184,6 +184,70 @@ TEST(RingCheck, IndexedCheckAtAnEditedVertexAgreesWithTheWholeCheckThroughAnEdit
   EXPECT_GT(valid, 300);
   EXPECT_GT(kinds[std::size_t(RingVertexEdit::Kind::Remove)], 30);
   EXPECT_GT(kinds[std::size_t(RingVertexEdit::Kind::Insert)], 100);
+}
+
+// A ring added whole (an island an edit session adds): the index's check of the new ring finds exactly
+// the defect the whole check finds; once added and later removed, the index holds exactly the rings' edges;
+// and its even-odd test agrees with counting the rings that contain the point.
+TEST(RingCheck, IndexedCheckOfANewRingAgreesWithTheWholeCheckAndItsWaterTestWithTheRings) {
+  std::vector<Point2> shore;
+  for (int i = 0; i < 60; ++i) {
+    const double t = 2 * 3.141592653589793 * i / 60, r = 100 + 15 * std::sin(5 * t);
+    shore.push_back({r * std::cos(t), r * std::sin(t)});
+  }
+  Domain2 lake = domain_of({shore});
+  RingEdgeIndex index(lake);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int defects = 0, added = 0, removed = 0;
+  for (int k = 0; k < 2000; ++k) {
+    if (k % 7 == 6 && lake.rings.size() > 1) {  // a ring goes (its place kept, as a session keeps it)
+      const std::size_t r = 1 + rng() % (lake.rings.size() - 1);
+      if (lake.rings[r].points.empty()) continue;
+      index.erase_ring(r, lake.rings[r].points);
+      lake.rings[r].points.clear();
+      ++removed;
+    } else {  // a hexagon of random size somewhere around the lake, often crossing something
+      const Point2 c{130 * u(rng), 130 * u(rng)};
+      const double radius = 2 + 20 * std::abs(u(rng));
+      std::vector<Point2> hexagon;
+      for (int i = 0; i < 6; ++i)
+        hexagon.push_back({c[0] + radius * std::cos(1.0471975511965976 * i), c[1] + radius * std::sin(1.0471975511965976 * i)});
+      if (k % 13 == 0) std::swap(hexagon[1], hexagon[3]);  // a bow tie
+      Domain2 after = lake;
+      after.rings.push_back({hexagon, RingRole::Shore});
+      const std::size_t r = after.rings.size() - 1;
+      // The whole check of the live rings, numbered as the session numbers them.
+      Domain2 live;
+      std::vector<std::size_t> number;
+      for (std::size_t s = 0; s < after.rings.size(); ++s)
+        if (!after.rings[s].points.empty()) live.rings.push_back(after.rings[s]), number.push_back(s);
+      auto whole = find_ring_defect(live);
+      const auto local = index.defect_of_new_ring(after, r);
+      ASSERT_EQ(local.has_value(), whole.has_value()) << "ring " << k << (whole ? ": " + whole->describe() : "");
+      if (local) {
+        whole->ring_a = number[whole->ring_a], whole->ring_b = number[whole->ring_b];
+        EXPECT_EQ(local->describe(), whole->describe()) << "ring " << k;
+        ++defects;
+        continue;
+      }
+      index.insert_ring(r, hexagon);
+      lake = std::move(after);
+      ++added;
+    }
+    std::size_t edges = 0;
+    for (const auto& ring : lake.rings) edges += ring.points.size();
+    ASSERT_EQ(index.size(), edges) << "step " << k;
+    for (int q = 0; q < 20; ++q) {
+      const Point2 p{140 * u(rng), 140 * u(rng)};
+      int containing = 0;
+      for (const auto& ring : lake.rings) containing += !ring.points.empty() && ring_contains(ring.points, p);
+      ASSERT_EQ(index.inside(p), containing % 2 == 1) << "step " << k << " at " << p[0] << "," << p[1];
+    }
+  }
+  EXPECT_GT(defects, 100);
+  EXPECT_GT(added, 20);
+  EXPECT_GT(removed, 10);
 }
 
 TEST(InputSetMerge, SameProjectionRequiredAndOriginsRenumbered) {

@@ -20,6 +20,8 @@
 #include "shoremesh/mesh_quality.hpp"
 #include "shoremesh/mesh_water.hpp"
 #include "shoremesh/shore_refinement.hpp"
+#include "shoremesh/shore_session.hpp"
+#include "shoremesh/error.hpp"
 #include "shoremesh/well_spaced.hpp"
 
 namespace shoremesh {
@@ -172,82 +174,124 @@ TEST(ConformingMesh, ShoreSegmentsAreChainsOfMeshEdgesAndTheAreaIsTheRings) {
   }
 }
 
-// Random shore edits (moves, points added after a vertex, removals) on Lake Superior's GSHHG rings, the
-// engine and the mesh updated as `shoremesh edit` updates them: after each edit the mesh equals a fresh run
-// on the edited rings, triangle for triangle, and conforms.
-TEST(ConformingMesh, RandomShoreEditsOnSuperiorEqualAFreshRun) {
-  const int edits = std::getenv("SHOREMESH_SANITIZER_BUILD") ? 30 : 300;
-  Domain2 rings = superior();
-  ShoreRefinement refinement(rings);
-  std::vector<Point2> input = ring_points(rings);
+// A fresh run on a session's current input, as `shoremesh mesh` makes it and without the session's code:
+// the shore's splits, the engine on the input points and the splits, the constrained mesh.
+FreshRun fresh_run(const SessionInput<2>& in, const BoxTransform<2>& box) {
+  std::size_t on_rings = 0;
+  for (const Ring& r : in.rings.rings) on_rings += r.points.size();
+  const std::vector<Point2> loose(in.points.begin() + static_cast<std::ptrdiff_t>(on_rings), in.points.end());
+  const ShoreRefinement refinement(in.rings, loose, RefinementRule::for_box(box.side));
+  std::vector<Point2> input = in.points;
   for (const Point2& p : refinement.split_points()) input.push_back(p);
-  DynamicWellSpaced<2> engine(input);
-  std::map<Point2, std::size_t> id_of;
-  for (std::size_t i = 0; i < input.size(); ++i) id_of[input[i]] = i;
-  Mesh2 mesh(engine.points(), engine.input_count(), refinement.refined());
+  const StableResult<2> ws = stable_well_spaced<2>(input, {}, box);
+  Domain2 refined = refinement.refined();
+  return {Mesh2(ws.points, ws.input_count, refined), refined};
+}
 
+SessionInput<2> session_input(const Domain2& rings) {
+  SessionInput<2> in;
+  in.rings = rings;
+  for (const Ring& r : rings.rings) {
+    in.ring_offsets.push_back(in.points.size());
+    in.points.insert(in.points.end(), r.points.begin(), r.points.end());
+  }
+  return in;
+}
+
+// Random edits of Lake Superior's GSHHG rings through the library's ShoreSession, as `shoremesh edit`
+// makes them: shore points moved, added after a vertex and removed, loose points added and removed,
+// islands added (small hexagons) and removed. After each edit the mesh equals a fresh run on the edited
+// input, triangle for triangle, and conforms; an edit the session refuses changes nothing.
+TEST(ConformingMesh, RandomEditsThroughTheLibrarySessionOnSuperiorEqualAFreshRun) {
+  const int edits = std::getenv("SHOREMESH_SANITIZER_BUILD") ? 30 : 300;
+  ShoreSession<2> session(session_input(superior()), {});
   std::mt19937 rng(2026);
   std::uniform_real_distribution<double> u(0, 1);
-  int made = 0;
+  // A live ring vertex, uniformly among the ids given so far.
+  auto ring_vertex = [&]() -> std::optional<std::size_t> {
+    for (int tries = 0; tries < 1000; ++tries) {
+      const std::size_t id = rng() % session.next_id();
+      if (session.contains(id) && session.ring_of(id)) return id;
+    }
+    return std::nullopt;
+  };
+  int made = 0, refused = 0, island_adds = 0, island_removals = 0, loose_edits = 0;
+  std::vector<std::size_t> loose_ids;
   for (int attempt = 0; made < edits && attempt < 20 * edits; ++attempt) {
-    Domain2 edited = rings;
-    auto& ring = edited.rings[rng() % edited.rings.size()].points;
-    const std::size_t k = rng() % ring.size();
-    const Point2 a = ring[k], b = ring[(k + 1) % ring.size()];
     const double what = u(rng);
-    std::vector<Edit<2>> edit;
-    std::vector<Point2> removed, added;
-    if (what < 0.5) {  // move toward the next vertex and a little off
-      const Point2 p{a[0] + 0.3 * (b[0] - a[0]) + 0.1 * (u(rng) - 0.5) * (b[1] - a[1]),
-                     a[1] + 0.3 * (b[1] - a[1]) - 0.1 * (u(rng) - 0.5) * (b[0] - a[0])};
-      ring[k] = p;
-      edit.push_back({Edit<2>::Kind::Move, 0, p});
-      removed.push_back(a);
-      added.push_back(p);
-    } else if (what < 0.75) {  // add after k, near the middle of its segment
-      const Point2 p{0.5 * (a[0] + b[0]) + 0.05 * (u(rng) - 0.5) * (b[1] - a[1]),
-                     0.5 * (a[1] + b[1]) - 0.05 * (u(rng) - 0.5) * (b[0] - a[0])};
-      ring.insert(ring.begin() + static_cast<std::ptrdiff_t>(k) + 1, p);
-      edit.push_back({Edit<2>::Kind::Add, 0, p});
-      added.push_back(p);
-    } else {  // remove
-      if (ring.size() <= 3) continue;
-      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
-      edit.push_back({Edit<2>::Kind::Remove, 0, {}});
-      removed.push_back(a);
+    const std::size_t elements_before = session.mesh().element_count();
+    try {
+      if (what < 0.82) {
+        const auto id = ring_vertex();
+        ASSERT_TRUE(id);
+        const auto [r, k] = *session.ring_of(*id);
+        const auto& ring = session.ring(r);
+        const Point2 a = ring[k], b = ring[(k + 1) % ring.size()];
+        if (what < 0.4) {  // move toward the next vertex and a little off
+          session.move(*id, {a[0] + 0.3 * (b[0] - a[0]) + 0.1 * (u(rng) - 0.5) * (b[1] - a[1]),
+                             a[1] + 0.3 * (b[1] - a[1]) - 0.1 * (u(rng) - 0.5) * (b[0] - a[0])});
+        } else if (what < 0.62) {  // add after it, near the middle of its segment
+          session.add_after(*id, {0.5 * (a[0] + b[0]) + 0.05 * (u(rng) - 0.5) * (b[1] - a[1]),
+                                  0.5 * (a[1] + b[1]) - 0.05 * (u(rng) - 0.5) * (b[0] - a[0])});
+        } else {
+          session.remove(*id);
+        }
+      } else if (what < 0.9) {  // a loose point near the shore, or one removed
+        if (!loose_ids.empty() && u(rng) < 0.4) {
+          const std::size_t j = rng() % loose_ids.size();
+          session.remove(loose_ids[j]);
+          loose_ids.erase(loose_ids.begin() + static_cast<std::ptrdiff_t>(j));
+        } else {
+          const auto id = ring_vertex();
+          ASSERT_TRUE(id);
+          const Point2 a = session.input_point(*id);
+          const double d = 200 + 3000 * u(rng), t = 6.283185307179586 * u(rng);
+          loose_ids.push_back(session.add({a[0] + d * std::cos(t), a[1] + d * std::sin(t)}).id);
+        }
+        ++loose_edits;
+      } else if (what < 0.95) {  // an island: a small hexagon a little off a shore point
+        const auto id = ring_vertex();
+        ASSERT_TRUE(id);
+        const Point2 a = session.input_point(*id);
+        const double d = 1500 + 4000 * u(rng), t = 6.283185307179586 * u(rng), radius = 150 + 600 * u(rng);
+        const Point2 c{a[0] + d * std::cos(t), a[1] + d * std::sin(t)};
+        std::vector<Point2> hexagon;
+        for (int i = 0; i < 6; ++i)
+          hexagon.push_back({c[0] + radius * std::cos(1.0471975511965976 * i + t),
+                             c[1] + radius * std::sin(1.0471975511965976 * i + t)});
+        session.add_ring(hexagon);
+        ++island_adds;
+      } else {  // an island removed (any live ring but the first, the lake's shore)
+        std::vector<std::size_t> live;
+        for (std::size_t r = 1; r < session.ring_count(); ++r)
+          if (!session.ring(r).empty()) live.push_back(r);
+        if (live.empty()) continue;
+        session.remove_ring(live[rng() % live.size()]);
+        ++island_removals;
+      }
+    } catch (const InputError&) {
+      ++refused;  // invalid rings or a point already there: nothing changed
+      ASSERT_EQ(session.mesh().element_count(), elements_before);
+      continue;
     }
-    if (find_ring_defect(edited) || id_of.count(added.empty() ? Point2{} : added.front())) continue;
-    if (!edit.empty() && edit[0].kind != Edit<2>::Kind::Add) edit[0].id = id_of.at(a);
-
-    // The splits follow the rings; the engine takes the edit and the splits' change in one update.
-    const SplitChange splits = refinement.update(edited);
-    for (const Point2& p : splits.removed) {
-      edit.push_back({Edit<2>::Kind::Remove, id_of.at(p), {}});
-      removed.push_back(p);
-    }
-    for (const Point2& p : splits.added) {
-      edit.push_back({Edit<2>::Kind::Add, 0, p});
-      added.push_back(p);
-    }
-    UpdateReport<2> report;
-    const std::vector<std::size_t> ids = engine.apply(edit, &report);
-    for (const Point2& p : removed) id_of.erase(p);
-    std::size_t next = 0;
-    for (const auto& e : edit)
-      if (e.kind == Edit<2>::Kind::Add) id_of[e.point] = ids.at(next++);
-    if (edit[0].kind == Edit<2>::Kind::Move) id_of[edit[0].point] = edit[0].id;
-    mesh.apply(PointChange<2>::from_update(report, removed, added), refinement.refined());
-    rings = edited;
     ++made;
-
-    const FreshRun fresh = fresh_run(rings, engine.box());
-    ASSERT_EQ(mesh_test::corner_list(mesh), mesh_test::corner_list(fresh.mesh)) << "after edit " << made;
+    const SessionInput<2> now = session.current_input();
+    const FreshRun fresh = fresh_run(now, session.box());
+    ASSERT_EQ(mesh_test::corner_list(session.mesh()), mesh_test::corner_list(fresh.mesh)) << "after edit " << made;
     if (made % 25 == 0 || made == edits) {
-      mesh.check_valid();
-      check_conforming(mesh, rings, refinement.refined(), "after edit " + std::to_string(made));
+      session.mesh().check_valid();
+      check_conforming(session.mesh(), now.rings, fresh.refined, "after edit " + std::to_string(made));
+      EXPECT_TRUE(session.shoreline().conforming());
     }
   }
   EXPECT_EQ(made, edits);
+  // The mix the test is for: every kind of edit happened.
+  EXPECT_GT(island_adds, 0);
+  EXPECT_GT(island_removals, 0);
+  EXPECT_GT(loose_edits, 0);
+  RecordProperty("refused edits", std::to_string(refused));
+  std::printf("%d edits (%d islands added, %d removed, %d loose points), %d refused\n", made, island_adds,
+              island_removals, loose_edits, refused);
 }
 
 }  // namespace

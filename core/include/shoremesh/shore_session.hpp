@@ -109,6 +109,9 @@ class ShoreSession {
   std::size_t input_count() const;  // live input points the user gave (splits not counted)
   std::size_t split_count() const;
   std::size_t steiner_count() const;
+  // Ring numbers given so far (removed ones included), and ring r's points now (none once removed).
+  std::size_t ring_count() const;
+  const std::vector<Point2>& ring(std::size_t r) const;
   // The rings as they are now, removed ones left out (in ring order), and the rings with their splits as
   // the mesh conforms to them (removed ones as rings without points).
   Domain2 rings() const;
