@@ -63,7 +63,7 @@ Command add_edit_command(CLI::App& app) {
   cmd->add_option("--edits", opt->edits,
                   "Edit lines from FILE, or '-' for standard input: add X Y [Z] | add X Y after ID (a shore point: the "
                   "new point joins its shoreline, after it) | remove ID | move ID X Y [Z] | "
-                  "add-ring X1 Y1 X2 Y2 X3 Y3 ... | add-ring FILE (a ring: an island, a breakwater) | remove-ring N | "
+                  "add-ring X1 Y1 X2 Y2 X3 Y3 ... | add-ring FILE (a ring: an island, a breakwater) | add-line X1 Y1 X2 Y2 ... (an open chain of constraint edges) | remove-ring N | "
                   "export PATH | preview PATH | preview-change PATH | stats ('#' comments)")
       ->required();
   cmd->add_flag("--json", opt->json, "Reply with one JSON object per line (for programs)");

@@ -115,7 +115,7 @@ std::optional<json> EditSession<D>::run(std::size_t line, const std::string& tex
     if (op == "add") reply = add(words);
     else if (op == "remove") reply = remove(words);
     else if (op == "move") reply = move(words);
-    else if (op == "add-ring") reply = add_ring(words, rest_after_op(text));
+    else if (op == "add-ring" || op == "add-line") reply = add_ring(words, rest_after_op(text));
     else if (op == "remove-ring") reply = remove_ring(words);
     else if (op == "export") reply = export_to({op, rest_after_op(text)});
     else if (op == "preview") reply = preview({op, rest_after_op(text)});
@@ -125,7 +125,7 @@ std::optional<json> EditSession<D>::run(std::size_t line, const std::string& tex
       reply = stats();
     } else {
       throw InputError("unknown edit '" + op +
-                       "' (add, remove, move, add-ring, remove-ring, export, preview, preview-change, stats)");
+                       "' (add, remove, move, add-ring, add-line, remove-ring, export, preview, preview-change, stats)");
     }
   } catch (const InputError& e) {
     return json{{"line", line}, {"ok", false}, {"op", op}, {"error", e.what()}};
@@ -254,14 +254,21 @@ json EditSession<D>::move(const std::vector<std::string>& words) {
 
 template <int D>
 json EditSession<D>::add_ring(const std::vector<std::string>& words, const std::string& rest) {
-  // add-ring X1 Y1 X2 Y2 X3 Y3 ... (closed implicitly), or add-ring FILE (a ring file holding one ring).
+  // add-ring X1 Y1 X2 Y2 X3 Y3 ... (closed implicitly), or add-ring FILE (a ring file holding one ring);
+  // add-line X1 Y1 X2 Y2 ... (an open chain of constraints).
+  const bool line = words[0] == "add-line";
   if constexpr (D != 2) {
-    (void)words, (void)rest;
-    throw InputError("add-ring: rings are for 2D sessions");
+    (void)words, (void)rest, (void)line;
+    throw InputError(words[0] + ": rings and lines are for 2D sessions");
   } else {
     std::vector<Point2> points;
-    if (words.size() == 2 || (words.size() > 2 && !std::isdigit(static_cast<unsigned char>(rest[0])) && rest[0] != '-' &&
-                              rest[0] != '+' && rest[0] != '.')) {
+    if (line) {
+      if (words.size() < 5 || (words.size() - 1) % 2 != 0)
+        throw InputError("add-line takes X1 Y1 X2 Y2 ... (at least two points)");
+      for (std::size_t i = 1; i + 1 < words.size(); i += 2)
+        points.push_back(user_point({parse_number(words[i]), parse_number(words[i + 1])}));
+    } else if (words.size() == 2 || (words.size() > 2 && !std::isdigit(static_cast<unsigned char>(rest[0])) &&
+                                     rest[0] != '-' && rest[0] != '+' && rest[0] != '.')) {
       const io::RingFile file = io::read_ring_file(rest);
       if (file.rings.size() != 1)
         throw InputError("add-ring takes a ring file with one ring; it holds " + std::to_string(file.rings.size()), rest);
@@ -273,9 +280,10 @@ json EditSession<D>::add_ring(const std::vector<std::string>& words, const std::
         points.push_back(user_point({parse_number(words[i]), parse_number(words[i + 1])}));
       if (points.size() > 3 && points.front() == points.back()) points.pop_back();  // closed explicitly
     }
-    const SessionEdit<D> edit = session_.add_ring(points);
+    const SessionEdit<D> edit = session_.add_ring(points, line);
     json reply = {{"id", edit.id}, {"ring", *edit.ring + 1}, {"ids", edit.ring_ids}, {"points", points.size()}};
-    reply["role"] = session_.refined_rings().rings.at(*edit.ring).role == RingRole::Island ? "island" : "shore";
+    const RingRole role = session_.refined_rings().rings.at(*edit.ring).role;
+    reply["role"] = role == RingRole::Island ? "island" : role == RingRole::Line ? "line" : "shore";
     record(edit, reply);
     return reply;
   }
@@ -432,7 +440,7 @@ std::string reply_text(const json& r) {
     const auto& ids = r["ids"];
     return ids.empty() ? std::string() : ", ids " + ids.front().dump() + ".." + ids.back().dump();
   };
-  if (op == "add-ring")
+  if (op == "add-ring" || op == "add-line")
     return line + "added ring " + count(r, "ring") + " (" + r.value("role", "") + ", " + count(r, "points") + " points" +
            id_range() + ")" + change();
   if (op == "remove-ring")

@@ -262,15 +262,16 @@ std::string quality_text(const QualityNumbers& q, int dimension) {
 
 std::string describe_input(const io::InputSet& set) {
   std::ostringstream out;
-  std::size_t shores = 0, islands = 0, ring_points = 0;
+  std::size_t shores = 0, islands = 0, lines = 0, ring_points = 0, line_points = 0;
   for (const Ring& r : set.domain.rings) {
-    ++(r.role == RingRole::Shore ? shores : islands);
-    ring_points += r.points.size();
+    ++(r.role == RingRole::Shore ? shores : r.role == RingRole::Island ? islands : lines);
+    (r.closed() ? ring_points : line_points) += r.points.size();
   }
   out << "input: " << set.size() << ' ' << set.dimension << "D points";
-  if (!set.domain.empty())
-    out << ", " << set.domain.rings.size() << " rings (" << shores << " shore, " << islands << " island; " << ring_points
+  if (shores + islands)
+    out << ", " << shores + islands << " rings (" << shores << " shore, " << islands << " island; " << ring_points
         << " ring points)";
+  if (lines) out << ", " << lines << " constraint lines (" << line_points << " points)";
   out << "; " << io::to_string(set.units);
   if (!set.projection.is_none()) out << ", projected with " << set.projection.describe();
   out << "\n";

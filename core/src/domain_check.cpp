@@ -18,6 +18,8 @@ std::string RingDefect::describe() const {
     case Kind::RepeatedVertex:
       return "ring " + std::to_string(ring_a + 1) + " repeats vertex " + std::to_string(vertex_a + 1) + " at vertex " +
              std::to_string(vertex_b + 1);
+    case Kind::LineOnLand:
+      return "line " + std::to_string(ring_a + 1) + " lies on land (outside the water the rings bound), where no element is";
     case Kind::Intersection:
       return edge(ring_a, vertex_a) + (ring_a == ring_b ? " crosses its own " : " crosses ") + edge(ring_b, vertex_b);
   }
@@ -26,8 +28,15 @@ std::string RingDefect::describe() const {
 
 std::optional<RingDefect> find_ring_defect(const Domain2& domain) {
   for (std::size_t r = 0; r < domain.rings.size(); ++r)
-    if (auto d = detail::local_ring_defect(domain.rings[r].points, r)) return d;
-  return RingEdgeIndex(domain).first_crossing(domain);
+    if (auto d = detail::local_ring_defect(domain.rings[r], r)) return d;
+  const RingEdgeIndex index(domain);
+  if (auto d = index.first_crossing(domain)) return d;
+  const bool water = std::any_of(domain.rings.begin(), domain.rings.end(),
+                                 [](const Ring& r) { return r.closed() && !r.points.empty(); });
+  for (std::size_t r = 0; water && r < domain.rings.size(); ++r)
+    if (!domain.rings[r].closed() && !index.inside(domain.rings[r].points.front()))
+      return RingDefect{RingDefect::Kind::LineOnLand, r, 0, r, 0};
+  return std::nullopt;
 }
 
 bool ring_contains(const std::vector<Point2>& ring, const Point2& p) {
@@ -53,11 +62,11 @@ void assign_roles_by_nesting(Domain2& domain) {
       box[r] = {std::min(box[r][0], p[0]), std::min(box[r][1], p[1]), std::max(box[r][2], p[0]), std::max(box[r][3], p[1])};
   }
   for (std::size_t r = 0; r < m; ++r) {
-    if (domain.rings[r].points.empty()) continue;
+    if (domain.rings[r].points.empty() || !domain.rings[r].closed()) continue;
     const Point2 probe = domain.rings[r].points.front();
     int depth = 0;
     for (std::size_t s = 0; s < m; ++s) {
-      if (s == r || domain.rings[s].points.size() < 3) continue;
+      if (s == r || domain.rings[s].points.size() < 3 || !domain.rings[s].closed()) continue;
       if (probe[0] < box[s][0] || probe[0] > box[s][2] || probe[1] < box[s][1] || probe[1] > box[s][3]) continue;
       if (ring_contains(domain.rings[s].points, probe)) ++depth;
     }

@@ -220,7 +220,9 @@ ChangedWater changed_water(const Domain2& before, const Domain2& after) {
     const auto& n = ring_points(after, r);
     if (o == n) continue;
     w.changed = true;
-    if (o.empty() || n.empty()) {  // a ring came or went: the water flips inside it only
+    // A line's change is taken whole: its segments change, the water does not.
+    const bool line = (r < before.rings.size() && !before.rings[r].closed()) || (r < after.rings.size() && !after.rings[r].closed());
+    if (o.empty() || n.empty() || line) {  // a ring came or went: the water flips inside it only
       for (const Point2& p : o) take(p);
       for (const Point2& p : n) take(p);
       w.seed = o.empty() ? n.front() : o.front();
@@ -248,19 +250,28 @@ ChangedWater changed_water(const Domain2& before, const Domain2& after) {
 void changed_segments(const Domain2& before, const Domain2& after, const ChangedWater& water,
                       std::vector<std::pair<Point2, Point2>>& dropped, std::vector<std::pair<Point2, Point2>>& inserted) {
   using Segment = std::pair<Point2, Point2>;
-  auto segments = [](const std::vector<Point2>& ring, std::size_t prefix, std::size_t suffix, std::vector<Segment>& out) {
-    const std::size_t m = ring.size();
+  auto segments = [](const Domain2& d, std::size_t r, std::size_t prefix, std::size_t suffix, bool whole,
+                     std::vector<Segment>& out) {
+    if (r >= d.rings.size()) return;
+    const Ring& ring = d.rings[r];
+    const auto& pts = ring.points;
+    const std::size_t m = pts.size();
+    if (whole) {  // every segment of the ring or line
+      for (std::size_t k = 0; k < ring.segment_count(); ++k)
+        if (pts[k] != pts[(k + 1) % m]) out.push_back(std::minmax(pts[k], pts[(k + 1) % m]));
+      return;
+    }
     const std::size_t count = std::min(m, m - prefix - suffix + 1);
     for (std::size_t j = 0; j < count; ++j) {
       const std::size_t k = (prefix + m - 1 + j) % m;
-      const Point2 &a = ring[k], &b = ring[(k + 1) % m];
+      const Point2 &a = pts[k], &b = pts[(k + 1) % m];
       if (a != b) out.push_back(std::minmax(a, b));
     }
   };
   std::vector<Segment> old_segments, new_segments;
   for (const auto& st : water.stretches) {
-    segments(ring_points(before, st.ring), st.prefix, st.suffix, old_segments);
-    segments(ring_points(after, st.ring), st.prefix, st.suffix, new_segments);
+    segments(before, st.ring, st.prefix, st.suffix, st.whole, old_segments);
+    segments(after, st.ring, st.prefix, st.suffix, st.whole, new_segments);
   }
   std::sort(old_segments.begin(), old_segments.end());
   std::sort(new_segments.begin(), new_segments.end());
@@ -325,7 +336,7 @@ class MeshTriangulation {
     for (Vertex v : triangulation.finite_vertex_handles()) vertex_of.emplace(C::from_cgal(v->point()), v);
     if constexpr (D == 2)
       for (const Ring& ring : domain.rings)
-        for (std::size_t k = 0; k < ring.points.size(); ++k) {
+        for (std::size_t k = 0; k < ring.segment_count(); ++k) {
           const Point2& a = ring.points[k];
           const Point2& b = ring.points[(k + 1) % ring.points.size()];
           const auto ia = vertex_of.find(a), ib = vertex_of.find(b);
@@ -633,6 +644,9 @@ class MeshTriangulation {
   // from now on, without a rebuild.
   void update_water(const Domain2& before, const Domain2& after, const ChangedWater& change) {
     for (const auto& s : change.stretches) {
+      const bool line = (s.ring < after.rings.size() && !after.rings[s.ring].closed()) ||
+                        (s.ring < before.rings.size() && !before.rings[s.ring].closed());
+      if (line) continue;  // lines bound no water
       if (s.whole) water_.replace_ring(s.ring, ring_points(after, s.ring));
       else water_.replace_stretch(s.ring, before.rings[s.ring].points, after.rings[s.ring].points, s.prefix, s.suffix);
     }
@@ -862,7 +876,7 @@ ShorelineReport Mesh<D>::shoreline_crossings() const
 
   for (std::size_t r = 0; r < domain_.rings.size(); ++r) {
     const auto& ring = domain_.rings[r].points;
-    for (std::size_t s = 0; s < ring.size(); ++s) {
+    for (std::size_t s = 0; s < domain_.rings[r].segment_count(); ++s) {
       const Point2& a = ring[s];
       const Point2& b = ring[(s + 1) % ring.size()];
       if (a == b) continue;

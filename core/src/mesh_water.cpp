@@ -12,6 +12,7 @@ WaterTest::WaterTest(const Domain2& domain) {
   ring_edges_.resize(domain.rings.size());
   for (std::size_t r = 0; r < domain.rings.size(); ++r) {
     const Ring& ring = domain.rings[r];
+    if (!ring.closed()) continue;  // a line bounds no water
     const std::size_t n = ring.points.size();
     for (std::size_t i = 0; i < n; ++i) {
       const Point2& a = ring.points[i];

@@ -26,6 +26,7 @@ using Box = bg::model::box<BoxCorner>;
 struct IndexedEdge {
   std::size_t ring = 0;
   Point2 a{}, b{};
+  bool line = false;  // a segment of a line: a constraint that bounds no water
   bool operator==(const IndexedEdge&) const = default;
 };
 using Entry = std::pair<Box, IndexedEdge>;
@@ -36,12 +37,15 @@ Box box_of(const Point2& a, const Point2& b) {
   return {BoxCorner(std::min(a[0], b[0]), std::min(a[1], b[1])), BoxCorner(std::max(a[0], b[0]), std::max(a[1], b[1]))};
 }
 
-Entry entry(std::size_t ring, const Point2& a, const Point2& b) { return {box_of(a, b), IndexedEdge{ring, a, b}}; }
+Entry entry(std::size_t ring, const Point2& a, const Point2& b, bool line = false) {
+  return {box_of(a, b), IndexedEdge{ring, a, b, line}};
+}
 
-std::vector<Entry> ring_entries(std::size_t ring, const std::vector<Point2>& pts) {
+std::vector<Entry> ring_entries(std::size_t r, const Ring& ring) {
   std::vector<Entry> out;
+  const auto& pts = ring.points;
   out.reserve(pts.size());
-  for (std::size_t i = 0; i < pts.size(); ++i) out.push_back(entry(ring, pts[i], pts[(i + 1) % pts.size()]));
+  for (std::size_t i = 0; i < ring.segment_count(); ++i) out.push_back(entry(r, pts[i], pts[(i + 1) % pts.size()], !ring.closed()));
   return out;
 }
 
@@ -82,7 +86,7 @@ struct RingEdgeIndex::Tree {
 RingEdgeIndex::RingEdgeIndex(const Domain2& domain) : tree_(std::make_unique<Tree>()) {
   std::vector<Entry> entries;
   for (std::size_t r = 0; r < domain.rings.size(); ++r) {
-    auto e = ring_entries(r, domain.rings[r].points);
+    auto e = ring_entries(r, domain.rings[r]);
     entries.insert(entries.end(), e.begin(), e.end());
   }
   tree_->rtree = decltype(tree_->rtree)(entries.begin(), entries.end());  // packed: a bulk load
@@ -98,7 +102,7 @@ std::optional<RingDefect> RingEdgeIndex::first_crossing(const Domain2& domain) c
   // The first edge in (ring, edge) order that meets another: its partner comes later in that order (an
   // earlier one would have been found at the partner).
   for (std::size_t r = 0; r < domain.rings.size(); ++r)
-    for (std::size_t e = 0; e < domain.rings[r].points.size(); ++e)
+    for (std::size_t e = 0; e < domain.rings[r].segment_count(); ++e)
       if (const auto f = tree_->first_met(domain, r, e)) return detail::crossing(r, e, f->first, f->second);
   return std::nullopt;
 }
@@ -164,31 +168,43 @@ void RingEdgeIndex::commit(const Domain2& after, const RingVertexEdit& edit) {
 }
 
 std::optional<RingDefect> RingEdgeIndex::defect_of_new_ring(const Domain2& after, std::size_t ring) const {
-  const auto& pts = after.rings.at(ring).points;
-  if (auto d = detail::local_ring_defect(pts, ring)) return d;
+  const Ring& new_ring = after.rings.at(ring);
+  if (auto d = detail::local_ring_defect(new_ring, ring)) return d;
   // Its own crossings, through an index of the ring alone, then against the indexed edges: the first
   // crossing in (ring, edge) order over both.
   Domain2 alone;
   alone.rings.resize(ring + 1);
-  alone.rings[ring].points = pts;
+  alone.rings[ring] = new_ring;
   std::optional<RingDefect> first = RingEdgeIndex(alone).first_crossing(alone);
-  for (std::size_t e = 0; e < pts.size(); ++e)
+  for (std::size_t e = 0; e < new_ring.segment_count(); ++e)
     if (const auto f = tree_->first_met(after, ring, e)) {
       const RingDefect d = detail::crossing(ring, e, f->first, f->second);
       if (!first || std::tie(d.ring_a, d.vertex_a, d.ring_b, d.vertex_b) <
                         std::tie(first->ring_a, first->vertex_a, first->ring_b, first->vertex_b))
         first = d;
     }
-  return first;
+  if (first) return first;
+  if (new_ring.closed()) {  // the water flips inside it: a line there would be left on land
+    for (std::size_t l = 0; l < after.rings.size(); ++l)
+      if (!after.rings[l].closed() && !after.rings[l].points.empty() &&
+          ring_contains(new_ring.points, after.rings[l].points.front()))
+        return RingDefect{RingDefect::Kind::LineOnLand, l, 0, l, 0};
+    return std::nullopt;
+  }
+  // A line must lie in the water (when there is any).
+  const bool water = std::any_of(after.rings.begin(), after.rings.end(),
+                                 [](const Ring& r) { return r.closed() && !r.points.empty(); });
+  if (water && !inside(new_ring.points.front())) return RingDefect{RingDefect::Kind::LineOnLand, ring, 0, ring, 0};
+  return std::nullopt;
 }
 
-void RingEdgeIndex::insert_ring(std::size_t ring, const std::vector<Point2>& points) {
-  const auto entries = ring_entries(ring, points);
+void RingEdgeIndex::insert_ring(std::size_t r, const Ring& ring) {
+  const auto entries = ring_entries(r, ring);
   tree_->rtree.insert(entries.begin(), entries.end());
 }
 
-void RingEdgeIndex::erase_ring(std::size_t ring, const std::vector<Point2>& points) {
-  const auto entries = ring_entries(ring, points);
+void RingEdgeIndex::erase_ring(std::size_t r, const Ring& ring) {
+  const auto entries = ring_entries(r, ring);
   if (tree_->rtree.remove(entries.begin(), entries.end()) != entries.size())
     throw std::logic_error("ring edge index: a removed ring's edge was not indexed");
 }
@@ -197,6 +213,7 @@ bool RingEdgeIndex::inside(const Point2& p) const {
   const Box ray(BoxCorner(p[0], p[1]), BoxCorner(std::numeric_limits<double>::max(), p[1]));
   bool in = false;
   for (auto it = tree_->rtree.qbegin(bgi::intersects(ray)); it != tree_->rtree.qend(); ++it) {
+    if (it->second.line) continue;
     const Point2 &a = it->second.a, &b = it->second.b;
     const int o = detail::orient(a, b, p);
     if (o == 0 && detail::within_box(a, b, p)) return true;

@@ -54,14 +54,16 @@ inline RingDefect crossing(std::size_t ring_a, std::size_t vertex_a, std::size_t
   return RingDefect{RingDefect::Kind::Intersection, ring_a, vertex_a, ring_b, vertex_b};
 }
 
-// The local defects of ring r (fewer than three points, a repeated vertex, a fold at a vertex), the first
-// in vertex order.
-inline std::optional<RingDefect> local_ring_defect(const std::vector<Point2>& pts, std::size_t r) {
-  if (pts.size() < 3) return RingDefect{RingDefect::Kind::TooFewPoints, r, 0, r, 0};
-  for (std::size_t i = 0; i < pts.size(); ++i) {
+// The local defects of ring r (fewer than three points, or two for a line; a repeated vertex; a fold at
+// a vertex), the first in vertex order.
+inline std::optional<RingDefect> local_ring_defect(const Ring& ring, std::size_t r) {
+  const auto& pts = ring.points;
+  if (pts.size() < (ring.closed() ? 3u : 2u)) return RingDefect{RingDefect::Kind::TooFewPoints, r, 0, r, 0};
+  const std::size_t segments = ring.segment_count();
+  for (std::size_t i = 0; i < segments; ++i) {
     const std::size_t j = (i + 1) % pts.size();
     if (pts[i] == pts[j]) return RingDefect{RingDefect::Kind::RepeatedVertex, r, i, r, j};
-    if (adjacent_edges_overlap(pts[i], pts[j], pts[(j + 1) % pts.size()]))
+    if ((ring.closed() || i + 1 < segments) && adjacent_edges_overlap(pts[i], pts[j], pts[(j + 1) % pts.size()]))
       return RingDefect{RingDefect::Kind::Intersection, r, i, r, j};
   }
   return std::nullopt;

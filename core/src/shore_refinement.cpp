@@ -261,11 +261,14 @@ struct ShoreRefinement::Impl {
     }
   }
 
+  // A line's ends have one neighbour: the other is the point itself (an edge of no length, which
+  // excludes nothing in may_encroach).
   void add_ring_vertices(const Ring& ring, std::size_t first, std::size_t count) {
     const std::size_t n = ring.points.size();
     for (std::size_t j = first; j < first + count; ++j) {
       const std::size_t k = j % n;
-      ring_vertex[ring.points[k]] = {ring.points[(k + n - 1) % n], ring.points[(k + 1) % n]};
+      const bool open_start = !ring.closed() && k == 0, open_end = !ring.closed() && k + 1 == n;
+      ring_vertex[ring.points[k]] = {ring.points[open_start ? k : (k + n - 1) % n], ring.points[open_end ? k : (k + 1) % n]};
     }
   }
 
@@ -279,7 +282,7 @@ struct ShoreRefinement::Impl {
     points = PointTree(all.begin(), all.end());  // packed bulk load
     std::vector<Node> work;
     for (const Ring& ring : rings.rings)
-      for (std::size_t k = 0; k < ring.points.size(); ++k) {
+      for (std::size_t k = 0; k < ring.segment_count(); ++k) {
         const Point2& p = ring.points[k];
         const Point2& q = ring.points[(k + 1) % ring.points.size()];
         if (p == q || edge_of.count(edge_key(p, q))) continue;
@@ -357,19 +360,22 @@ SplitChange ShoreRefinement::update(const Domain2& rings, std::span<const Point2
     const auto& o = r < m.rings.rings.size() ? m.rings.rings[r].points : no_ring;
     const auto& n = r < rings.rings.size() ? rings.rings[r].points : no_ring;
     if (o == n) continue;
-    if (o.empty() || n.empty()) {  // a ring came or went: all of its vertices and edges
+    const Ring* old_ring = r < m.rings.rings.size() ? &m.rings.rings[r] : nullptr;
+    const Ring* new_ring = r < rings.rings.size() ? &rings.rings[r] : nullptr;
+    const bool line = (old_ring && !old_ring->closed()) || (new_ring && !new_ring->closed());
+    if (o.empty() || n.empty() || line) {  // a ring came or went, or a line changed: all of its vertices and edges
       for (const Point2& p : o) {
         removed_points.push_back(p);
         m.ring_vertex.erase(p);
       }
-      for (std::size_t k = 0; k < o.size(); ++k) {
+      for (std::size_t k = 0; old_ring && k < old_ring->segment_count(); ++k) {
         const auto it = m.edge_of.find(edge_key(o[k], o[(k + 1) % o.size()]));
         if (it == m.edge_of.end()) continue;
         old_stretch.insert(it->second);
         if (is_dirty.insert(it->second).second) dirty.push_back(it->second);
       }
       added_points.insert(added_points.end(), n.begin(), n.end());
-      for (std::size_t k = 0; k < n.size(); ++k)
+      for (std::size_t k = 0; new_ring && k < new_ring->segment_count(); ++k)
         if (n[k] != n[(k + 1) % n.size()]) new_edges.push_back(edge_key(n[k], n[(k + 1) % n.size()]));
       if (!n.empty()) m.add_ring_vertices(rings.rings[r], 0, n.size());
       continue;

@@ -65,9 +65,15 @@ std::optional<ShoreRefinement> refine_shore(const Domain2& rings, std::span<cons
 template <int D>
 Mesh<D> well_spaced_mesh(std::span<const Point<D>> points, std::size_t input_count, const Domain2& domain,
                          const BoxTransform<D>& box, bool keep_hull) {
-  if constexpr (D == 2)
-    if (!domain.empty()) return Mesh<2>(points, input_count, domain);
   const std::optional<BoxTransform<D>> covered = keep_hull ? std::nullopt : std::optional(box);
+  if constexpr (D == 2) {
+    if (!domain.empty()) {
+      // Lines alone bound no water: the mesh is then the box's, with the lines' segments in it.
+      const bool water = std::any_of(domain.rings.begin(), domain.rings.end(),
+                                     [](const Ring& r) { return r.closed() && !r.points.empty(); });
+      return water ? Mesh<2>(points, input_count, domain) : Mesh<2>(points, input_count, domain, covered);
+    }
+  }
   return Mesh<D>(points, input_count, covered);
 }
 
@@ -90,13 +96,24 @@ struct ShoreSession<D>::Impl {
   // A change of the user's rings, checked, as the refinement, the index and the ids take it.
   struct RingChange {
     Domain2 domain;                    // all the rings after it
-    std::optional<RingVertexEdit> edit;  // one vertex's edit (nullopt: a ring came or went)
+    std::optional<RingVertexEdit> edit;  // one vertex's edit of a closed ring (nullopt: a line's edit)
     std::size_t ring = 0;
+    Ring line_before;  // a line's edit: the line as it was
   };
+
+  // The index takes a checked change: one vertex's edit of a ring, or a line replaced as a whole.
+  void commit_index(const RingChange& change) {
+    if (change.edit) {
+      ring_index->commit(change.domain, *change.edit);
+    } else {
+      ring_index->erase_ring(change.ring, change.line_before);
+      ring_index->insert_ring(change.ring, change.domain.rings[change.ring]);
+    }
+  }
 
   // The rings after a vertex edit at input `id`: moved to `p`, removed, or a new vertex at `p` after it.
   // InputError when they would be invalid; nullopt when `id` is on no ring.
-  std::optional<RingChange> vertex_change(RingVertexEdit::Kind kind, std::size_t id, const Point<D>& p) const {
+  std::optional<RingChange> vertex_change(RingVertexEdit::Kind kind, std::size_t id, const Point<D>& p) {
     using Kind = RingVertexEdit::Kind;
     if constexpr (D != 2) {
       return std::nullopt;
@@ -115,13 +132,25 @@ struct ShoreSession<D>::Impl {
         ring.insert(ring.begin() + static_cast<std::ptrdiff_t>(k + 1), p);
         change.edit->vertex = k + 1;
       } else {
-        if (ring.size() <= 3)
-          throw InputError("input point " + std::to_string(id) + " is one of the last three points of ring " +
-                           std::to_string(r + 1) + "; it cannot be removed (remove the ring instead)");
+        const bool line = !now.rings[r].closed();
+        if (ring.size() <= (line ? 2u : 3u))
+          throw InputError("input point " + std::to_string(id) + " is one of the last " + (line ? "two" : "three") +
+                           " points of " + (line ? "line " : "ring ") + std::to_string(r + 1) +
+                           "; it cannot be removed (remove the " + (line ? "line" : "ring") + " instead)");
         ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
         change.edit->vertex = (k + ring.size() - 1) % ring.size();
       }
-      if (const auto defect = ring_index->defect_at(change.domain, *change.edit)) {
+      std::optional<RingDefect> defect;
+      if (now.rings[r].closed()) {
+        defect = ring_index->defect_at(change.domain, *change.edit);
+      } else {  // a line is checked as a whole, against the index without it
+        change.edit.reset();
+        change.line_before = now.rings[r];
+        ring_index->erase_ring(r, now.rings[r]);
+        defect = ring_index->defect_of_new_ring(change.domain, r);
+        ring_index->insert_ring(r, now.rings[r]);
+      }
+      if (defect) {
         const std::string what = kind == Kind::Move     ? "moving input point " + std::to_string(id)
                                  : kind == Kind::Insert ? "adding a point after input point " + std::to_string(id)
                                                         : "removing input point " + std::to_string(id);
@@ -132,15 +161,16 @@ struct ShoreSession<D>::Impl {
   }
 
   // Takes a committed change into the ids: `id` removed from its ring, or inserted as the new vertex.
-  void commit_vertex_ids(const RingChange& change, std::size_t id) {
+  // `after_id`: for an insertion, the vertex the new one follows.
+  void commit_vertex_ids(const RingChange& change, RingVertexEdit::Kind kind, std::size_t id, std::size_t after_id = 0) {
     using Kind = RingVertexEdit::Kind;
     const std::size_t r = change.ring;
     auto& ids = ring_ids[r];
     std::size_t first = 0;  // the ids from here on changed position
-    if (change.edit->kind == Kind::Insert) {
-      first = change.edit->vertex;
+    if (kind == Kind::Insert) {
+      first = ring_of.at(after_id).second + 1;
       ids.insert(ids.begin() + static_cast<std::ptrdiff_t>(first), id);
-    } else if (change.edit->kind == Kind::Remove) {
+    } else if (kind == Kind::Remove) {
       first = ring_of.at(id).second;
       ring_of.erase(id);
       ids.erase(ids.begin() + static_cast<std::ptrdiff_t>(first));
@@ -232,8 +262,11 @@ struct ShoreSession<D>::Impl {
                      "; the box never grows (start the session with a larger box)");
   }
 
-  std::size_t live_rings() const {
-    return static_cast<std::size_t>(std::count_if(ring_ids.begin(), ring_ids.end(), [](auto& r) { return !r.empty(); }));
+  // Closed rings not removed: the water needs one.
+  std::size_t live_closed_rings() const {
+    std::size_t n = 0;
+    for (std::size_t r = 0; r < ring_ids.size(); ++r) n += !ring_ids[r].empty() && refinement->rings().rings[r].closed();
+    return n;
   }
 };
 
@@ -328,8 +361,8 @@ SessionEdit<D> ShoreSession<D>::add_after(std::size_t after, const Point<D>& p) 
   out.id = m.engine_of_user.size();
   out.ring = rings->ring;
   m.engine_of_user.push_back(ids.at(0));
-  m.commit_vertex_ids(*rings, out.id);
-  m.ring_index->commit(rings->domain, *rings->edit);
+  m.commit_vertex_ids(*rings, RingVertexEdit::Kind::Insert, out.id, after);
+  m.commit_index(*rings);
   m.update_mesh(std::move(removed), std::move(added), edit_start, start, out);
   return out;
 }
@@ -351,7 +384,7 @@ SessionEdit<D> ShoreSession<D>::move(std::size_t id, const Point<D>& p) {
                 rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{p}, removed, added, out.engine);
   if (rings) {
     out.ring = rings->ring;
-    m.ring_index->commit(rings->domain, *rings->edit);
+    m.commit_index(*rings);
   }
   m.update_mesh(std::move(removed), std::move(added), edit_start, start, out);
   return out;
@@ -373,15 +406,15 @@ SessionEdit<D> ShoreSession<D>::remove(std::size_t id) {
   m.engine_of_user[id] = Impl::kRemoved;
   if (rings) {
     out.ring = rings->ring;
-    m.commit_vertex_ids(*rings, id);
-    m.ring_index->commit(rings->domain, *rings->edit);
+    m.commit_vertex_ids(*rings, RingVertexEdit::Kind::Remove, id);
+    m.commit_index(*rings);
   }
   m.update_mesh(std::move(removed), std::move(added), edit_start, start, out);
   return out;
 }
 
 template <int D>
-SessionEdit<D> ShoreSession<D>::add_ring(std::span<const Point2> points) {
+SessionEdit<D> ShoreSession<D>::add_ring(std::span<const Point2> points, bool line) {
   Impl& m = *impl_;
   if constexpr (D != 2) {
     (void)points;
@@ -392,11 +425,12 @@ SessionEdit<D> ShoreSession<D>::add_ring(std::span<const Point2> points) {
     const auto edit_start = Clock::now();
     const std::size_t r = m.ring_ids.size();
     Domain2 after = m.refinement->rings();
-    after.rings.push_back({std::vector<Point2>(points.begin(), points.end()), RingRole::Shore});
+    after.rings.push_back({std::vector<Point2>(points.begin(), points.end()), line ? RingRole::Line : RingRole::Shore});
     if (const auto defect = m.ring_index->defect_of_new_ring(after, r))
-      throw InputError("the new ring (ring " + std::to_string(r + 1) + ") would break the shoreline: " + defect->describe());
-    // Its role from its nesting: inside an odd number of rings it bounds land (an island).
-    after.rings[r].role = m.ring_index->inside(points.front()) ? RingRole::Island : RingRole::Shore;
+      throw InputError(std::string("the new ") + (line ? "line" : "ring") + " (ring " + std::to_string(r + 1) +
+                       ") would break the shoreline: " + defect->describe());
+    // A ring's role from its nesting: inside an odd number of rings it bounds land (an island).
+    if (!line) after.rings[r].role = m.ring_index->inside(points.front()) ? RingRole::Island : RingRole::Shore;
     SessionEdit<D> out;
     const auto start = Clock::now();
     std::vector<Edit<D>> edits;
@@ -411,7 +445,7 @@ SessionEdit<D> ShoreSession<D>::add_ring(std::span<const Point2> points) {
       user_ids.push_back(id);
     }
     m.ring_ids.push_back(user_ids);
-    m.ring_index->insert_ring(r, after.rings[r].points);
+    m.ring_index->insert_ring(r, after.rings[r]);
     out.id = user_ids.front();
     out.ring = r;
     out.ring_ids = std::move(user_ids);
@@ -430,10 +464,20 @@ SessionEdit<D> ShoreSession<D>::remove_ring(std::size_t r) {
     if (!m.refinement) throw InputError("this session has no shoreline");
     if (r >= m.ring_ids.size()) throw InputError("no ring " + std::to_string(r + 1) + " (rings 1.." + std::to_string(m.ring_ids.size()) + ")");
     if (m.ring_ids[r].empty()) throw InputError("ring " + std::to_string(r + 1) + " was removed");
-    if (m.live_rings() == 1) throw InputError("ring " + std::to_string(r + 1) + " is the last ring; without one the water is undefined");
+    if (m.refinement->rings().rings[r].closed() && m.live_closed_rings() == 1)
+      throw InputError("ring " + std::to_string(r + 1) + " is the last ring; without one the water is undefined");
+    // The water flips inside a closed ring that goes: a line there would be left on land.
+    if (m.refinement->rings().rings[r].closed())
+      for (std::size_t l = 0; l < m.ring_ids.size(); ++l) {
+        const Ring& line = m.refinement->rings().rings[l];
+        if (!line.closed() && !line.points.empty() && ring_contains(m.refinement->rings().rings[r].points, line.points.front()))
+          throw InputError("removing ring " + std::to_string(r + 1) + " would leave line " + std::to_string(l + 1) +
+                           " on land; remove the line first");
+      }
     const auto edit_start = Clock::now();
     Domain2 after = m.refinement->rings();
-    const std::vector<Point2> gone = after.rings[r].points;
+    const Ring gone_ring = after.rings[r];
+    const std::vector<Point2>& gone = gone_ring.points;
     after.rings[r].points.clear();
     SessionEdit<D> out;
     out.ring = r;
@@ -449,7 +493,7 @@ SessionEdit<D> ShoreSession<D>::remove_ring(std::size_t r) {
     }
     out.ring_ids = std::move(m.ring_ids[r]);
     m.ring_ids[r].clear();
-    m.ring_index->erase_ring(r, gone);
+    m.ring_index->erase_ring(r, gone_ring);
     m.update_mesh(std::move(removed), std::move(added), edit_start, start, out);
     return out;
   }

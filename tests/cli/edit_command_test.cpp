@@ -10,6 +10,7 @@
 #include <cmath>
 #include <map>
 #include <random>
+#include <set>
 #include <sstream>
 
 #include "cli_test_util.hpp"
@@ -360,6 +361,70 @@ TEST(EditCommand, RingsAddedAndRemovedEqualAFreshRunOnTheExportedShoreline) {
   const auto edited_mesh = off_triangles(dir / "final.off");
   EXPECT_GT(edited_mesh.size(), 30u);
   EXPECT_EQ(edited_mesh, off_triangles(dir / "fresh.off"));
+}
+
+// A constraint line (a breakwater) added to a session: each of its segments is a chain of edges of the
+// exported mesh (through the points the mesh has on it), the water's area stays the lake's, a line on
+// land and a line across the shore are refused, and moving one of its points keeps it a chain.
+TEST(EditCommand, ALineAddedInTheWaterIsAChainOfMeshEdges) {
+  TempDir dir;
+  std::string lake;
+  for (int i = 0; i <= 16; ++i) {
+    const double t = 2 * 3.141592653589793 * (i % 16) / 16;
+    lake += io::format_double(200 + 100 * std::cos(t)) + "," + io::format_double(200 + 100 * std::sin(t)) + "\n";
+  }
+  write_file(dir / "lake.txt", lake);
+  const std::string edits =
+      "add-line 150 200 200 225 250 200\n"  // ring 2, ids 16..18
+      "add-line 95 95 100 100\n"            // on land (outside the lake): refused
+      "add-line 250 250 305 250\n"          // across the shore: refused
+      "move 17 200 230\n"
+      "stats\nexport final.off\n";
+  const RunResult r = shoremesh(dir, "edit lake.txt --json --edits -", edits);
+  EXPECT_EQ(r.code, 1) << r.err;
+  const auto replies = json_lines(r.out);
+  ASSERT_EQ(replies.size(), 7u) << r.out;
+  ASSERT_TRUE(replies[1]["ok"].get<bool>()) << replies[1];
+  EXPECT_EQ(replies[1]["role"], "line");
+  EXPECT_EQ(replies[1]["ids"], json({16, 17, 18}));
+  EXPECT_THAT(replies[2]["error"].get<std::string>(), HasSubstr("line 3 lies on land"));
+  EXPECT_THAT(replies[3]["error"].get<std::string>(), HasSubstr("crosses"));
+  ASSERT_TRUE(replies[4]["ok"].get<bool>()) << replies[4];
+  EXPECT_EQ(replies[5]["shore_segments"], 16 + 2);
+  EXPECT_TRUE(replies[5]["shore_conforming"].get<bool>());
+
+  std::set<std::pair<Point2, Point2>> edges;
+  std::set<Point2> vertices;
+  double area = 0;
+  for (const auto& t : off_triangles(dir / "final.off")) {
+    std::array<Point2, 3> c;
+    for (int i = 0; i < 3; ++i) {
+      std::istringstream in(t[std::size_t(i)]);
+      in >> c[std::size_t(i)][0] >> c[std::size_t(i)][1];
+      vertices.insert(c[std::size_t(i)]);
+    }
+    for (int i = 0; i < 3; ++i) edges.insert(std::minmax(c[std::size_t(i)], c[std::size_t(i + 1) % 3]));
+    area += 0.5 * std::abs((c[1][0] - c[0][0]) * (c[2][1] - c[0][1]) - (c[1][1] - c[0][1]) * (c[2][0] - c[0][0]));
+  }
+  EXPECT_NEAR(area, 16 * 0.5 * 100 * 100 * std::sin(2 * 3.141592653589793 / 16), 1e-6);
+  const std::vector<Point2> line{{150, 200}, {200, 230}, {250, 200}};
+  for (std::size_t k = 0; k + 1 < line.size(); ++k) {
+    const Point2 a = line[k], b = line[k + 1];
+    // The mesh's points on the segment, in order from a to b: consecutive ones must be mesh edges.
+    std::vector<std::pair<double, Point2>> on;
+    for (const Point2& p : vertices) {
+      const double cross = (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+      const double t = ((p[0] - a[0]) * (b[0] - a[0]) + (p[1] - a[1]) * (b[1] - a[1])) /
+                       ((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]));
+      if (std::abs(cross) < 1e-9 * 100 * 100 && t >= 0 && t <= 1) on.push_back({t, p});
+    }
+    std::sort(on.begin(), on.end());
+    ASSERT_GE(on.size(), 2u);
+    EXPECT_EQ(on.front().second, a);
+    EXPECT_EQ(on.back().second, b);
+    for (std::size_t j = 0; j + 1 < on.size(); ++j)
+      EXPECT_TRUE(edges.count(std::minmax(on[j].second, on[j + 1].second))) << "segment " << k << " piece " << j;
+  }
 }
 
 TEST(EditCommand, LonLatEditsAreProjectedLikeTheInput) {

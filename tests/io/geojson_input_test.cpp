@@ -55,18 +55,20 @@ TEST(GeoJson, AllGeometryTypes) {
   const std::string text = R"({"type":"FeatureCollection","features":[
     {"type":"Feature","geometry":{"type":"Point","coordinates":[14.30,45.75]},"properties":null},
     {"type":"Feature","geometry":{"type":"MultiPoint","coordinates":[[14.31,45.75],[14.32,45.75,500]]},"properties":{}},
-    {"type":"Feature","geometry":{"type":"LineString","coordinates":[[14.30,45.76],[14.31,45.76]]},"properties":{}},
+    {"type":"Feature","geometry":{"type":"LineString","coordinates":[[14.331,45.765],[14.339,45.765]]},"properties":{}},
     {"type":"Feature","geometry":null,"properties":{}},
     {"type":"Feature","geometry":{"type":"GeometryCollection","geometries":[
        {"type":"MultiPolygon","coordinates":[[[[14.33,45.74],[14.36,45.74],[14.36,45.77],[14.33,45.77],[14.33,45.74]],
                                              [[14.34,45.75],[14.35,45.75],[14.35,45.76],[14.34,45.75]]]]},
-       {"type":"MultiLineString","coordinates":[[[14.29,45.70],[14.29,45.71]]]}]},"properties":{}}]})";
+       {"type":"MultiLineString","coordinates":[[[14.355,45.741],[14.355,45.7509]]]}]},"properties":{}}]})";
   GeoJsonOptions opt;
   opt.spacing = 200;  // metres
   const auto set = parse_geojson_text(text, "all.geojson", opt);
-  ASSERT_EQ(set.domain.rings.size(), 2u);
+  ASSERT_EQ(set.domain.rings.size(), 4u);  // the polygon's two rings, then the two LineStrings as lines
   EXPECT_EQ(set.domain.rings[0].role, RingRole::Shore);
   EXPECT_EQ(set.domain.rings[1].role, RingRole::Island);
+  EXPECT_EQ(set.domain.rings[2].role, RingRole::Line);
+  EXPECT_EQ(set.domain.rings[3].role, RingRole::Line);
   // 0.03 degrees of longitude at 45.75N is about 2.3 km: subdivided into pieces of at most 200 m.
   const auto& outer = set.domain.rings[0].points;
   for (std::size_t i = 0; i < outer.size(); ++i) {
@@ -75,10 +77,25 @@ TEST(GeoJson, AllGeometryTypes) {
     EXPECT_LE(std::hypot(a[0] - b[0], a[1] - b[1]), 200.0 + 1e-9);
   }
   EXPECT_GT(outer.size(), 40u);
-  // Loose points: 3 points + LineString (780 m -> 5 pieces: 5 points + end) + MultiLineString (1.1 km -> 7 points).
+  // Lines, in the water: the LineString (620 m -> 4 pieces of at most 200 m: 5 points) and the
+  // MultiLineString's (1.1 km -> 6 pieces: 7 points), open (no closing segment); loose points: the 3 points.
+  EXPECT_EQ(set.domain.rings[2].points.size(), 5u);
+  EXPECT_EQ(set.domain.rings[3].points.size(), 7u);
+  EXPECT_EQ(set.domain.rings[2].segment_count(), 4u);
   std::size_t loose = 0;
   for (const auto& o : set.origins) loose += o.ring == PointOrigin::kNoRing;
-  EXPECT_GE(loose, 3u + 5u + 6u);
+  EXPECT_EQ(loose, 3u);
+}
+
+// A LineString is a chain of constraint edges in the water: one on land would be in no element, and is
+// refused naming it.
+TEST(GeoJson, ALineStringOnLandIsRefused) {
+  const std::string text = R"({"type":"FeatureCollection","features":[
+    {"type":"Feature","geometry":{"type":"Polygon","coordinates":[[[14.33,45.74],[14.36,45.74],[14.36,45.77],[14.33,45.77],[14.33,45.74]]]},"properties":{}},
+    {"type":"Feature","geometry":{"type":"LineString","coordinates":[[14.30,45.76],[14.31,45.76]]},"properties":{}}]})";
+  const auto e = expect_input_error([&] { parse_geojson_text(text, "land.geojson"); });
+  EXPECT_EQ(e.file(), "land.geojson");
+  EXPECT_THAT(e.message(), HasSubstr("line 2 lies on land"));
 }
 
 TEST(GeoJson, LegacyUtmCrsKeepsMetres) {

@@ -204,7 +204,7 @@ TEST(RingCheck, IndexedCheckOfANewRingAgreesWithTheWholeCheckAndItsWaterTestWith
     if (k % 7 == 6 && lake.rings.size() > 1) {  // a ring goes (its place kept, as a session keeps it)
       const std::size_t r = 1 + rng() % (lake.rings.size() - 1);
       if (lake.rings[r].points.empty()) continue;
-      index.erase_ring(r, lake.rings[r].points);
+      index.erase_ring(r, lake.rings[r]);
       lake.rings[r].points.clear();
       ++removed;
     } else {  // a hexagon of random size somewhere around the lake, often crossing something
@@ -231,7 +231,7 @@ TEST(RingCheck, IndexedCheckOfANewRingAgreesWithTheWholeCheckAndItsWaterTestWith
         ++defects;
         continue;
       }
-      index.insert_ring(r, hexagon);
+      index.insert_ring(r, Ring{hexagon, RingRole::Shore});
       lake = std::move(after);
       ++added;
     }

@@ -42,9 +42,10 @@ double signed_area(const std::vector<Point2>& ring) {
 double water_area(const Domain2& d) {
   double total = 0;
   for (std::size_t i = 0; i < d.rings.size(); ++i) {
+    if (!d.rings[i].closed()) continue;  // lines bound nothing
     int depth = 0;
     for (std::size_t j = 0; j < d.rings.size(); ++j)
-      depth += j != i && WaterTest(Domain2{{d.rings[j]}}).in_water(d.rings[i].points[0]);
+      depth += j != i && d.rings[j].closed() && WaterTest(Domain2{{d.rings[j]}}).in_water(d.rings[i].points[0]);
     total += (depth % 2 ? -1 : 1) * std::abs(signed_area(d.rings[i].points));
   }
   return total;
@@ -97,7 +98,7 @@ std::size_t check_conforming(const Mesh2& mesh, const Domain2& rings, const Doma
     const auto& given = rings.rings[r].points;
     const auto& fine = refined.rings[r].points;
     std::size_t at = 0;
-    for (std::size_t k = 0; k < given.size(); ++k) {
+    for (std::size_t k = 0; k < rings.rings[r].segment_count(); ++k) {
       const Point2 &a = given[k], &b = given[(k + 1) % given.size()];
       EXPECT_EQ(fine.at(at), a) << what;
       bool chain = true;
@@ -161,6 +162,11 @@ TEST(ConformingMesh, ShoreSegmentsAreChainsOfMeshEdgesAndTheAreaIsTheRings) {
   const std::vector<std::pair<std::string, Domain2>> cases{
       {"double_hex.poly", mesh_test::rings_from_poly(mesh_test::samples("pslg/double_hex.poly"))},
       {"letter A", letter_a()},
+      {"letter A with a breakwater line", [] {
+         Domain2 d = letter_a();
+         d.rings.push_back({{{1.0, 1.5}, {2.5, 1.9}, {4.0, 1.5}}, RingRole::Line});
+         return d;
+       }()},
       {"Lake Superior (GSHHG, 46 rings)", superior()},
   };
   for (const auto& [what, rings] : cases) {
@@ -200,7 +206,8 @@ SessionInput<2> session_input(const Domain2& rings) {
 
 // Random edits of Lake Superior's GSHHG rings through the library's ShoreSession, as `shoremesh edit`
 // makes them: shore points moved, added after a vertex and removed, loose points added and removed,
-// islands added (small hexagons) and removed. After each edit the mesh equals a fresh run on the edited
+// islands (small hexagons) and constraint lines (zigzags) added and removed, and the lines' points edited
+// like the shore's. After each edit the mesh equals a fresh run on the edited
 // input, triangle for triangle, and conforms; an edit the session refuses changes nothing.
 TEST(ConformingMesh, RandomEditsThroughTheLibrarySessionOnSuperiorEqualAFreshRun) {
   const int edits = std::getenv("SHOREMESH_SANITIZER_BUILD") ? 30 : 300;
@@ -215,7 +222,7 @@ TEST(ConformingMesh, RandomEditsThroughTheLibrarySessionOnSuperiorEqualAFreshRun
     }
     return std::nullopt;
   };
-  int made = 0, refused = 0, island_adds = 0, island_removals = 0, loose_edits = 0;
+  int made = 0, refused = 0, island_adds = 0, island_removals = 0, loose_edits = 0, line_adds = 0;
   std::vector<std::size_t> loose_ids;
   for (int attempt = 0; made < edits && attempt < 20 * edits; ++attempt) {
     const double what = u(rng);
@@ -249,6 +256,16 @@ TEST(ConformingMesh, RandomEditsThroughTheLibrarySessionOnSuperiorEqualAFreshRun
           loose_ids.push_back(session.add({a[0] + d * std::cos(t), a[1] + d * std::sin(t)}).id);
         }
         ++loose_edits;
+      } else if (what < 0.92) {  // a constraint line: a zigzag of four points a little off a shore point
+        const auto id = ring_vertex();
+        ASSERT_TRUE(id);
+        const Point2 a = session.input_point(*id);
+        const double d = 1500 + 4000 * u(rng), t = 6.283185307179586 * u(rng), step = 200 + 500 * u(rng);
+        std::vector<Point2> zigzag;
+        for (int i = 0; i < 4; ++i)
+          zigzag.push_back({a[0] + d * std::cos(t) + step * i, a[1] + d * std::sin(t) + (i % 2 ? step : 0)});
+        session.add_ring(zigzag, /*line=*/true);
+        ++line_adds;
       } else if (what < 0.95) {  // an island: a small hexagon a little off a shore point
         const auto id = ring_vertex();
         ASSERT_TRUE(id);
@@ -261,7 +278,7 @@ TEST(ConformingMesh, RandomEditsThroughTheLibrarySessionOnSuperiorEqualAFreshRun
                              c[1] + radius * std::sin(1.0471975511965976 * i + t)});
         session.add_ring(hexagon);
         ++island_adds;
-      } else {  // an island removed (any live ring but the first, the lake's shore)
+      } else {  // an island or a line removed (any live ring but the first, the lake's shore)
         std::vector<std::size_t> live;
         for (std::size_t r = 1; r < session.ring_count(); ++r)
           if (!session.ring(r).empty()) live.push_back(r);
@@ -289,9 +306,10 @@ TEST(ConformingMesh, RandomEditsThroughTheLibrarySessionOnSuperiorEqualAFreshRun
   EXPECT_GT(island_adds, 0);
   EXPECT_GT(island_removals, 0);
   EXPECT_GT(loose_edits, 0);
+  EXPECT_GT(line_adds, 0);
   RecordProperty("refused edits", std::to_string(refused));
-  std::printf("%d edits (%d islands added, %d removed, %d loose points), %d refused\n", made, island_adds,
-              island_removals, loose_edits, refused);
+  std::printf("%d edits (%d islands added, %d lines added, %d rings or lines removed, %d loose points), %d refused\n",
+              made, island_adds, line_adds, island_removals, loose_edits, refused);
 }
 
 }  // namespace

@@ -7,7 +7,9 @@
 //
 // The rings must be valid (find_ring_defect finds nothing) when the index is built, and each edit checked
 // here before it is committed. Ring vertices are distinct points (the engine refuses duplicates), so an
-// edge is known by its ring and its two end points. Rings without points (removed ones) hold no edge.
+// edge is known by its ring and its two end points. Rings without points (removed ones) hold no edge; a
+// line (RingRole::Line) holds its segments, not a closing one. One-vertex edits (defect_at, commit) are
+// for closed rings: a line changes as a whole (erase_ring, defect_of_new_ring, insert_ring).
 #include <cstddef>
 #include <memory>
 #include <optional>
@@ -51,12 +53,12 @@ class RingEdgeIndex {
   // Ring `ring` of `after` is new (it holds no indexed edge): its first defect, on its own or against the
   // indexed edges, as find_ring_defect would report it for `after`, or nothing.
   std::optional<RingDefect> defect_of_new_ring(const Domain2& after, std::size_t ring) const;
-  // Ring `ring` with `points` comes (checked) or goes.
-  void insert_ring(std::size_t ring, const std::vector<Point2>& points);
-  void erase_ring(std::size_t ring, const std::vector<Point2>& points);
+  // Ring (or line) number r comes (checked) or goes.
+  void insert_ring(std::size_t r, const Ring& ring);
+  void erase_ring(std::size_t r, const Ring& ring);
 
-  // Whether p lies inside an odd number of the indexed rings (the even-odd rule): the edges whose boxes
-  // meet the rightward ray from p, each decided exactly. p on an edge counts as inside.
+  // Whether p lies inside an odd number of the indexed rings (the even-odd rule; lines bound nothing): the
+  // edges whose boxes meet the rightward ray from p, each decided exactly. p on an edge counts as inside.
   bool inside(const Point2& p) const;
 
   std::size_t size() const;  // edges indexed

@@ -90,9 +90,11 @@ class ShoreSession {
   SessionEdit<D> move(std::size_t id, const Point<D>& p);
   SessionEdit<D> remove(std::size_t id);
   // A new ring (an island, a breakwater, a lake) of new points, closed implicitly (2D, a session with
-  // rings). Its role (shore or island) follows from its nesting among the rings.
-  SessionEdit<D> add_ring(std::span<const Point2> points);
-  // Ring `ring` and all of its points go; the last ring cannot (the water would be undefined).
+  // rings). Its role (shore or island) follows from its nesting among the rings. `line`: an open chain
+  // instead (RingRole::Line: constraints in the water that bound nothing), numbered like a ring.
+  SessionEdit<D> add_ring(std::span<const Point2> points, bool line = false);
+  // Ring (or line) `ring` and all of its points go; the last closed ring cannot (the water would be
+  // undefined).
   SessionEdit<D> remove_ring(std::size_t ring);
 
   const Mesh<D>& mesh() const;

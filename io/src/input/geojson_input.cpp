@@ -278,6 +278,27 @@ InputSet parse_geojson_text(std::string_view text, const std::string& name, cons
     }
     builder.add_ring(pts, RingRole::Shore, elements, options.spacing);
   }
+  // LineStrings are open chains of constraints (a breakwater, a channel's edge): mesh edges in the water
+  // that bound nothing. A position repeated right after itself is one vertex.
+  std::size_t repeated_in_lines = 0;
+  for (const auto& l : g.lines) {
+    std::vector<Point2> pts;
+    std::vector<std::size_t> elements;
+    for (const auto& p : l) {
+      const Point2 q = convert(p);
+      if (!pts.empty() && pts.back() == q) {
+        ++repeated_in_lines;
+        continue;
+      }
+      pts.push_back(q);
+      elements.push_back(p.element);
+    }
+    if (pts.size() < 2) throw InputError(l.front().path + ": a LineString needs two distinct positions", name);
+    builder.add_ring(pts, RingRole::Line, elements, options.spacing);
+  }
+  if (repeated_in_lines) set.notes.push_back("dropped " + std::to_string(repeated_in_lines) + " position(s) repeated along a LineString");
+  if (!g.lines.empty())
+    set.notes.push_back(std::to_string(g.lines.size()) + " LineString(s) kept as constraint lines (chains of mesh edges)");
   assign_roles_by_nesting(set.domain);
   check_rings(set);
   std::set<Point2> seen(set.points.begin(), set.points.end());
@@ -286,13 +307,6 @@ InputSet parse_geojson_text(std::string_view text, const std::string& name, cons
     if (seen.insert(p).second) builder.add_point(p, element);
     else ++repeats;
   };
-  for (const auto& l : g.lines) {
-    std::vector<Point2> pts;
-    for (const auto& p : l) pts.push_back(convert(p));
-    const auto sub = detail::subdivide(pts, false, options.spacing, name, set.points.size());
-    const auto from = detail::subdivided_from(pts, sub);
-    for (std::size_t i = 0; i < sub.size(); ++i) loose(sub[i], l[from[i]].element);
-  }
   for (const auto& p : g.points) loose(convert(p), p.element);
   if (repeats) set.notes.push_back("dropped " + std::to_string(repeats) + " repeated position(s)");
   return set;

@@ -90,7 +90,7 @@ inline std::vector<std::size_t> subdivided_from(const std::vector<Point2>& pts, 
 
 inline void InputBuilder::add_ring(const std::vector<Point2>& pts, RingRole role,
                                    const std::vector<std::size_t>& locations, double spacing) {
-  std::vector<Point2> sub = subdivide(pts, true, spacing, file(), point_count());
+  std::vector<Point2> sub = subdivide(pts, role != RingRole::Line, spacing, file(), point_count());
   std::vector<std::size_t> sub_locations;
   for (const std::size_t v : subdivided_from(pts, sub)) sub_locations.push_back(locations.empty() ? 0 : locations[v]);
   add_ring(std::move(sub), role, sub_locations);
