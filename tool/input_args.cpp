@@ -109,8 +109,9 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
       ->check(above_zero(false));
   group->add_flag("--lonlat", a.lonlat, "Point and ring files hold lon,lat degrees (projected to metres)");
   group->add_option("--projection", a.projection,
-                    "Projection of lon/lat input: 'utm' (the data's UTM zone, default) or 'local' "
-                    "(transverse Mercator centred on the data)")
+                    "Projection of lon/lat input, and of projected input whose scale leaves 0.1 % of 1 over the "
+                    "data (Web Mercator, UTM across zones; others keep their own metres): 'local' (transverse "
+                    "Mercator centred on the data, default) or 'utm' (the data's UTM zone)")
       ->check(CLI::IsMember({"utm", "local"}));
   if (several) {
     auto* dem = cmd->add_option_group("Terrain and depths");
@@ -174,7 +175,7 @@ std::array<int, 3> parse_colour(const std::string& text) {
 io::InputOptions input_options(const InputArgs& a) {
   io::InputOptions o;
   o.lonlat = a.lonlat;
-  o.projection_choice = a.projection == "local" ? io::ProjectionChoice::LocalTransverseMercator : io::ProjectionChoice::Utm;
+  o.projection_choice = a.projection == "utm" ? io::ProjectionChoice::Utm : io::ProjectionChoice::LocalTransverseMercator;
   if (a.water == "light") {
     o.image.water = io::WaterSide::Light;
   } else if (a.water == "dark") {

@@ -27,7 +27,7 @@ struct InputArgs {
   std::string crs;                 // images: coordinate system of --map-box (or of a world file without .prj)
   std::optional<double> track_close_distance;  // GPS walks ending this near their start become rings
   bool lonlat = false;
-  std::string projection = "utm";  // utm | local
+  std::string projection = "local";  // local | utm
   std::string dem;                 // a DEM traced at shoreline_level, and the depth source
   double shoreline_level = 0;
   std::string depth_from;          // a DEM giving depths beside other inputs
