@@ -32,6 +32,8 @@ struct InputArgs {
   double shoreline_level = 0;
   std::string depth_from;          // a DEM giving depths beside other inputs
   std::optional<double> min_depth;
+  std::string open_boundary;       // lines along which fort.14's boundary is open (beside the data's edges)
+  std::optional<double> open_boundary_distance;  // how near a boundary node must be to such a line
   bool three_d = false;            // --dim 3: a third column is z; otherwise x,y,depth soundings
   bool quiet = false;
 };

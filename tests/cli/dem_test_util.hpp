@@ -1,13 +1,17 @@
 #pragma once
-// Writing small DEMs for tests with GDAL.
+// Writing small DEMs for tests with GDAL, and reading fort.14 as the ADCIRC manual describes it.
 #include <gdal_priv.h>
 #include <gtest/gtest.h>
 #include <ogr_spatialref.h>
 
 #include <array>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace shoremesh::cli_test {
@@ -26,6 +30,69 @@ inline void write_dem(const std::filesystem::path& path, int w, int h, const std
   if (nodata) ds->GetRasterBand(1)->SetNoDataValue(*nodata);
   ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, const_cast<float*>(z.data()), w, h, GDT_Float32, 0, 0),
             CE_None);
+}
+
+// fort.14 as the ADCIRC manual lays it out: AGRID; NE NP; NP lines JN X Y DP; NE lines JE NHY NM1 NM2 NM3;
+// NOPE; NETA; per open segment NVDLL IBTYPEE then NVDLL node lines; NBOU; NVEL; per land segment NVELL
+// IBTYPE then NVELL node lines. Anything after '!' on a line is a comment here.
+struct Fort14 {
+  struct Node {
+    double x, y, depth;
+  };
+  std::map<long, Node> nodes;
+  std::vector<std::array<long, 3>> triangles;
+  struct Segment {
+    int type;
+    std::vector<long> nodes;
+  };
+  std::vector<Segment> open, land;
+  long neta = 0, nvel = 0;
+};
+
+inline Fort14 parse_fort14(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  auto next = [&]() {
+    if (!std::getline(in, line)) throw std::runtime_error("fort.14 ends early");
+    std::istringstream words(line.substr(0, line.find('!')));
+    return words.str();
+  };
+  Fort14 f;
+  next();  // AGRID
+  long ne = 0, np = 0;
+  std::istringstream(next()) >> ne >> np;
+  for (long i = 0; i < np; ++i) {
+    long jn;
+    Fort14::Node n{};
+    std::istringstream(next()) >> jn >> n.x >> n.y >> n.depth;
+    f.nodes[jn] = n;
+  }
+  for (long i = 0; i < ne; ++i) {
+    long je, nhy;
+    std::array<long, 3> t{};
+    std::istringstream(next()) >> je >> nhy >> t[0] >> t[1] >> t[2];
+    EXPECT_EQ(nhy, 3);
+    f.triangles.push_back(t);
+  }
+  auto segments = [&](std::vector<Fort14::Segment>& out, long& total) {
+    long count = 0;
+    std::istringstream(next()) >> count;
+    std::istringstream(next()) >> total;
+    for (long k = 0; k < count; ++k) {
+      long n = 0;
+      Fort14::Segment s{};
+      std::istringstream(next()) >> n >> s.type;
+      for (long j = 0; j < n; ++j) {
+        long node = 0;
+        std::istringstream(next()) >> node;
+        s.nodes.push_back(node);
+      }
+      out.push_back(s);
+    }
+  };
+  segments(f.open, f.neta);
+  segments(f.land, f.nvel);
+  return f;
 }
 
 }  // namespace shoremesh::cli_test
