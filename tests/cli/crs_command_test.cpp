@@ -95,8 +95,16 @@ TEST(CrsCommand, SuperiorLonLatIsMeshedInALocalTransverseMercatorAndTheSummarySa
   EXPECT_NEAR(water_km2(local.out), 82078, 0.001 * 82078);
 }
 
-// A UTM DEM inside its zone keeps its own metres (the file's coordinates are the mesh's).
-TEST(CrsCommand, UtmDemInsideItsZoneIsMeshedInItsOwnMetres) {
+// A 40 x 30 DEM with a lake of 30 x 20 cells in the middle.
+std::vector<float> z40x30() {
+  std::vector<float> z(40 * 30, 10.0f);
+  for (int r = 5; r < 25; ++r)
+    for (int c = 5; c < 35; ++c) z[static_cast<std::size_t>(r) * 40 + c] = -15.0f;
+  return z;
+}
+
+// A projected DEM inside its area keeps its own metres (the file's coordinates are the mesh's).
+TEST(CrsCommand, UtmAndNationalGridDemsInsideTheirAreaAreMeshedInTheirOwnMetres) {
   TempDir dir;
   std::vector<float> z(20 * 20, 10.0f);
   for (int r = 4; r < 16; ++r)
@@ -108,6 +116,21 @@ TEST(CrsCommand, UtmDemInsideItsZoneIsMeshedInItsOwnMetres) {
   EXPECT_THAT(r.out, ::testing::HasSubstr("stays within 0.1 % of 1"));
   // The lake's cells are 400,000 + 4..16 km east: so are the mesh's nodes.
   EXPECT_THAT(r.out, ::testing::HasSubstr("box: origin (40"));
+  // A national grid too (British National Grid, 10 km around London: scale 0.9998), through PROJ.
+  write_dem(dir / "bng.tif", 40, 30, z40x30(), std::nullopt, {530000, 250, 0, 185000, 0, -250}, 27700);
+  const RunResult bng = shoremesh(dir, "mesh --dem bng.tif -o bng.14");
+  ASSERT_EQ(bng.code, 0) << bng.err;
+  EXPECT_THAT(bng.out, ::testing::HasSubstr("meshed in OSGB36 / British National Grid: its scale 0.9998"));
+  EXPECT_THAT(bng.out, ::testing::HasSubstr("box: origin (53"));
+  // fort.14 is in lon/lat, back through PROJ: the lake lies at 0.1 W .. 0.03 E, 51.47 .. 51.52 N.
+  const Fort14 f = parse_fort14(read_file(dir / "bng.14"));
+  ASSERT_FALSE(f.nodes.empty());
+  for (const auto& [id, n] : f.nodes) {
+    EXPECT_GT(n.x, -0.13);
+    EXPECT_LT(n.x, 0.06);
+    EXPECT_GT(n.y, 51.45);
+    EXPECT_LT(n.y, 51.54);
+  }
 }
 
 }  // namespace
