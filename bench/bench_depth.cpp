@@ -18,11 +18,13 @@
 #include <ogr_spatialref.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -56,6 +58,19 @@ std::vector<double> bilinear_only(const io::DemFrame& frame, std::span<const Poi
     d.push_back(-frame.dem().bilinear(c[0], c[1]));
   }
   return d;
+}
+
+// A one-band Float32 GeoTIFF in EPSG:`epsg` with GDAL's geotransform `g`; false when GDAL cannot write it.
+bool write_geotiff(const std::string& path, int w, int h, std::vector<float>& z, std::array<double, 6> g, int epsg) {
+  GDALAllRegister();
+  std::unique_ptr<GDALDataset> ds(
+      GetGDALDriverManager()->GetDriverByName("GTiff")->Create(path.c_str(), w, h, 1, GDT_Float32, nullptr));
+  if (!ds) return false;
+  ds->SetGeoTransform(g.data());
+  OGRSpatialReference srs;
+  srs.importFromEPSG(epsg);
+  ds->SetSpatialRef(&srs);
+  return ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, z.data(), w, h, GDT_Float32, 0, 0) == CE_None;
 }
 
 double checksum(const std::vector<double>& v) {
@@ -113,16 +128,7 @@ int main(int argc, char** argv) {
   const auto& g = dem->geotransform;
   std::array<double, 6> gbig{g[0], g[1] * dem->width / W, 0, g[3], 0, g[5] * dem->height / H};
   const std::string big_path = (scratch / "salish_1e7.tif").string();
-  {
-    GDALAllRegister();
-    std::unique_ptr<GDALDataset> ds(
-        GetGDALDriverManager()->GetDriverByName("GTiff")->Create(big_path.c_str(), W, H, 1, GDT_Float32, nullptr));
-    ds->SetGeoTransform(gbig.data());
-    OGRSpatialReference srs;
-    srs.importFromEPSG(3857);
-    ds->SetSpatialRef(&srs);
-    if (ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, W, H, big.data(), W, H, GDT_Float32, 0, 0) != CE_None) return 1;
-  }
+  if (!write_geotiff(big_path, W, H, big, gbig, 3857)) return 1;
   std::shared_ptr<const io::Dem> big_dem;
   const double big_read_s = median_seconds(repeats, [&] { big_dem = std::make_shared<const io::Dem>(io::read_dem(big_path)); });
   const int N = 1000;
@@ -169,16 +175,8 @@ int main(int argc, char** argv) {
     if (mask->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, mw, mh, z.data(), mw, mh, GDT_Float32, 0, 0) != CE_None) return 1;
     for (float& v : z) v = v > 127 ? -100.0f : 100.0f;
     const std::string sup_path = (scratch / "superior_dem.tif").string();
-    {
-      std::unique_ptr<GDALDataset> ds(
-          GetGDALDriverManager()->GetDriverByName("GTiff")->Create(sup_path.c_str(), mw, mh, 1, GDT_Float32, nullptr));
-      std::array<double, 6> gs{-92.5, 0.005, 0, 49.2, 0, -0.005};  // the mask's world file, as a geotransform
-      ds->SetGeoTransform(gs.data());
-      OGRSpatialReference srs;
-      srs.importFromEPSG(4326);
-      ds->SetSpatialRef(&srs);
-      if (ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, mw, mh, z.data(), mw, mh, GDT_Float32, 0, 0) != CE_None) return 1;
-    }
+    // The mask's world file, as a geotransform.
+    if (!write_geotiff(sup_path, mw, mh, z, {-92.5, 0.005, 0, 49.2, 0, -0.005}, 4326)) return 1;
     std::shared_ptr<const io::Dem> sdem;
     const double sread_s = median_seconds(repeats, [&] { sdem = std::make_shared<const io::Dem>(io::read_dem(sup_path)); });
     const io::DemFrame sframe(sdem, sup.projection);

@@ -155,22 +155,7 @@ TEST(SalishSeaDem, PacificEdgeIsOpenEveryOtherBoundaryIsLandIslandsAreType21) {
   ASSERT_EQ(s.run.code, 0) << s.run.err;
   const Fort14& f = s.f;
   // Every boundary edge of the mesh (used by one triangle) is in exactly one segment, open or land.
-  std::map<std::pair<long, long>, int> uses;
-  for (const auto& t : f.triangles)
-    for (int k = 0; k < 3; ++k) ++uses[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
-  std::map<std::pair<long, long>, int> listed;
-  long neta = 0, nvel = 0;
-  for (const auto* list : {&f.open, &f.land})
-    for (const auto& seg : *list) {
-      (list == &f.open ? neta : nvel) += static_cast<long>(seg.nodes.size());
-      for (std::size_t j = 0; j + 1 < seg.nodes.size(); ++j)
-        ++listed[{std::min(seg.nodes[j], seg.nodes[j + 1]), std::max(seg.nodes[j], seg.nodes[j + 1])}];
-    }
-  EXPECT_EQ(neta, f.neta);
-  EXPECT_EQ(nvel, f.nvel);
-  for (const auto& [edge, n] : uses)
-    if (n == 1) EXPECT_EQ(listed[edge], 1) << "boundary edge " << edge.first << "-" << edge.second;
-  for (const auto& [edge, n] : listed) EXPECT_EQ(uses[edge], 1) << "listed edge is not a boundary edge";
+  expect_boundary_listed_once(f);
 
   // Open segments lie on the raster's edge (lon -126, lat 48 or 50, within a cell), and the longest one
   // runs down the Pacific (west) edge.

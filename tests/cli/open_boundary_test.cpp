@@ -36,25 +36,6 @@ BayRun mesh_bay(const TempDir& dir, const std::string& extra) {
   return b;
 }
 
-// Every boundary edge (used by one triangle) is listed once, in an open or a land segment.
-void expect_boundary_listed_once(const Fort14& f) {
-  std::map<std::pair<long, long>, int> uses, listed;
-  for (const auto& t : f.triangles)
-    for (int k = 0; k < 3; ++k) ++uses[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
-  long neta = 0, nvel = 0;
-  for (const auto* list : {&f.open, &f.land})
-    for (const auto& seg : *list) {
-      (list == &f.open ? neta : nvel) += static_cast<long>(seg.nodes.size());
-      for (std::size_t j = 0; j + 1 < seg.nodes.size(); ++j)
-        ++listed[{std::min(seg.nodes[j], seg.nodes[j + 1]), std::max(seg.nodes[j], seg.nodes[j + 1])}];
-    }
-  EXPECT_EQ(neta, f.neta);
-  EXPECT_EQ(nvel, f.nvel);
-  for (const auto& [edge, n] : uses)
-    if (n == 1) EXPECT_EQ(listed[edge], 1) << "boundary edge " << edge.first << "-" << edge.second;
-  for (const auto& [edge, n] : listed) EXPECT_EQ(uses[edge], 1) << "listed edge is not a boundary edge";
-}
-
 TEST(OpenBoundary, UserLineMakesTheBaysMouthOpenAndTheRestLandIslandsStay21) {
   TempDir dir;
   const BayRun closed = mesh_bay(dir, "");

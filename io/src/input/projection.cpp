@@ -370,4 +370,10 @@ ChosenProjection choose_projection(const std::optional<Projection>& source, cons
   return out;
 }
 
+ChosenProjection lonlat_projection(const std::optional<Projection>& fixed, const std::vector<LonLat>& data,
+                                   ProjectionChoice choice, const std::string& file) {
+  if (!fixed || fixed->is_none()) return choose_projection(std::nullopt, data, choice, file);
+  return {*fixed, "projected lon/lat to metres with " + fixed->describe()};
+}
+
 }  // namespace shoremesh::io

@@ -128,5 +128,9 @@ struct ChosenProjection {
 // Projection::choose(data, choice). InputError naming `file` as for choose().
 ChosenProjection choose_projection(const std::optional<Projection>& source, const std::vector<LonLat>& data,
                                    ProjectionChoice choice, const std::string& file = {});
+// For lon/lat data: `fixed` when given and not None (the projection an earlier input fixed for all),
+// otherwise choose_projection(nullopt, data, choice, file).
+ChosenProjection lonlat_projection(const std::optional<Projection>& fixed, const std::vector<LonLat>& data,
+                                   ProjectionChoice choice, const std::string& file = {});
 
 }  // namespace shoremesh::io
