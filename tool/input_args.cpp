@@ -140,6 +140,8 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
       throw CLI::RequiredError(several ? "an input file or --dem" : "input");
     if (!a.dem.empty() && !a.depth_from.empty())
       throw CLI::ValidationError("--depth-from", "--dem is the depth source already; give one of them");
+    if (a.open_boundary_distance && a.open_boundary.empty())
+      throw CLI::ValidationError("--open-boundary-distance", "applies to the lines of --open-boundary FILE; give one");
   });
 }
 

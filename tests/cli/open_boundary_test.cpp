@@ -2,8 +2,12 @@
 // the automatic ones, with the rest land (IBTYPE 20 mainland, 21 islands); fort.14 read back by the parser of
 // dem_test_util.hpp (written from the ADCIRC manual). Bad files are refused naming the file and the line or
 // feature, and nothing is written.
+#include <ogr_spatialref.h>
+
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <memory>
 #include <map>
 #include <random>
 #include <set>
@@ -83,6 +87,21 @@ TEST(OpenBoundary, UserLineMakesTheBaysMouthOpenAndTheRestLandIslandsStay21) {
   const BayRun g = mesh_bay(dir, "--open-boundary mouth.geojson");
   ASSERT_EQ(g.run.code, 0) << g.run.err;
   EXPECT_EQ(read_file(dir / "bay.14"), text_file);
+  // And in UTM 32N metres, named by a legacy "crs" (PROJ puts them in the same place, within nanometres).
+  OGRSpatialReference ll, utm;
+  ll.importFromEPSG(4326);
+  utm.importFromEPSG(32632);
+  for (auto* s : {&ll, &utm}) s->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  std::unique_ptr<OGRCoordinateTransformation> t(OGRCreateCoordinateTransformation(&ll, &utm));
+  double x[2] = {kEast, kEast}, y[2] = {45.0, 45.05};
+  ASSERT_TRUE(t->Transform(2, x, y));
+  char coords[200];
+  std::snprintf(coords, sizeof coords, "[[%.17g,%.17g],[%.17g,%.17g]]", x[0], y[0], x[1], y[1]);
+  write_file(dir / "mouth_utm.geojson", std::string(R"({"type":"LineString","crs":{"type":"name","properties":)") +
+                                            R"({"name":"urn:ogc:def:crs:EPSG::32632"}},"coordinates":)" + coords + "}");
+  const BayRun u = mesh_bay(dir, "--open-boundary mouth_utm.geojson");
+  ASSERT_EQ(u.run.code, 0) << u.run.err;
+  EXPECT_EQ(read_file(dir / "bay.14"), text_file);
 }
 
 TEST(OpenBoundary, ALineBesideTheShoreNeedsTheDistanceThatReachesIt) {
@@ -117,9 +136,9 @@ TEST(OpenBoundary, BadFilesAreRefusedNamingTheFileAndTheLineOrFeature) {
        "poly.geojson: features[1].geometry: an open boundary is a LineString or MultiLineString, not a Polygon"},
       {"deg.geojson", R"({"type":"LineString","coordinates":[[10.1,45.0],[1000,45.05]]})",
        "deg.geojson: (root).coordinates[1]: position 1000, 45.05 is not lon/lat"},
-      {"utm.geojson",
-       R"({"type":"LineString","crs":{"type":"name","properties":{"name":"EPSG:32632"}},"coordinates":[[1,2],[3,4]]})",
-       "utm.geojson: crs: open boundaries are read in WGS 84 lon/lat"},
+      {"code.geojson",
+       R"({"type":"LineString","crs":{"type":"name","properties":{"name":"EPSG:99999"}},"coordinates":[[1,2],[3,4]]})",
+       "code.geojson: crs: PROJ does not know the coordinate system \"EPSG:99999\""},
       {"empty.txt", "# nothing\n", "empty.txt: no open-boundary line"},
   };
   write_file(dir / "bay.rings", kBay);

@@ -6,10 +6,12 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 
 #include "shoremesh/error.hpp"
+#include "shoremesh/io/georeference.hpp"
 #include "text_util.hpp"
 
 namespace shoremesh::io {
@@ -74,8 +76,9 @@ void read_text(const std::string& path, const Projection& projection, OpenBounda
 
 class GeoJsonLines {
  public:
-  GeoJsonLines(const std::string& path, const Projection& projection, OpenBoundary& out)
-      : path_(path), projection_(projection), out_(out) {}
+  GeoJsonLines(const std::string& path, const Projection& projection, std::function<Point2(const Point2&)> to_lonlat,
+               OpenBoundary& out)
+      : path_(path), projection_(projection), to_lonlat_(std::move(to_lonlat)), out_(out) {}
 
   void object(const json& j, const std::string& where) {
     if (!j.is_object() || !j.contains("type") || !j["type"].is_string())
@@ -107,7 +110,15 @@ class GeoJsonLines {
       const json& p = c[i];
       if (!p.is_array() || p.size() < 2 || p.size() > 3 || !p[0].is_number() || !p[1].is_number())
         fail(w, "a position is [lon, lat] (or [lon, lat, elevation])");
-      l.points.push_back(to_mesh(projection_, p[0].get<double>(), p[1].get<double>(), path_, w + ": ", std::nullopt));
+      Point2 ll{p[0].get<double>(), p[1].get<double>()};
+      if (to_lonlat_) {
+        try {
+          ll = to_lonlat_(ll);
+        } catch (const std::domain_error& e) {
+          fail(w, e.what());
+        }
+      }
+      l.points.push_back(to_mesh(projection_, ll[0], ll[1], path_, w + ": ", std::nullopt));
     }
     out_.lines.push_back(std::move(l));
   }
@@ -127,6 +138,7 @@ class GeoJsonLines {
 
   const std::string& path_;
   const Projection& projection_;
+  std::function<Point2(const Point2&)> to_lonlat_;  // a legacy crs's positions to lon/lat (empty: lon/lat)
   OpenBoundary& out_;
 };
 
@@ -144,18 +156,36 @@ void read_geojson_lines(const std::string& path, const Projection& projection, O
     const auto p = what.find("] ");
     throw InputError("malformed JSON: " + (p == std::string::npos ? what : what.substr(p + 2)), path);
   }
-  if (root.is_object() && root.contains("crs") && !root["crs"].is_null()) {
+  // A legacy (2008) "crs" naming the positions' system, as for inputs (geojson_input.hpp): PROJ reads it.
+  std::function<Point2(const Point2&)> to_lonlat;
+  if (root.is_object() && root.contains("crs")) {
     const json& crs = root["crs"];
-    const std::string name = crs.is_object() && crs.contains("properties") && crs["properties"].is_object() &&
-                                     crs["properties"].contains("name") && crs["properties"]["name"].is_string()
-                                 ? crs["properties"]["name"].get<std::string>()
-                                 : std::string();
-    if (name.find("CRS84") == std::string::npos && name != "EPSG:4326" && name.find("EPSG::4326") == std::string::npos)
-      throw InputError("crs: open boundaries are read in WGS 84 lon/lat (RFC 7946), not " +
-                           (name.empty() ? std::string("this crs member") : detail::quoted(name)),
+    const bool named = crs.is_object() && crs.contains("type") && crs["type"].is_string() && crs["type"] == "name" &&
+                       crs.contains("properties") && crs["properties"].is_object() &&
+                       crs["properties"].contains("name") && crs["properties"]["name"].is_string();
+    if (!named)
+      throw InputError("crs: expected {\"type\": \"name\", \"properties\": {\"name\": \"EPSG:n\"}} (or no crs: lon/lat)",
                        path);
+    const std::string name = crs["properties"]["name"].get<std::string>();
+    CoordinateSystem cs;
+    try {
+      cs = parse_coordinate_system(name, path);
+    } catch (const InputError& e) {
+      throw InputError("crs: " + e.message(), path);
+    }
+    if (cs.kind == CoordinateSystem::Kind::Unknown)
+      throw InputError("crs: " + detail::quoted(name) + " is a local system: its positions cannot be placed on the mesh", path);
+    if (cs.kind == CoordinateSystem::Kind::Utm) {
+      const Projection utm = Projection::utm_ups(cs.zone, cs.north);
+      to_lonlat = [utm](const Point2& p) {
+        const LonLat ll = utm.reverse(p);
+        return Point2{ll.lon, ll.lat};
+      };
+    } else if (cs.kind == CoordinateSystem::Kind::Other) {
+      to_lonlat = lonlat_transform(cs, path);
+    }
   }
-  GeoJsonLines(path, projection, out).object(root, "");
+  GeoJsonLines(path, projection, std::move(to_lonlat), out).object(root, "");
 }
 
 double segment_distance2(const Point2& p, const Point2& a, const Point2& b) {

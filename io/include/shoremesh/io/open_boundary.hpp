@@ -3,7 +3,8 @@
 // boundary is open water, beside the automatic ones (where the water reaches a DEM's or image's edge).
 //
 // The file is either GeoJSON (.geojson/.json: LineString and MultiLineString geometries, alone, as
-// Features or in a FeatureCollection; positions WGS 84 lon/lat as RFC 7946 says) or a text polyline file
+// Features or in a FeatureCollection; positions WGS 84 lon/lat as RFC 7946 says, or in the system a legacy
+// "crs" member names, read by PROJ as for inputs) or a text polyline file
 // (any other extension): one point a line as "x,y" or "x y", '#' comments, a blank line between lines.
 // Text and GeoJSON positions are lon/lat degrees, projected with the mesh's projection; when the mesh is not
 // projected (map units, pixels), text positions are in the mesh's own units and GeoJSON is refused.
