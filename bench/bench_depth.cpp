@@ -1,6 +1,6 @@
 // Depth sampling benchmark (issue 34): reading a DEM with GDAL and sampling depths onto mesh nodes.
 //
-//   bench_depth SALISH_TIF SCRATCH_DIR [--repeats K]
+//   bench_depth SALISH_TIF SCRATCH_DIR [--repeats K] [--superior MASK_PNG]
 //
 // 1. The Salish Sea sample (120 x 91 cells): GDAL read, then the depths of the mesh `mesh --dem` makes of
 //    it (--min-area 1: traced, StableWS, clipped to the water), by cell means (node_depths) and, as the
@@ -8,22 +8,30 @@
 // 2. A DEM of 10^7 cells made here by resampling the sample bilinearly (3,636 x 2,751), written as a
 //    GeoTIFF and read back with GDAL, sampled onto 10^6 nodes (a 1,000 x 1,000 jittered grid over its
 //    extent, two triangles per grid cell), cell means and the bilinear peer.
+// 3. With --superior samples/superior/superior_watermask_h.png: the Superior demo mesh (the README's:
+//    --largest-water --spacing 4000) with depths from a DEM on the mask's own grid (1,700 x 600 cells of
+//    0.005 degrees, EPSG:4326, written here as a GeoTIFF and read back). The shared data hold no Superior
+//    bathymetry, so the heights are made up from the mask (water -100 m, land +100 m): what is timed
+//    (the read, locating cell centres, PROJ for every node) does not depend on the values.
 // Prints one line per measurement: medians over the repeats of wall seconds.
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "shoremesh/io/dem.hpp"
 #include "shoremesh/io/export.hpp"
+#include "shoremesh/io/image_trace.hpp"
 #include "shoremesh/mesh.hpp"
 #include "shoremesh/well_spaced.hpp"
 
@@ -52,6 +60,19 @@ std::vector<double> bilinear_only(const io::DemFrame& frame, std::span<const Poi
   return d;
 }
 
+// A one-band Float32 GeoTIFF in EPSG:`epsg` with GDAL's geotransform `g`; false when GDAL cannot write it.
+bool write_geotiff(const std::string& path, int w, int h, std::vector<float>& z, std::array<double, 6> g, int epsg) {
+  GDALAllRegister();
+  std::unique_ptr<GDALDataset> ds(
+      GetGDALDriverManager()->GetDriverByName("GTiff")->Create(path.c_str(), w, h, 1, GDT_Float32, nullptr));
+  if (!ds) return false;
+  ds->SetGeoTransform(g.data());
+  OGRSpatialReference srs;
+  srs.importFromEPSG(epsg);
+  ds->SetSpatialRef(&srs);
+  return ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, w, h, z.data(), w, h, GDT_Float32, 0, 0) == CE_None;
+}
+
 double checksum(const std::vector<double>& v) {
   double s = 0;
   for (double x : v) s += x;
@@ -68,7 +89,12 @@ int main(int argc, char** argv) {
   const std::string salish = argv[1];
   const std::filesystem::path scratch = argv[2];
   int repeats = 5;
-  if (argc >= 5 && std::strcmp(argv[3], "--repeats") == 0) repeats = std::max(1, std::atoi(argv[4]));
+  std::string superior;
+  for (int a = 3; a + 1 < argc; a += 2) {
+    if (std::strcmp(argv[a], "--repeats") == 0) repeats = std::max(1, std::atoi(argv[a + 1]));
+    else if (std::strcmp(argv[a], "--superior") == 0) superior = argv[a + 1];
+    else return std::fprintf(stderr, "unknown option %s\n", argv[a]), 2;
+  }
   std::filesystem::create_directories(scratch);
 
   // 1. Salish Sea.
@@ -102,16 +128,7 @@ int main(int argc, char** argv) {
   const auto& g = dem->geotransform;
   std::array<double, 6> gbig{g[0], g[1] * dem->width / W, 0, g[3], 0, g[5] * dem->height / H};
   const std::string big_path = (scratch / "salish_1e7.tif").string();
-  {
-    GDALAllRegister();
-    std::unique_ptr<GDALDataset> ds(
-        GetGDALDriverManager()->GetDriverByName("GTiff")->Create(big_path.c_str(), W, H, 1, GDT_Float32, nullptr));
-    ds->SetGeoTransform(gbig.data());
-    OGRSpatialReference srs;
-    srs.importFromEPSG(3857);
-    ds->SetSpatialRef(&srs);
-    if (ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, W, H, big.data(), W, H, GDT_Float32, 0, 0) != CE_None) return 1;
-  }
+  if (!write_geotiff(big_path, W, H, big, gbig, 3857)) return 1;
   std::shared_ptr<const io::Dem> big_dem;
   const double big_read_s = median_seconds(repeats, [&] { big_dem = std::make_shared<const io::Dem>(io::read_dem(big_path)); });
   const int N = 1000;
@@ -138,5 +155,38 @@ int main(int argc, char** argv) {
               W * H, nodes.size(), triangles.size(), big_read_s, big_means_s, big_bil_s, big_means_s / big_bil_s,
               checksum(means));
   std::filesystem::remove(big_path);
+
+  // 3. The Superior demo mesh, depths from a DEM on the mask's grid.
+  if (!superior.empty()) {
+    io::ImageTraceOptions o;
+    o.largest_water_only = true;
+    o.spacing = 4000;
+    o.spacing_unit = io::ImageTraceOptions::SpacingUnit::Map;
+    const io::InputSet sup = io::trace_image(superior, o).input;
+    const StableResult<2> sws = stable_well_spaced<2>(sup.points);
+    const Mesh<2> smesh(sws.points, sws.input_count, sup.domain, sws.box);
+    const io::MeshSnapshot<2> ssnap(smesh);
+    const io::MeshView<2> sview = ssnap.view();
+    GDALAllRegister();
+    std::unique_ptr<GDALDataset> mask(GDALDataset::Open(superior.c_str(), GDAL_OF_RASTER));
+    if (!mask) return std::fprintf(stderr, "cannot read %s\n", superior.c_str()), 1;
+    const int mw = mask->GetRasterXSize(), mh = mask->GetRasterYSize();
+    std::vector<float> z(static_cast<std::size_t>(mw) * mh);
+    if (mask->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, mw, mh, z.data(), mw, mh, GDT_Float32, 0, 0) != CE_None) return 1;
+    for (float& v : z) v = v > 127 ? -100.0f : 100.0f;
+    const std::string sup_path = (scratch / "superior_dem.tif").string();
+    // The mask's world file, as a geotransform.
+    if (!write_geotiff(sup_path, mw, mh, z, {-92.5, 0.005, 0, 49.2, 0, -0.005}, 4326)) return 1;
+    std::shared_ptr<const io::Dem> sdem;
+    const double sread_s = median_seconds(repeats, [&] { sdem = std::make_shared<const io::Dem>(io::read_dem(sup_path)); });
+    const io::DemFrame sframe(sdem, sup.projection);
+    const double smeans_s = median_seconds(repeats, [&] { means = io::node_depths(sframe, sview.points, sview.elements); });
+    const double sbil_s = median_seconds(repeats, [&] { bilinear = bilinear_only(sframe, sview.points); });
+    std::printf("superior cells=%d nodes=%zu triangles=%zu projection=\"%s\" read_s=%.6f cell_means_s=%.6f bilinear_s=%.6f "
+                "ratio=%.2f sum=%.6g\n",
+                mw * mh, sview.points.size(), sview.elements.size(), sup.projection.describe().c_str(), sread_s, smeans_s,
+                sbil_s, smeans_s / sbil_s, checksum(means));
+    std::filesystem::remove(sup_path);
+  }
   return 0;
 }

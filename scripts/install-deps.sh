@@ -10,7 +10,7 @@ packages=(
   libopencv-dev                                        # coastline tracing
   libgeographiclib-dev                                 # GPS projections
   libopenimageio-dev openimageio-tools                 # previews, GeoTIFF tags (its CMake targets name the tools)
-  libgdal-dev                                          # DEM rasters and coordinate systems (PROJ underneath)
+  libgdal-dev libproj-dev                              # DEM rasters, coordinate systems, scale factors (PROJ)
   gdal-bin python3-gdal                                # tests: independent raster reads and test rasters
   libpugixml-dev nlohmann-json3-dev                    # GPX (XML) and GeoJSON parsers
   libcli11-dev                                         # command line

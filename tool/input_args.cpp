@@ -9,6 +9,7 @@
 #include "progress.hpp"
 #include "shoremesh/error.hpp"
 #include "shoremesh/io/dem.hpp"
+#include "shoremesh/io/open_boundary.hpp"
 #include "shoremesh/io/soundings.hpp"
 
 namespace shoremesh::tool {
@@ -109,8 +110,9 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
       ->check(above_zero(false));
   group->add_flag("--lonlat", a.lonlat, "Point and ring files hold lon,lat degrees (projected to metres)");
   group->add_option("--projection", a.projection,
-                    "Projection of lon/lat input: 'utm' (the data's UTM zone, default) or 'local' "
-                    "(transverse Mercator centred on the data)")
+                    "Projection of lon/lat input, and of projected input whose scale leaves 0.1 % of 1 over the "
+                    "data (Web Mercator, UTM across zones; others keep their own metres): 'local' (transverse "
+                    "Mercator centred on the data, default) or 'utm' (the data's UTM zone)")
       ->check(CLI::IsMember({"utm", "local"}));
   if (several) {
     auto* dem = cmd->add_option_group("Terrain and depths");
@@ -122,6 +124,15 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
     dem->add_option("--depth-from", a.depth_from, "A DEM giving the depths at mesh nodes beside other inputs")
         ->check(CLI::ExistingFile);
     dem->add_option("--min-depth", a.min_depth, "Depths below this value (metres, positive down) are raised to it");
+    dem->add_option("--open-boundary", a.open_boundary,
+                    "fort.14: lines along which the boundary is open ocean, beside the DEM's or image's edge: GeoJSON "
+                    "LineStrings, or a text file of lon,lat points (x,y for unprojected input), a blank line "
+                    "between lines")
+        ->check(CLI::ExistingFile);
+    dem->add_option("--open-boundary-distance", a.open_boundary_distance,
+                    "--open-boundary: a boundary node this near a line (metres, or the input's units) is on it "
+                    "(default: a millionth of the input's extent, i.e. on the line)")
+        ->check(above_zero(true));
   }
   add_quiet_option(cmd, a.quiet);
   cmd->callback([&a, several] {
@@ -129,6 +140,8 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
       throw CLI::RequiredError(several ? "an input file or --dem" : "input");
     if (!a.dem.empty() && !a.depth_from.empty())
       throw CLI::ValidationError("--depth-from", "--dem is the depth source already; give one of them");
+    if (a.open_boundary_distance && a.open_boundary.empty())
+      throw CLI::ValidationError("--open-boundary-distance", "applies to the lines of --open-boundary FILE; give one");
   });
 }
 
@@ -174,7 +187,7 @@ std::array<int, 3> parse_colour(const std::string& text) {
 io::InputOptions input_options(const InputArgs& a) {
   io::InputOptions o;
   o.lonlat = a.lonlat;
-  o.projection_choice = a.projection == "local" ? io::ProjectionChoice::LocalTransverseMercator : io::ProjectionChoice::Utm;
+  o.projection_choice = a.projection == "utm" ? io::ProjectionChoice::Utm : io::ProjectionChoice::LocalTransverseMercator;
   if (a.water == "light") {
     o.image.water = io::WaterSide::Light;
   } else if (a.water == "dark") {
@@ -270,6 +283,23 @@ io::InputSet read_user_inputs(const InputArgs& a, Progress& progress) {
                         (a.min_depth ? ", at least " + approx(*a.min_depth, 5) + " m" : std::string()));
   } else if (a.min_depth && !set.depth) {
     throw ParameterError("--min-depth needs a depth source (--dem, --depth-from or x,y,depth soundings)");
+  }
+  if (!a.open_boundary.empty()) {
+    if (set.dimension != 2) throw ParameterError("--open-boundary is for 2D meshes (fort.14)");
+    auto ob = std::make_shared<io::OpenBoundary>(io::read_open_boundary(a.open_boundary, set.projection));
+    if (a.open_boundary_distance) {
+      ob->distance = *a.open_boundary_distance;
+    } else {
+      // On the line, up to the rounding of projecting and of splitting the shore.
+      Point2 lo = set.points.front(), hi = lo;
+      for (const Point2& p : set.points)
+        for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+      ob->distance = 1e-6 * std::hypot(hi[0] - lo[0], hi[1] - lo[1]);
+    }
+    set.notes.push_back("open boundaries also along " + std::to_string(ob->lines.size()) + " line(s) of " +
+                        a.open_boundary + " (boundary nodes within " + approx(ob->distance, 3) + " " +
+                        io::to_string(set.units) + ")");
+    set.open_boundary = std::move(ob);
   }
   return set;
 }

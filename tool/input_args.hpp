@@ -27,11 +27,13 @@ struct InputArgs {
   std::string crs;                 // images: coordinate system of --map-box (or of a world file without .prj)
   std::optional<double> track_close_distance;  // GPS walks ending this near their start become rings
   bool lonlat = false;
-  std::string projection = "utm";  // utm | local
+  std::string projection = "local";  // local | utm
   std::string dem;                 // a DEM traced at shoreline_level, and the depth source
   double shoreline_level = 0;
   std::string depth_from;          // a DEM giving depths beside other inputs
   std::optional<double> min_depth;
+  std::string open_boundary;       // lines along which fort.14's boundary is open (beside the data's edges)
+  std::optional<double> open_boundary_distance;  // how near a boundary node must be to such a line
   bool three_d = false;            // --dim 3: a third column is z; otherwise x,y,depth soundings
   bool quiet = false;
 };

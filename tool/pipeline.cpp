@@ -7,6 +7,7 @@
 
 #include "shoremesh/error.hpp"
 #include "shoremesh/io/dem.hpp"
+#include "shoremesh/io/open_boundary.hpp"
 #include "shoremesh/io/soundings.hpp"
 #include "shoremesh/mesh_quality.hpp"
 #include "shoremesh/shore_refinement.hpp"
@@ -121,11 +122,13 @@ void export_mesh_file(const Mesh<D>& mesh, const std::filesystem::path& path, st
     depths = mesh_depths(view, frame);
     view.depths = depths;
     // Without rings no land is known: the mesh ends where the water reaches the box, all open.
-    if (!frame.open_points.empty() || mesh.domain().empty()) {
+    if (!frame.open_points.empty() || frame.open_boundary || mesh.domain().empty()) {
       open.resize(view.points.size(), 1);
-      if (!mesh.domain().empty())
+      if (!mesh.domain().empty()) {
         for (std::size_t i = 0; i < open.size(); ++i)
           open[i] = std::binary_search(frame.open_points.begin(), frame.open_points.end(), view.points[i]);
+        if (frame.open_boundary) io::mark_open_boundary(*frame.open_boundary, view.points, view.boundary, open);
+      }
       view.open_nodes = open;
     }
   }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "shoremesh/io/input_set.hpp"
+#include "shoremesh/io/open_boundary.hpp"
 #include "shoremesh/io/projection.hpp"
 #include "shoremesh/point.hpp"
 
@@ -19,8 +20,11 @@ struct UserFrame {
   // where the water leaves the data (an open boundary in fort.14).
   std::shared_ptr<const io::DepthSource> depth;
   std::vector<Point2> open_points;
+  std::shared_ptr<const io::OpenBoundary> open_boundary;  // --open-boundary (null: none)
 
-  static UserFrame of(const io::InputSet& set) { return {set.units, set.projection, set.depth, set.open_points}; }
+  static UserFrame of(const io::InputSet& set) {
+    return {set.units, set.projection, set.depth, set.open_points, set.open_boundary};
+  }
 
   // "523401.2 m", "3.5 px", "0.25 map units".
   std::string length(double d) const;

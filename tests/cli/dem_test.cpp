@@ -19,69 +19,6 @@ namespace {
 
 const std::string kSalish = samples("salish/salish_sea_topobathy.tif");
 
-// fort.14 as the ADCIRC manual lays it out: AGRID; NE NP; NP lines JN X Y DP; NE lines JE NHY NM1 NM2 NM3;
-// NOPE; NETA; per open segment NVDLL IBTYPEE then NVDLL node lines; NBOU; NVEL; per land segment NVELL
-// IBTYPE then NVELL node lines. Anything after '!' on a line is a comment here.
-struct Fort14 {
-  struct Node {
-    double x, y, depth;
-  };
-  std::map<long, Node> nodes;
-  std::vector<std::array<long, 3>> triangles;
-  struct Segment {
-    int type;
-    std::vector<long> nodes;
-  };
-  std::vector<Segment> open, land;
-  long neta = 0, nvel = 0;
-};
-
-Fort14 parse_fort14(const std::string& text) {
-  std::istringstream in(text);
-  std::string line;
-  auto next = [&]() {
-    if (!std::getline(in, line)) throw std::runtime_error("fort.14 ends early");
-    std::istringstream words(line.substr(0, line.find('!')));
-    return words.str();
-  };
-  Fort14 f;
-  next();  // AGRID
-  long ne = 0, np = 0;
-  std::istringstream(next()) >> ne >> np;
-  for (long i = 0; i < np; ++i) {
-    long jn;
-    Fort14::Node n{};
-    std::istringstream(next()) >> jn >> n.x >> n.y >> n.depth;
-    f.nodes[jn] = n;
-  }
-  for (long i = 0; i < ne; ++i) {
-    long je, nhy;
-    std::array<long, 3> t{};
-    std::istringstream(next()) >> je >> nhy >> t[0] >> t[1] >> t[2];
-    EXPECT_EQ(nhy, 3);
-    f.triangles.push_back(t);
-  }
-  auto segments = [&](std::vector<Fort14::Segment>& out, long& total) {
-    long count = 0;
-    std::istringstream(next()) >> count;
-    std::istringstream(next()) >> total;
-    for (long k = 0; k < count; ++k) {
-      long n = 0;
-      Fort14::Segment s{};
-      std::istringstream(next()) >> n >> s.type;
-      for (long j = 0; j < n; ++j) {
-        long node = 0;
-        std::istringstream(next()) >> node;
-        s.nodes.push_back(node);
-      }
-      out.push_back(s);
-    }
-  };
-  segments(f.open, f.neta);
-  segments(f.land, f.nvel);
-  return f;
-}
-
 // The raster read with GDAL here, and lon/lat <-> the raster's CRS and a local equal-area projection.
 struct Raster {
   int w = 0, h = 0;
@@ -218,22 +155,7 @@ TEST(SalishSeaDem, PacificEdgeIsOpenEveryOtherBoundaryIsLandIslandsAreType21) {
   ASSERT_EQ(s.run.code, 0) << s.run.err;
   const Fort14& f = s.f;
   // Every boundary edge of the mesh (used by one triangle) is in exactly one segment, open or land.
-  std::map<std::pair<long, long>, int> uses;
-  for (const auto& t : f.triangles)
-    for (int k = 0; k < 3; ++k) ++uses[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
-  std::map<std::pair<long, long>, int> listed;
-  long neta = 0, nvel = 0;
-  for (const auto* list : {&f.open, &f.land})
-    for (const auto& seg : *list) {
-      (list == &f.open ? neta : nvel) += static_cast<long>(seg.nodes.size());
-      for (std::size_t j = 0; j + 1 < seg.nodes.size(); ++j)
-        ++listed[{std::min(seg.nodes[j], seg.nodes[j + 1]), std::max(seg.nodes[j], seg.nodes[j + 1])}];
-    }
-  EXPECT_EQ(neta, f.neta);
-  EXPECT_EQ(nvel, f.nvel);
-  for (const auto& [edge, n] : uses)
-    if (n == 1) EXPECT_EQ(listed[edge], 1) << "boundary edge " << edge.first << "-" << edge.second;
-  for (const auto& [edge, n] : listed) EXPECT_EQ(uses[edge], 1) << "listed edge is not a boundary edge";
+  expect_boundary_listed_once(f);
 
   // Open segments lie on the raster's edge (lon -126, lat 48 or 50, within a cell), and the longest one
   // runs down the Pacific (west) edge.

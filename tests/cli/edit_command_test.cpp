@@ -434,7 +434,8 @@ TEST(EditCommand, LonLatEditsAreProjectedLikeTheInput) {
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_THAT(r.out, ::testing::HasSubstr("m = 47.50000N 86.50000W: +"));
   EXPECT_THAT(r.out, ::testing::HasSubstr("line 2: error: "));
-  EXPECT_THAT(r.out, ::testing::HasSubstr("UTM zone 16N"));
+  // The error names the session's projection (lon/lat input: a transverse Mercator centred on it).
+  EXPECT_THAT(r.out, ::testing::HasSubstr("of local transverse Mercator at 47.732699N 88.250000W"));
   write_file(dir / "p.csv", random_points(20, 10, 10, 4));
   const RunResult plain = shoremesh(dir, "edit p.csv --lonlat-edits --edits -", "add 1 1\n");
   EXPECT_EQ(plain.code, 1);

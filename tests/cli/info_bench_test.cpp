@@ -17,14 +17,15 @@ TEST(InfoCommand, ImageTrackAndPointSet) {
   const RunResult image = shoremesh(dir, "info " + quote(superior_mask()) + " --largest-water");
   ASSERT_EQ(image.code, 0) << image.err;
   EXPECT_THAT(image.out, HasSubstr(": image"));
-  EXPECT_THAT(image.out, HasSubstr("UTM zone 16N"));
+  // lon/lat input: a transverse Mercator centred on the data, with its scale over the data said.
+  EXPECT_THAT(image.out, HasSubstr("local transverse Mercator at 47.732699N 88.250000W (WGS84), scale 1.00000 .. 1.00132"));
   EXPECT_THAT(image.out, ::testing::ContainsRegex("[0-9]+ rings \\([0-9]+ shore, [0-9]+ island"));
   EXPECT_THAT(image.out, ::testing::ContainsRegex("water area: .* = 8[0-9]{4}(\\.[0-9]+)? km\\^2"));
 
   const RunResult gpx = shoremesh(dir, "info " + quote(samples("cerknica/cerknicko-jezero.gpx")));
   ASSERT_EQ(gpx.code, 0) << gpx.err;
   EXPECT_THAT(gpx.out, HasSubstr("GPX"));
-  EXPECT_THAT(gpx.out, HasSubstr("UTM zone 33N"));
+  EXPECT_THAT(gpx.out, HasSubstr("local transverse Mercator at 45.769452N 14.353633E"));
   EXPECT_THAT(gpx.out, ::testing::ContainsRegex("45\\.[0-9]+N 14\\.[0-9]+E"));
 
   write_file(dir / "p.csv", random_points(100, 10, 10, 9));

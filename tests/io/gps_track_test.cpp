@@ -192,7 +192,8 @@ TEST(GpxTrack, GpsToInputProjectsAndResamples) {
   const auto set = gps_to_input(d, kCerknica, opt);
   EXPECT_TRUE(set.domain.empty());
   EXPECT_EQ(set.units, Units::Metres);
-  EXPECT_EQ(set.projection.zone(), 33);
+  EXPECT_EQ(set.projection.kind(), Projection::Kind::LocalTransverseMercator);  // centred on the walks
+  EXPECT_NEAR(set.projection.lon0(), 14.35, 0.02);
   EXPECT_GT(set.points.size(), 50u);
   EXPECT_EQ(set.points.size(), set.origins.size());
   for (std::size_t i = 0; i < set.points.size(); ++i) {

@@ -244,7 +244,8 @@ TEST(ImageTrace, SuperiorGeoreferencedProjectedAndBack) {
   EXPECT_EQ(img.georeference.crs.kind, CoordinateSystem::Kind::Geographic);
   const InputSet& set = img.input;
   EXPECT_EQ(set.units, Units::Metres);
-  EXPECT_EQ(set.projection.describe(), "UTM zone 16N (WGS84)");
+  // lon/lat: a transverse Mercator centred on the image (the projection rule; UTM 16N reaches 1.0018 here).
+  EXPECT_EQ(set.projection.describe(), "local transverse Mercator at 47.732699N 88.250000W (WGS84)");
   EXPECT_GT(img.dropped_other_water, 0u);  // the other inland lakes
   ASSERT_EQ(set.domain.rings.size(), img.rings.size());
   EXPECT_EQ(set.domain.rings[0].role, RingRole::Shore);
@@ -263,7 +264,7 @@ TEST(ImageTrace, SuperiorGeoreferencedProjectedAndBack) {
   // The water area in square metres: the GSHHG geodesic area is 82,078 km^2 (plus a little St. Marys River).
   double area = 0;
   for (const auto& ring : set.domain.rings) area += (ring.role == RingRole::Shore ? 1 : -1) * ring_area(ring.points);
-  std::printf("Superior water area traced in UTM 16N: %.0f km^2 (GSHHG geodesic 82078 km^2)\n", area / 1e6);
+  std::printf("Superior water area traced, local transverse Mercator: %.0f km^2 (GSHHG geodesic 82078 km^2)\n", area / 1e6);
   EXPECT_NEAR(area / 1e6, 82078, 0.02 * 82078);
 }
 
@@ -413,7 +414,8 @@ TEST(ImageTrace, ColourWaterWithTolerance) {
   opt.water = WaterSide::Colour;
   opt.water_colour = {176, 196, 222};  // lightsteelblue
   opt.colour_tolerance = 20;
-  opt.georeference.box = MapBox{1000, 2000, 1600, 2400};  // 10 map units per pixel
+  // 10 map units per pixel, on zone 33's central meridian, where UTM is kept (the projection rule).
+  opt.georeference.box = MapBox{500000, 2000, 500600, 2400};
   opt.georeference.crs = "UTM 33N";
   const auto img = trace_image(path, opt);
   ASSERT_EQ(img.rings.size(), 1u);
@@ -421,9 +423,9 @@ TEST(ImageTrace, ColourWaterWithTolerance) {
   EXPECT_EQ(img.georeference.source, Georeference::Source::UserBox);
   EXPECT_EQ(img.input.units, Units::Metres);
   EXPECT_EQ(img.input.projection.describe(), "UTM zone 33N (WGS84)");
-  // Pixel (30, 20) is the circle's centre: x = 1000 + 30.5 * 10, y = 2400 - 20.5 * 10.
+  // Pixel (30, 20) is the circle's centre: x = 500000 + 30.5 * 10, y = 2400 - 20.5 * 10.
   const Point2 c = centroid(img.rings[0].points);
-  EXPECT_NEAR(c[0], 1305, 5);
+  EXPECT_NEAR(c[0], 500305, 5);
   EXPECT_NEAR(c[1], 2195, 5);
 }
 

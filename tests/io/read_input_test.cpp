@@ -25,6 +25,9 @@ TEST(ReadInput, SuperiorSamplesImageAndPolygonShareOneProjection) {
   InputOptions opt;
   opt.lonlat = true;
   opt.image.largest_water_only = true;
+  // Asked for UTM, two files of one region read apart get the same zone (the default transverse Mercator
+  // is centred on each file's own data).
+  opt.projection_choice = ProjectionChoice::Utm;
   const auto image = read_input(samples("superior/superior_watermask_h.png"), opt);
   EXPECT_EQ(image.units, Units::Metres);
   EXPECT_EQ(image.projection.describe(), "UTM zone 16N (WGS84)");
@@ -45,7 +48,7 @@ TEST(ReadInput, GpxAndPointFilesInLonLat) {
   opt.track.close_tolerance = 0;
   opt.track.spacing = 10;
   const auto gpx = read_input(samples("cerknica/cerknicko-jezero.gpx"), opt);
-  EXPECT_EQ(gpx.projection.describe(), "UTM zone 33N (WGS84)");
+  EXPECT_EQ(gpx.projection.describe(), "local transverse Mercator at 45.769452N 14.353633E (WGS84)");
   shoremesh::io::test::ScratchDir dir;
   const auto pts = dir.write("pts.csv", "lon,lat,depth\n14.33,45.76,-3\n14.34,45.765,-4.5\n");
   // "lon,lat" names the columns of a GPS CSV: read as a track.

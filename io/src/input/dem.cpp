@@ -248,10 +248,7 @@ TracedDem trace_dem(std::shared_ptr<const Dem> dem, const DemTraceOptions& optio
   } else {
     g.crs = parse_coordinate_system(dem->crs_wkt, dem->file);
     g.description = "DEM in " + g.crs.name;
-    if (g.crs.kind == CoordinateSystem::Kind::Other) {
-      g.map_to_lonlat = lonlat_transform(g.crs, dem->file);
-      g.description += ", taken through WGS 84 lon/lat (PROJ) to metres";
-    }
+    if (g.crs.kind == CoordinateSystem::Kind::Other) g.map_to_lonlat = lonlat_transform(g.crs, dem->file);
   }
   TracedDem out;
   out.dem = dem;

@@ -4,6 +4,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <functional>
 #include <set>
 #include <stdexcept>
 
@@ -187,29 +188,44 @@ class Reader {
   const std::string& name_;
 };
 
-// A "crs" member of 2008 GeoJSON, as a coordinate system (nothing when absent or WGS84/CRS84).
-std::optional<CoordinateSystem> legacy_crs(const json& root, const std::string& name) {
+// The "crs" member of 2008 GeoJSON (RFC 7946 dropped it: positions are WGS 84 lon/lat, its default). A
+// named system is PROJ's to read ("EPSG:32616", "urn:ogc:def:crs:EPSG::32616", OGC's CRS84), positions
+// being x (easting or longitude) first whatever the system's own axis order, as the 2008 text says.
+// `"crs": null` (2008: no system can be assumed) is map units; a linked system, a malformed member and a
+// name PROJ cannot read are refused naming the member.
+struct LegacyCrs {
+  bool map_units = false;     // "crs": null, or a local (engineering) system
+  std::string name;           // as given
+  CoordinateSystem system;    // Kind::Geographic for WGS 84-like lon/lat
+};
+std::optional<LegacyCrs> legacy_crs(const json& root, const std::string& name) {
   if (!root.is_object()) return std::nullopt;
   const auto it = root.find("crs");
-  if (it == root.end() || !it->is_object()) return std::nullopt;
-  const auto props = it->find("properties");
-  if (props == it->end() || !props->is_object()) return std::nullopt;
-  const auto n = props->find("name");
-  if (n == props->end() || !n->is_string()) return std::nullopt;
-  const std::string s = n->get<std::string>();
-  // "EPSG:32633", "urn:ogc:def:crs:EPSG::32633", "urn:ogc:def:crs:EPSG:6.6:32633": the code ends the name.
-  std::size_t d = s.size();
-  while (d > 0 && std::isdigit(static_cast<unsigned char>(s[d - 1]))) --d;
-  std::string up = s;
-  for (auto& ch : up) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
-  if (d < s.size() && d > 0 && s[d - 1] == ':' && up.find("EPSG") != std::string::npos) {
-    const auto cs = parse_coordinate_system("EPSG:" + s.substr(d), name);
-    if (cs.kind == CoordinateSystem::Kind::Geographic) return std::nullopt;
-    // Systems other than UTM are read as map units, said in the notes.
-    return cs.kind == CoordinateSystem::Kind::Utm ? cs : CoordinateSystem{CoordinateSystem::Kind::Unknown, 0, true, s};
+  if (it == root.end()) return std::nullopt;
+  LegacyCrs out;
+  if (it->is_null()) {
+    out.map_units = true;
+    out.name = "\"crs\": null";
+    return out;
   }
-  if (s.find("CRS84") != std::string::npos) return std::nullopt;
-  return CoordinateSystem{CoordinateSystem::Kind::Unknown, 0, true, s};
+  auto refuse = [&](const std::string& what) -> void { throw InputError("crs: " + what, name); };
+  if (!it->is_object()) refuse("expected an object {\"type\": \"name\", \"properties\": {\"name\": ...}}");
+  const auto type = it->find("type");
+  if (type != it->end() && type->is_string() && type->get<std::string>() == "link")
+    refuse("a linked coordinate system (\"type\": \"link\") is not read; name it (\"type\": \"name\", e.g. "
+           "\"EPSG:32616\")");
+  const auto props = it->find("properties");
+  if (type == it->end() || !type->is_string() || type->get<std::string>() != "name" || props == it->end() ||
+      !props->is_object() || props->find("name") == props->end() || !(*props)["name"].is_string())
+    refuse("expected {\"type\": \"name\", \"properties\": {\"name\": \"EPSG:n\" or an OGC URN}}");
+  out.name = (*props)["name"].get<std::string>();
+  try {
+    out.system = parse_coordinate_system(out.name, name);
+  } catch (const InputError& e) {
+    throw InputError("crs: " + e.message(), name);
+  }
+  out.map_units = out.system.kind == CoordinateSystem::Kind::Unknown;
+  return out;
 }
 
 }  // namespace
@@ -231,39 +247,66 @@ InputSet parse_geojson_text(std::string_view text, const std::string& name, cons
 
   InputSet set;
   const auto crs = legacy_crs(root, name);
-  std::optional<Projection> source_utm;
-  if (crs && crs->kind == CoordinateSystem::Kind::Unknown) {
+  // The positions' own system, when a crs names one: projected (kept or reprojected by the projection
+  // rule) or another datum's lon/lat (through PROJ).
+  std::optional<Projection> source;
+  std::function<Point2(const Point2&)> to_lonlat;
+  if (crs && !crs->map_units) {
+    if (crs->system.kind == CoordinateSystem::Kind::Utm) source = Projection::utm_ups(crs->system.zone, crs->system.north);
+    else if (crs->system.kind == CoordinateSystem::Kind::Other && crs->system.projected)
+      source = Projection::crs(crs->system.wkt, crs->system.name, name);
+    else if (crs->system.kind == CoordinateSystem::Kind::Other) to_lonlat = lonlat_transform(crs->system, name);
+  }
+  auto lonlat = [&](const Geometry::Position& p) -> LonLat {
+    if (source) return source->reverse(p.p);
+    if (to_lonlat) {
+      const Point2 ll = to_lonlat(p.p);
+      return {ll[0], ll[1]};
+    }
+    return {p.p[0], p.p[1]};
+  };
+  if (crs && crs->map_units) {
     set.units = Units::MapUnits;
-    set.notes.push_back("coordinates in " + crs->name + " read as map units");
+    set.notes.push_back("coordinates in " + (crs->system.name.empty() ? crs->name : crs->system.name) +
+                        " read as map units");
   } else {
     set.units = Units::Metres;
-    if (crs) source_utm = Projection::utm_ups(crs->zone, crs->north);
+    std::vector<LonLat> all;
+    auto add = [&](const std::vector<Geometry::Position>& v) {
+      for (const auto& p : v) {
+        LonLat ll;
+        try {
+          ll = lonlat(p);
+        } catch (const std::domain_error& e) {
+          throw InputError(p.path + ": " + e.what(), name);
+        }
+        if (!(std::abs(ll.lon) <= 180) || !(std::abs(ll.lat) <= 90))
+          throw InputError(p.path + ": position " + readable(p.p[0]) + ", " + readable(p.p[1]) +
+                               (crs ? " is outside " + crs->system.name + "'s range of lon/lat"
+                                    : std::string(" is not lon/lat in degrees (GeoJSON is WGS84 lon/lat; name a \"crs\" "
+                                                  "for projected data)")),
+                           name);
+        all.push_back(ll);
+      }
+    };
+    for (const auto& r : g.rings) add(r);
+    for (const auto& l : g.lines) add(l);
+    add(g.points);
+    if (crs) set.notes.push_back("coordinates in " + crs->system.name + " (the GeoJSON's crs " + detail::quoted(crs->name) + ")");
     if (options.projection && !options.projection->is_none()) {
       set.projection = *options.projection;
-    } else if (source_utm) {
-      set.projection = *source_utm;
+      set.notes.push_back("projected to metres with " + set.projection.describe());
     } else {
-      std::vector<LonLat> all;
-      auto add = [&](const std::vector<Geometry::Position>& v) {
-        for (const auto& p : v) all.push_back({p.p[0], p.p[1]});
-      };
-      for (const auto& r : g.rings) add(r);
-      for (const auto& l : g.lines) add(l);
-      add(g.points);
-      for (const auto& ll : all)
-        if (std::abs(ll.lon) > 180 || std::abs(ll.lat) > 90)
-          throw InputError("position " + readable(ll.lon) + ", " + readable(ll.lat) +
-                               " is not lon/lat in degrees (GeoJSON is WGS84 lon/lat; name a \"crs\" for projected data)",
-                           name);
-      set.projection = Projection::choose(all, options.choice, name);
+      ChosenProjection chosen = choose_projection(source, all, options.choice, name);
+      set.projection = chosen.projection;
+      set.notes.push_back(chosen.note);
     }
-    set.notes.push_back("projected to metres with " + set.projection.describe());
   }
   auto convert = [&](const Geometry::Position& p) -> Point2 {
     if (set.units == Units::MapUnits) return p.p;
+    if (source && *source == set.projection) return p.p;
     try {
-      if (source_utm) return *source_utm == set.projection ? p.p : set.projection.forward(source_utm->reverse(p.p));
-      return set.projection.forward({p.p[0], p.p[1]});
+      return set.projection.forward(lonlat(p));
     } catch (const std::domain_error& e) {
       throw InputError(p.path + ": " + e.what(), name);
     }

@@ -76,6 +76,7 @@ CoordinateSystem from_srs(OGRSpatialReference& srs) {
     cs.north = north != 0;
   } else {
     cs.kind = CoordinateSystem::Kind::Other;
+    cs.projected = srs.IsProjected() != 0;
     char* wkt = nullptr;
     const char* options[] = {"FORMAT=WKT2_2019", nullptr};
     srs.exportToWkt(&wkt, options);
@@ -174,12 +175,10 @@ std::optional<Georeference> read_geotiff_tags(const std::string& path) {
 
 namespace {
 
-// Other systems go through lon/lat: the tracer projects them like geographic input.
+// Other systems reach lon/lat through PROJ: the tracer keeps a projected one or reprojects it (the
+// projection rule, projection.hpp), and projects any other like geographic input.
 Georeference with_lonlat(Georeference g, const std::string& file) {
-  if (g.crs.kind == CoordinateSystem::Kind::Other) {
-    g.map_to_lonlat = lonlat_transform(g.crs, file);
-    g.description += ", taken through WGS 84 lon/lat (PROJ)";
-  }
+  if (g.crs.kind == CoordinateSystem::Kind::Other) g.map_to_lonlat = lonlat_transform(g.crs, file);
   return g;
 }
 

@@ -334,12 +334,9 @@ InputSet gps_to_input(const GpsData& data, const std::string& file, const TrackO
   if (all.empty()) throw InputError("no points", file);
   InputSet set;
   set.units = Units::Metres;
-  if (options.projection && !options.projection->is_none()) {
-    set.projection = *options.projection;
-  } else {
-    set.projection = Projection::choose(all, options.choice, file);
-  }
-  set.notes.push_back("projected lon/lat to metres with " + set.projection.describe());
+  ChosenProjection chosen = lonlat_projection(options.projection, all, options.choice, file);
+  set.projection = chosen.projection;
+  set.notes.push_back(chosen.note);
   detail::InputBuilder builder(set, file, Source::Location::Line);
   if (std::isnan(options.close_tolerance)) throw InputError("track close distance nan is not a number", file);
   const double tolerance = options.close_tolerance >= 0 ? options.close_tolerance : std::max(2 * options.spacing, 25.0);

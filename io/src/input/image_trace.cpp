@@ -46,18 +46,22 @@ double otsu(const std::vector<double>& hist) {
 struct Output {
   PixelToMap affine;
   CoordinateSystem::Kind crs = CoordinateSystem::Kind::Unknown;
-  Projection source_utm;  // the image's own UTM zone (crs == Utm)
+  Projection source;      // the image's own projected system (UTM or another), if it has one
   Projection projection;  // output projection (None for pixel/map units)
   std::function<Point2(const Point2&)> map_to_lonlat;  // Georeference::map_to_lonlat
-  Point2 operator()(const Point2& px) const {
-    const Point2 m = affine(px);
+  // Map coordinates -> lon/lat (degrees), for a georeferenced image in any system.
+  LonLat lonlat(const Point2& m) const {
+    if (!source.is_none()) return source.reverse(m);
     if (map_to_lonlat) {
       const Point2 ll = map_to_lonlat(m);
-      return projection.forward({ll[0], ll[1]});
+      return {ll[0], ll[1]};
     }
-    if (crs == CoordinateSystem::Kind::Geographic) return projection.forward({m[0], m[1]});
-    if (crs == CoordinateSystem::Kind::Utm && !(source_utm == projection)) return projection.forward(source_utm.reverse(m));
-    return m;
+    return {m[0], m[1]};
+  }
+  Point2 operator()(const Point2& px) const {
+    const Point2 m = affine(px);
+    if (projection.is_none() || (!source.is_none() && source == projection)) return m;
+    return projection.forward(lonlat(m));
   }
   // Output length of one pixel near px: square root of the Jacobian's determinant.
   double scale(const Point2& px) const {
@@ -232,22 +236,32 @@ Output make_output(const Georeference& g, const cv::Size& size, const ImageTrace
     return out;
   }
   set.units = Units::Metres;
-  if (g.crs.kind == CoordinateSystem::Kind::Utm) {
-    out.source_utm = Projection::utm_ups(g.crs.zone, g.crs.north);
-    out.projection = opt.projection && !opt.projection->is_none() ? *opt.projection : out.source_utm;
-  } else if (opt.projection && !opt.projection->is_none()) {
+  if (g.crs.kind == CoordinateSystem::Kind::Utm) out.source = Projection::utm_ups(g.crs.zone, g.crs.north);
+  if (g.crs.kind == CoordinateSystem::Kind::Other && g.crs.projected) out.source = Projection::crs(g.crs.wkt, g.crs.name, name);
+  if (opt.projection && !opt.projection->is_none()) {
     out.projection = *opt.projection;
+    set.notes.push_back("projected to metres with " + out.projection.describe());
   } else {
+    // The image's outer edges and inside, in lon/lat: the extent the projection rule measures.
     std::vector<LonLat> extent;
-    for (double c : {-0.5, 0.5 * size.width - 0.5, size.width - 0.5})
-      for (double r : {-0.5, 0.5 * size.height - 0.5, size.height - 0.5}) {
-        const Point2 m = g.map_to_lonlat ? g.map_to_lonlat(g.pixel_to_map(c, r)) : g.pixel_to_map(c, r);
-        extent.push_back({m[0], m[1]});
+    constexpr int kSteps = 8;
+    for (int i = 0; i <= kSteps; ++i)
+      for (int j = 0; j <= kSteps; ++j) {
+        const double c = -0.5 + size.width * double(i) / kSteps, r = -0.5 + size.height * double(j) / kSteps;
+        try {
+          extent.push_back(out.lonlat(g.pixel_to_map(c, r)));
+        } catch (const std::domain_error&) {
+          throw InputError("PROJ cannot take the image's point (" + std::to_string(c) + ", " + std::to_string(r) +
+                               ") to lon/lat",
+                           name);
+        }
       }
-    out.projection = Projection::choose(extent, opt.projection_choice, name);
+    ChosenProjection chosen = choose_projection(out.source.is_none() ? std::nullopt : std::optional(out.source), extent,
+                                                opt.projection_choice, name);
+    out.projection = chosen.projection;
+    set.notes.push_back(chosen.note);
   }
   set.projection = out.projection;
-  set.notes.push_back("projected to metres with " + out.projection.describe());
   return out;
 }
 

@@ -6,10 +6,16 @@
 #include <GeographicLib/TransverseMercator.hpp>
 #include <GeographicLib/UTMUPS.hpp>
 
+#include <ogr_spatialref.h>
+#include <proj.h>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <mutex>
 #include <stdexcept>
 
+#include "gdal_setup.hpp"
 #include "shoremesh/error.hpp"
 
 namespace shoremesh::io {
@@ -37,6 +43,45 @@ const char* kGeogcs =
     "UNIT[\"degree\",0.0174532925199433,AUTHORITY[\"EPSG\",\"9122\"]],AUTHORITY[\"EPSG\",\"4326\"]]";
 
 }  // namespace
+
+namespace detail {
+
+// PROJ's transformations between WGS 84 lon/lat and a projected system. OGRCoordinateTransformation is not
+// safe to share between threads: one lock.
+struct CrsProjection {
+  std::string wkt, name, proj4;
+  std::unique_ptr<OGRCoordinateTransformation> forward, reverse;
+  mutable std::mutex mutex;
+};
+
+}  // namespace detail
+
+const std::string& Projection::crs_wkt() const {
+  static const std::string empty;
+  return crs_ ? crs_->wkt : empty;
+}
+
+Projection Projection::crs(const std::string& wkt, const std::string& name, const std::string& file) {
+  detail::register_gdal();
+  OGRSpatialReference srs, ll;
+  if (srs.importFromWkt(wkt.c_str()) != OGRERR_NONE || !srs.IsProjected())
+    throw InputError("not a projected coordinate system: " + name, file);
+  ll.SetWellKnownGeogCS("WGS84");
+  for (auto* s : {&srs, &ll}) s->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  auto c = std::make_shared<detail::CrsProjection>();
+  c->wkt = wkt;
+  c->name = name;
+  c->forward.reset(OGRCreateCoordinateTransformation(&ll, &srs));
+  c->reverse.reset(OGRCreateCoordinateTransformation(&srs, &ll));
+  if (!c->forward || !c->reverse) throw InputError("PROJ cannot transform " + name + " to WGS 84 lon/lat", file);
+  char* p4 = nullptr;
+  if (srs.exportToProj4(&p4) == OGRERR_NONE && p4) c->proj4 = p4;
+  CPLFree(p4);
+  Projection p;
+  p.kind_ = Kind::Crs;
+  p.crs_ = std::move(c);
+  return p;
+}
 
 Projection Projection::utm_ups(int zone, bool north) {
   if (zone < 0 || zone > 60) throw std::invalid_argument("UTM zone must be 1..60 (0 for UPS), got " + std::to_string(zone));
@@ -67,6 +112,14 @@ Point2 Projection::forward(const LonLat& ll) const {
   if (!std::isfinite(ll.lon) || !std::isfinite(ll.lat) || std::abs(ll.lat) > 90)
     throw std::domain_error("not a valid lon/lat: " + fmt("%.9g", ll.lon) + ", " + fmt("%.9g", ll.lat));
   double x = 0, y = 0;
+  if (kind_ == Kind::Crs) {
+    x = ll.lon, y = ll.lat;
+    std::lock_guard lock(crs_->mutex);
+    if (!crs_->forward->Transform(1, &x, &y) || !std::isfinite(x) || !std::isfinite(y))
+      throw std::domain_error("PROJ cannot take lon/lat " + fmt("%.6f", ll.lon) + ", " + fmt("%.6f", ll.lat) + " to " +
+                              crs_->name);
+    return {x, y};
+  }
   if (kind_ == Kind::UtmUps && zone_ == 0) {
     if ((north_ && ll.lat < 0) || (!north_ && ll.lat > 0))
       throw std::domain_error(std::string("latitude ") + fmt("%.6f", ll.lat) + " is on the wrong side of the equator for UPS " +
@@ -88,6 +141,12 @@ Point2 Projection::forward(const LonLat& ll) const {
 LonLat Projection::reverse(const Point2& xy) const {
   if (kind_ == Kind::None) throw std::domain_error("no projection: coordinates are not lon/lat");
   LonLat out;
+  if (kind_ == Kind::Crs) {
+    double x = xy[0], y = xy[1];
+    std::lock_guard lock(crs_->mutex);
+    if (!crs_->reverse->Transform(1, &x, &y)) x = y = std::nan("");  // as GeographicLib: no answer is NaN
+    return {x, y};
+  }
   if (kind_ == Kind::UtmUps && zone_ == 0) {
     double gamma, k;
     GeographicLib::PolarStereographic::UPS().Reverse(north_, xy[0] - kUpsFalse, xy[1] - kUpsFalse, out.lat, out.lon,
@@ -105,6 +164,7 @@ LonLat Projection::reverse(const Point2& xy) const {
 
 double Projection::scale(const LonLat& ll) const {
   if (kind_ == Kind::None) return 1.0;
+  if (kind_ == Kind::Crs) return measure_scale(*this, {ll}).max;
   double x, y, gamma, k;
   if (kind_ == Kind::UtmUps && zone_ == 0)
     GeographicLib::PolarStereographic::UPS().Forward(north_, ll.lat, ll.lon, x, y, gamma, k);
@@ -122,6 +182,7 @@ std::string Projection::describe() const {
     case Kind::LocalTransverseMercator:
       return "local transverse Mercator at " + fmt("%.6f", std::abs(lat0_)) + (lat0_ >= 0 ? "N " : "S ") +
              fmt("%.6f", std::abs(lon0_)) + (lon0_ >= 0 ? "E" : "W") + " (WGS84)";
+    case Kind::Crs: return crs_->name;
   }
   return "none";
 }
@@ -135,6 +196,7 @@ std::string Projection::proj4() const {
     case Kind::LocalTransverseMercator:
       return "+proj=tmerc +lat_0=" + fmt("%.12g", lat0_) + " +lon_0=" + fmt("%.12g", lon0_) +
              " +k=1 +x_0=0 +y_0=0 +datum=WGS84 +units=m +no_defs";
+    case Kind::Crs: return crs_->proj4;
   }
   return {};
 }
@@ -144,6 +206,17 @@ std::string Projection::wkt() const {
   std::string name, proj, params, authority;
   switch (kind_) {
     case Kind::None: return {};
+    case Kind::Crs: {
+      // WKT 1 (ESRI's .prj readers know no WKT 2).
+      OGRSpatialReference srs;
+      std::string out;
+      if (srs.importFromWkt(crs_->wkt.c_str()) == OGRERR_NONE) {
+        char* w = nullptr;
+        if (srs.exportToWkt(&w) == OGRERR_NONE && w) out = w;
+        CPLFree(w);
+      }
+      return out;
+    }
     case Kind::UtmUps:
       if (zone_ == 0) {
         name = std::string("WGS 84 / UPS ") + (north_ ? "North (E,N)" : "South (E,N)");
@@ -208,6 +281,99 @@ Projection Projection::choose(const std::vector<LonLat>& data, ProjectionChoice 
     }
   }
   return proj;
+}
+
+std::string ScaleRange::describe() const { return "scale " + fmt("%.5f", min) + " .. " + fmt("%.5f", max); }
+
+ScaleRange measure_scale(const Projection& projection, const std::vector<LonLat>& samples) {
+  ScaleRange r;
+  if (projection.is_none() || samples.empty()) return r;
+  // The projection as a PROJ string: an operation from lon/lat radians that proj_factors differentiates
+  // directly (lon/lat of the system's own datum: within metres of WGS 84's, the same scale). A projected
+  // CRS object would do too, but PROJ then builds its operation at every call (20 ms each).
+  std::string text = projection.proj4();
+  if (text.empty()) text = projection.wkt();
+  PJ_CONTEXT* ctx = proj_context_create();
+  PJ* pj = proj_create(ctx, text.c_str());
+  if (!pj) {
+    proj_context_destroy(ctx);
+    throw std::runtime_error("PROJ cannot read the projection " + projection.describe());
+  }
+  bool any = false;
+  r = {1e300, -1e300};
+  for (const LonLat& ll : samples) {
+    if (projection.kind() != Projection::Kind::Crs) {
+      try {
+        (void)projection.forward(ll);  // outside the projection's range: no scale to speak of
+      } catch (const std::domain_error&) {
+        continue;
+      }
+    }
+    proj_errno_reset(pj);
+    const PJ_FACTORS f = proj_factors(pj, proj_coord(proj_torad(ll.lon), proj_torad(ll.lat), 0, 0));
+    if (proj_errno(pj) != 0 || !(f.tissot_semimajor > 0) || !std::isfinite(f.tissot_semimajor)) continue;
+    r.min = std::min(r.min, f.tissot_semiminor);
+    r.max = std::max(r.max, f.tissot_semimajor);
+    any = true;
+  }
+  proj_destroy(pj);
+  proj_context_destroy(ctx);
+  if (!any) return ScaleRange{};
+  return r;
+}
+
+std::vector<LonLat> extent_samples(const std::vector<LonLat>& data) {
+  std::vector<LonLat> out;
+  if (data.empty()) return out;
+  double sx = 0, sy = 0;
+  for (const auto& p : data) {
+    sx += std::cos(p.lon * GeographicLib::Math::degree());
+    sy += std::sin(p.lon * GeographicLib::Math::degree());
+  }
+  const double lon_c = std::atan2(sy, sx) / GeographicLib::Math::degree();
+  double lo = 1e300, hi = -1e300, south = 90, north = -90;
+  for (const auto& p : data) {
+    const double d = std::remainder(p.lon - lon_c, 360.0);
+    lo = std::min(lo, d), hi = std::max(hi, d);
+    south = std::min(south, p.lat), north = std::max(north, p.lat);
+  }
+  constexpr int kSteps = 16;
+  for (int i = 0; i <= kSteps; ++i)
+    for (int j = 0; j <= kSteps; ++j) {
+      const double lon = std::remainder(lon_c + lo + (hi - lo) * i / kSteps, 360.0);
+      out.push_back({lon, south + (north - south) * j / kSteps});
+    }
+  return out;
+}
+
+ChosenProjection choose_projection(const std::optional<Projection>& source, const std::vector<LonLat>& data,
+                                   ProjectionChoice choice, const std::string& file) {
+  ChosenProjection out;
+  const std::vector<LonLat> samples = extent_samples(data);
+  if (source && !source->is_none()) {
+    const ScaleRange s = measure_scale(*source, samples);
+    if (s.within()) {
+      out.projection = *source;
+      out.note = "meshed in " + source->describe() + ": its " + s.describe() +
+                 " over the data stays within 0.1 % of 1";
+      return out;
+    }
+    out.projection = Projection::choose(data, choice, file);
+    out.note = "reprojected from " + source->describe() + " (" + s.describe() +
+               " over the data, beyond 0.1 % of 1) to " + out.projection.describe() + ", " +
+               measure_scale(out.projection, samples).describe();
+    return out;
+  }
+  out.projection = Projection::choose(data, choice, file);
+  out.note = "projected lon/lat to metres with " + out.projection.describe() + ", " +
+             measure_scale(out.projection, samples).describe() + " over the data";
+  return out;
+}
+
+ChosenProjection lonlat_projection(const std::optional<Projection>& fixed, const std::vector<LonLat>& data,
+                                   ProjectionChoice choice, const std::string& file) {
+  if (!fixed || fixed->is_none()) return choose_projection(std::nullopt, data, choice, file);
+  return {*fixed, "projected lon/lat to metres with " + fixed->describe()};
 }
 
 }  // namespace shoremesh::io

@@ -65,9 +65,9 @@ InputSet points_to_input(const PointFile& pf, const std::string& file, const Inp
     for (const auto& p : pf.points2) all.push_back({p[0], p[1]});
     for (const auto& p : pf.points3) all.push_back({p[0], p[1]});
     set.units = Units::Metres;
-    set.projection = opt.projection && !opt.projection->is_none() ? *opt.projection
-                                                                  : Projection::choose(all, opt.projection_choice, file);
-    set.notes.push_back("projected lon/lat to metres with " + set.projection.describe());
+    ChosenProjection chosen = lonlat_projection(opt.projection, all, opt.projection_choice, file);
+    set.projection = chosen.projection;
+    set.notes.push_back(chosen.note);
   }
   auto project = [&](double x, double y, std::size_t k) -> Point2 {
     if (!opt.lonlat) return {x, y};

@@ -80,15 +80,12 @@ InputSet ring_file_to_input(const RingFile& rf, const std::string& file, bool lo
   InputSet set;
   set.units = lonlat ? Units::Metres : Units::MapUnits;
   if (lonlat) {
-    if (projection && !projection->is_none()) {
-      set.projection = *projection;
-    } else {
-      std::vector<LonLat> all;
-      for (const auto& r : rf.rings)
-        for (const auto& p : r) all.push_back({p[0], p[1]});
-      set.projection = Projection::choose(all, choice, file);
-    }
-    set.notes.push_back("projected lon/lat to metres with " + set.projection.describe());
+    std::vector<LonLat> all;
+    for (const auto& r : rf.rings)
+      for (const auto& p : r) all.push_back({p[0], p[1]});
+    ChosenProjection chosen = lonlat_projection(projection, all, choice, file);
+    set.projection = chosen.projection;
+    set.notes.push_back(chosen.note);
   }
   detail::InputBuilder builder(set, file, Source::Location::Line);
   for (std::size_t r = 0; r < rf.rings.size(); ++r) {

@@ -11,9 +11,10 @@
 // (image_trace.hpp): islands, --min-area, sampling, projection and the open boundary where the water
 // reaches the raster's edge (InputSet::open_points) as for images.
 //
-// Coordinates (georeference.hpp): a geographic DEM is projected like lon/lat images, a UTM DEM keeps its
-// zone, any other system (Web Mercator, national grids) goes through lon/lat (GDAL/PROJ) to the projection
-// chosen from the data, so that lengths and --spacing are true metres.
+// Coordinates (georeference.hpp, the projection rule of projection.hpp): a geographic DEM is projected like
+// lon/lat images; a projected one (UTM, a national grid) keeps its system where its scale stays within
+// 0.1 % of 1 over the DEM, otherwise (Web Mercator, UTM across zones) it is reprojected through lon/lat
+// (GDAL/PROJ) to a transverse Mercator centred on the data, so that lengths and --spacing are true metres.
 #include <array>
 #include <cstddef>
 #include <memory>

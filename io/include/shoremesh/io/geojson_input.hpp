@@ -2,10 +2,12 @@
 // GeoJSON (RFC 7946) through nlohmann::json: FeatureCollection, Feature, GeometryCollection and the
 // geometries Point, MultiPoint, LineString, MultiLineString, Polygon, MultiPolygon.
 //
-// Positions are [lon, lat] or [lon, lat, elevation] in WGS84 degrees and are projected to metres (the given
-// Projection or one chosen from the data). Old GeoJSON (2008) with a "crs" member naming a UTM zone
-// (EPSG:326zz/327zz, also as urn:ogc:def:crs:EPSG::326zz) keeps its metres with that zone's projection; any
-// other named crs is read as plain map units. Polygon rings (closed, first position repeated) become rings of
+// Positions are [lon, lat] or [lon, lat, elevation] in WGS84 degrees (RFC 7946) and are projected to metres
+// (the given Projection or one chosen from the data). Old GeoJSON (2008) may name its coordinate system in a
+// "crs" member ("EPSG:32616", "urn:ogc:def:crs:EPSG::32616"): PROJ reads it; a projected system keeps its
+// metres or is reprojected by the projection rule (projection.hpp), another datum's lon/lat goes through
+// PROJ to WGS 84, `"crs": null` and a local system are map units, and a linked or unknown system is refused
+// naming it. Polygon rings (closed, first position repeated) become rings of
 // the domain — roles from nesting, so an exterior ring bounds water and its holes are islands; LineStrings and
 // points become loose points. With a spacing, ring edges and line segments are subdivided so that no piece is
 // longer (metres or map units).
@@ -25,7 +27,7 @@ namespace shoremesh::io {
 
 struct GeoJsonOptions {
   std::optional<Projection> projection;
-  ProjectionChoice choice = ProjectionChoice::Utm;
+  ProjectionChoice choice = ProjectionChoice::LocalTransverseMercator;
   double spacing = 0;
 };
 

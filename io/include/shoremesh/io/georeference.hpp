@@ -8,11 +8,12 @@
 //   4. otherwise pixel units, said plainly in the result.
 // Coordinate systems are GDAL/OGR spatial references (PROJ underneath): any form PROJ accepts (EPSG:n,
 // WKT 1 or 2, PROJ strings, OGC URNs) plus the short forms "lonlat"/"WGS84" and "UTM 16N". Geographic
-// lon/lat on WGS 84, NAD83 or ETRS89 (within a metre of each other) is projected like GPS input; a UTM zone
-// on those datums is kept as is; any other system PROJ knows (Web Mercator, national grids, other datums)
-// is taken through WGS 84 lon/lat (Georeference::map_to_lonlat) to the projection chosen for the data, so
-// that lengths are true metres. Text PROJ cannot read is an error naming it; a local (engineering) system
-// is kept as map units with its name.
+// lon/lat on WGS 84, NAD83 or ETRS89 (within a metre of each other) is projected like GPS input; a projected
+// system (a UTM zone on those datums, Web Mercator, national grids) is kept or reprojected by the projection
+// rule (projection.hpp: kept where its scale stays within 0.1 % of 1 over the data); other systems (other
+// datums' lon/lat) reach WGS 84 lon/lat through PROJ (Georeference::map_to_lonlat) and are projected from
+// there, so that lengths are true metres. Text PROJ cannot read is an error naming it; a local (engineering)
+// system is kept as map units with its name.
 #include <array>
 #include <functional>
 #include <optional>
@@ -30,6 +31,7 @@ struct CoordinateSystem {
   bool north = true;   // Utm
   std::string name;    // as PROJ names it ("WGS 84", "WGS 84 / UTM zone 16N", ...)
   std::string wkt;     // Other: the system as WKT, for the transformation to lon/lat
+  bool projected = false;  // Other: a projected system (kept by the projection rule where its scale allows)
 };
 
 // Parses any coordinate system PROJ accepts (see above) or the short forms "WGS84", "lonlat", "UTM 16N",
@@ -59,8 +61,9 @@ struct Georeference {
   PixelToMap pixel_to_map;  // pixel units (Source::None): x = col + 0.5, y = height - row - 0.5
   CoordinateSystem crs;     // Unknown when none was found
   std::string description;  // e.g. "world file superior.wld with superior.prj (WGS 84)"
-  // Another projected system (a DEM in Web Mercator, a national grid; dem.hpp): map -> {lon, lat} degrees
-  // through GDAL/PROJ. The tracer then projects like geographic input.
+  // A system other than WGS 84 lon/lat and UTM (Web Mercator, a national grid, another datum's lon/lat):
+  // map -> {lon, lat} degrees through GDAL/PROJ, for the tracer to reproject from (or to measure the scale
+  // of a projected one it keeps).
   std::function<Point2(const Point2&)> map_to_lonlat;
 };
 

@@ -52,7 +52,7 @@ bool csv_header_has_lat_lon(std::string_view text);
 struct TrackOptions {
   // Projection: the given one, or one chosen from the data (UTM zone of the data's centre by default).
   std::optional<Projection> projection;
-  ProjectionChoice choice = ProjectionChoice::Utm;
+  ProjectionChoice choice = ProjectionChoice::LocalTransverseMercator;
   // Sampling (metres): along each track or route, no piece longer than `spacing`. The fixes are thinned
   // first (from each kept fix, the last of the fixes that follow within `spacing` of it: GPS jitter stays
   // out, and the kept fixes lie about `spacing` apart), then longer gaps are cut evenly. 0 keeps every

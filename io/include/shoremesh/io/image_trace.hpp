@@ -72,7 +72,7 @@ struct ImageTraceOptions {
   std::size_t max_pixels = 50'000'000;
   GeoreferenceOptions georeference;         // user box / coordinate system
   std::optional<Projection> projection;     // for geographic images; none: chosen from the image's extent
-  ProjectionChoice projection_choice = ProjectionChoice::Utm;
+  ProjectionChoice projection_choice = ProjectionChoice::LocalTransverseMercator;
 };
 
 // A water mask in memory: water[row * width + col] != 0 is water (for tests and callers with their own raster).

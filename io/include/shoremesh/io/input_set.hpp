@@ -13,7 +13,8 @@
 
 namespace shoremesh::io {
 
-struct DepthSource;  // dem.hpp
+struct DepthSource;   // dem.hpp
+struct OpenBoundary;  // open_boundary.hpp
 
 enum class Units {
   Metres,    // projected lon/lat (see InputSet::projection) or a metric coordinate system (UTM world file)
@@ -53,6 +54,8 @@ struct InputSet {
   // Ring points where the water reaches the edge of the data (a traced image's or DEM's outer edge): a mesh
   // boundary edge between two of them is an open (ocean) boundary, not land. Sorted.
   std::vector<Point2> open_points;
+  // Lines the user gives as open boundaries (--open-boundary), beside open_points; null: none.
+  std::shared_ptr<const OpenBoundary> open_boundary;
   // Where depths at mesh nodes come from (--dem, --depth-from, soundings), in the frame of these points;
   // null: none.
   std::shared_ptr<const DepthSource> depth;

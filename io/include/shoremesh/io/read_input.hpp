@@ -30,7 +30,7 @@ struct InputOptions {
   // For every lon/lat input (GPS, GeoJSON, geographic images, point and ring files with `lonlat`): this
   // projection, or one chosen from the data. Overrides the projection fields of the per-format options.
   std::optional<Projection> projection;
-  ProjectionChoice projection_choice = ProjectionChoice::Utm;
+  ProjectionChoice projection_choice = ProjectionChoice::LocalTransverseMercator;
   bool lonlat = false;  // plain point files and ring files hold lon, lat (degrees) in their first two columns
   double ring_spacing = 0;  // ring files: largest segment length, in the input's units (0: the vertices as given)
   TrackOptions track;

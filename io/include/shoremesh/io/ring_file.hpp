@@ -38,6 +38,6 @@ bool looks_like_ring_file(std::string_view text);
 // shoremesh::InputError with file and line).
 InputSet ring_file_to_input(const RingFile& rings, const std::string& file, bool lonlat,
                             const std::optional<Projection>& projection = std::nullopt,
-                            ProjectionChoice choice = ProjectionChoice::Utm, double spacing = 0);
+                            ProjectionChoice choice = ProjectionChoice::LocalTransverseMercator, double spacing = 0);
 
 }  // namespace shoremesh::io
