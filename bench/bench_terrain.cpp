@@ -161,7 +161,8 @@ GhResult garland_heckbert(const HeightGrid& g, double max_error) {
 }
 
 // ---- DEMs ------------------------------------------------------------------------------------------------
-// Octave noise on an n x n lattice of 30 m cells: hills of 100s of metres with detail down to the cell.
+// Octave noise on an n x n lattice of 30 m cells: six octaves of hills, 400 m down to 4 m high, the
+// shortest waves n / 32 cells long.
 HeightGrid synthetic(int n) {
   HeightGrid g;
   g.width = g.height = n;
@@ -172,10 +173,10 @@ HeightGrid synthetic(int n) {
     double kx, ky, ph, amp;
   };
   std::vector<Wave> waves;
-  for (int octave = 0; octave < 8; ++octave)
+  for (int octave = 0; octave < 6; ++octave)
     for (int k = 0; k < 6; ++k) {
       const double f = std::pow(2.0, octave) / n * 2 * std::numbers::pi, th = dir(rng);
-      waves.push_back({f * std::cos(th), f * std::sin(th), phase(rng), 400 / std::pow(2.1, octave)});
+      waves.push_back({f * std::cos(th), f * std::sin(th), phase(rng), 400 / std::pow(2.5, octave)});
     }
   g.z.resize(std::size_t(n) * n);
   for (int r = 0; r < n; ++r)
@@ -202,7 +203,7 @@ HeightGrid upsample(const HeightGrid& a, int k) {
 int main(int argc, char** argv) {
   std::string dem_path, label;
   int synthetic_n = 0, up = 0, repeat = 1, patches = 0, patch_side = 33;
-  double fraction = 0.5;
+  double fraction = 0;
   bool gh = true;
   std::vector<double> errors;
   for (int i = 1; i < argc; ++i) {
