@@ -124,7 +124,8 @@ TEST(TerrainCommand, SalishTinWithinTheBoundAtEverySampleAndAboveTheAngleBound) 
     EXPECT_NE(run.out.find("met by all"), std::string::npos) << run.out;
     const Tin t = read_obj(dir / "t.obj");
     SCOPED_TRACE("E = " + std::to_string(e));
-    EXPECT_LE(max_vertical_error(t, dem), e);
+    // Rounding: a sample exactly E away (integer heights) may measure E + 1e-12 in another order of operations.
+    EXPECT_LE(max_vertical_error(t, dem), e + 1e-9);
     EXPECT_GE(min_angle(t), kBound - 1e-9);
     EXPECT_GT(t.f.size(), previous);  // a tighter bound takes more triangles
     EXPECT_LT(t.v.size(), std::size_t(dem.w) * dem.h);

@@ -97,7 +97,7 @@ TEST(Terrain, EverySampleWithinTheErrorBoundMeasuredIndependently) {
       const TerrainSession s(synthetic_grid(70, 55), o);
       SCOPED_TRACE("E = " + std::to_string(e) + ", seed fraction " + std::to_string(fraction));
       const double worst = independent_max_error(s);
-      EXPECT_LE(worst, e);
+      EXPECT_LE(worst, e + 1e-9);  // rounding only: the TIN's own computation keeps every sample within e
       const TerrainError own = s.error();
       EXPECT_EQ(own.over, 0u);
       EXPECT_NEAR(own.max, worst, 1e-6 * (1 + worst));
