@@ -129,6 +129,7 @@ int run_terrain(const TerrainOptionsArgs& opt, Progress& progress) {
                           ms(u.error_ms) + ")");
   }
 
+  const TerrainUpdate& b = session->build_stats();
   progress.stage("measuring");
   const TerrainError error = session->error();
   const auto& points = session->points();
@@ -158,14 +159,14 @@ int run_terrain(const TerrainOptionsArgs& opt, Progress& progress) {
   batch.commit();
   progress.finish();
 
-  const TerrainUpdate& b = session->build_stats();
   std::size_t samples = 0;
   for (auto k : session->kinds()) samples += k == PointKind::Input;
   std::cout << opt.dem << ": DEM " << dem.width << " x " << dem.height << " cells (" << error.samples << " with data), heights "
             << approx(dem.min, 6) << " .. " << approx(dem.max, 6) << (dem.crs_name.empty() ? "" : ", " + dem.crs_name) << '\n';
   std::cout << "tin: " << triangles.size() << " triangles, " << points.size() << " vertices (" << samples << " DEM samples: "
             << session->seed_count() << " seeds, " << session->pick_count() << " greedy picks in " << session->rounds()
-            << " rounds; " << points.size() - samples << " Steiner, bilinear heights)\n";
+            << " rounds; " << points.size() - samples << " Steiner, bilinear heights, of them " << b.boundary_splits
+            << " halving encroached boundary edges)\n";
   std::cout << "error: max " << approx(error.max, 6) << ", RMS " << approx(error.rms, 6) << " (vertical, over " << error.samples
             << " DEM samples at cell centres; bound " << approx(opt.max_error, 6) << ": "
             << (error.over == 0 ? std::string("met by all") : std::to_string(error.over) + " samples over it") << ")\n";
