@@ -483,7 +483,6 @@ TerrainUpdate TerrainSession::patch(int col, int row, int w, int h, std::span<co
     throw InputError("the patch holds " + std::to_string(z.size()) + " heights for a window of " + std::to_string(cells));
   for (std::size_t i = 0; i < cells; ++i)
     if (!std::isfinite(z[i])) throw InputError("patch height " + std::to_string(i) + " is not finite");
-  if (!valid.empty() && g.valid.empty()) g.valid.assign(g.z.size(), 1);
   std::size_t still_valid = 0;
   if (!valid.empty()) {
     // Refuse a patch that leaves no data before changing anything.
@@ -495,13 +494,14 @@ TerrainUpdate TerrainSession::patch(int col, int row, int w, int h, std::span<co
     for (std::uint8_t v : valid) still_valid += v != 0;
     if (outside + still_valid == 0) throw InputError("the patch would leave the grid without data");
   }
+  if (!valid.empty() && g.valid.empty()) g.valid.assign(g.z.size(), 1);
   TerrainUpdate u;
   const auto t0 = Clock::now();
   for (int r = 0; r < h; ++r)
     for (int c = 0; c < w; ++c) {
       const std::size_t k = static_cast<std::size_t>(r) * w + c, i = g.index(col + c, row + r);
       g.z[i] = z[k];
-      if (!valid.empty()) g.valid[i] = valid[k] != 0;
+      if (!g.valid.empty()) g.valid[i] = valid.empty() || valid[k] != 0;  // a patch without a mask is all data
     }
   const terrain::SampleWindow changed{col, row, col + w - 1, row + h - 1};
   std::vector<std::size_t> seeds_added, seeds_removed;

@@ -88,7 +88,8 @@ class TerrainSession {
   TerrainSession(TerrainSession&&) noexcept;
   TerrainSession& operator=(TerrainSession&&) noexcept;
 
-  // New heights in the window [col, col + w) x [row, row + h) (row-major, `valid` empty: all valid).
+  // New heights in the window [col, col + w) x [row, row + h) (row-major; `valid` empty: every patched
+  // sample holds data, nodata there before included).
   // Afterwards the session equals a fresh TerrainSession on the patched grid. InputError (nothing
   // changed) for a window outside the grid, sizes that do not match, or heights that are not finite.
   TerrainUpdate patch(int col, int row, int w, int h, std::span<const float> z,
