@@ -302,11 +302,13 @@ struct TerrainSession::Impl {
       for (int k = 0; k < 3; ++k) {
         const Point2 &a = tin.points[t[(k + 1) % 3]], &b = tin.points[t[(k + 2) % 3]], &c = tin.points[t[k]];
         if (!same_boundary_line(a, b)) continue;
-        const double dot = (a[0] - c[0]) * (b[0] - c[0]) + (a[1] - c[1]) * (b[1] - c[1]);
+        // c in the diametral circle of ab: an obtuse angle at c (CGAL's exact predicate).
+        const bool encroached = CGAL::angle(Kernel::Point_2(a[0], a[1]), Kernel::Point_2(c[0], c[1]),
+                                            Kernel::Point_2(b[0], b[1])) == CGAL::OBTUSE;
         const Point2 mid{0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
         const Point2 gm = grid.to_grid(mid), ga = grid.to_grid(a);
         // No split below 1/1024 of a cell: the engine resolves it, but no DEM error needs it.
-        if (dot < 0 && std::hypot(gm[0] - ga[0], gm[1] - ga[1]) > 1.0 / 1024) splits.push_back(mid);
+        if (encroached && std::hypot(gm[0] - ga[0], gm[1] - ga[1]) > 1.0 / 1024) splits.push_back(mid);
       }
     }
     std::sort(splits.begin(), splits.end());
