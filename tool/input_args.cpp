@@ -62,8 +62,9 @@ void add_engine_options(CLI::App* cmd, EngineArgs& args) {
 
 void add_preview_options(CLI::App* cmd, PreviewArgs& args) {
   cmd->add_option("--preview-colour", args.colouring,
-                  "Preview triangles coloured by none, quality, size or depth (with --dem, --depth-from or soundings)")
-      ->check(CLI::IsMember({"none", "quality", "size", "depth"}));
+                  "Preview triangles coloured by none, quality, size, depth (with --dem, --depth-from or soundings) or "
+                  "height (terrain: hillshaded)")
+      ->check(CLI::IsMember({"none", "quality", "size", "depth", "height"}));
   cmd->add_option("--preview-width", args.width, "Preview width in pixels (default 1024)")->check(CLI::Range(16, 16384));
 }
 

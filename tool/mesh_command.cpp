@@ -63,6 +63,8 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
   const std::optional<io::ExportFormat> format =
       point_set ? std::nullopt
                 : std::optional(opt.format.empty() ? io::export_format_from_path(output) : parse_export_format(opt.format));
+  if (opt.preview_args.colouring == "height")
+    throw ParameterError("--preview-colour height is for terrains (shoremesh terrain DEM --max-error E ...)");
   if (opt.preview_args.colouring == "depth" && !set.depth)
     throw ParameterError("--preview-colour depth needs depths: --dem, --depth-from or x,y,depth soundings");
   io::OutputBatch batch(std::vector<std::filesystem::path>(opt.in.files.begin(), opt.in.files.end()));

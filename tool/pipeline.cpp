@@ -157,7 +157,8 @@ io::PreviewOptions preview_options(const PreviewArgs& args) {
   if (args.colouring == "quality") o.colouring = io::PreviewColouring::Quality;
   else if (args.colouring == "size") o.colouring = io::PreviewColouring::Size;
   else if (args.colouring == "depth") o.colouring = io::PreviewColouring::Depth;
-  else if (args.colouring != "none") throw ParameterError("--preview-colour must be none, quality, size or depth");
+  else if (args.colouring == "height") o.colouring = io::PreviewColouring::Height;
+  else if (args.colouring != "none") throw ParameterError("--preview-colour must be none, quality, size, depth or height");
   return o;
 }
 

@@ -74,7 +74,7 @@ std::vector<double> mesh_depths(const io::MeshView<2>& view, const UserFrame& fr
 std::string depth_text(std::span<const double> depths);
 
 struct PreviewArgs {
-  std::string colouring = "none";  // none | quality | size | depth
+  std::string colouring = "none";  // none | quality | size | depth | height (terrain)
   int width = 1024;
   double rho = 1.4142135623730951;
 };

@@ -127,6 +127,7 @@ Dem read_dem(const std::string& path, std::size_t max_cells) {
     dem.max = std::max(dem.max, static_cast<double>(v));
   }
   if (dem.nodata_cells == cells) throw InputError("the raster holds no data (every cell is nodata)", path);
+  if (dem.nodata_cells > 0) dem.valid = has;
   fill_nodata(dem, has);
 
   if (const OGRSpatialReference* srs = ds->GetSpatialRef()) {

@@ -2,7 +2,7 @@
 // longitude/latitude through the view's to_lonlat, each ring closed and counter-clockwise as the RFC
 // recommends (the triangles are counter-clockwise in the projected plane, and a conformal projection keeps
 // that), with the triangle's minimum angle, its corners' kinds and (when the view has them) its corners'
-// depths, positive down, as properties.
+// depths, positive down, as properties. A terrain's heights are each position's third coordinate.
 #include <string>
 
 #include "shoremesh/error.hpp"
@@ -39,7 +39,9 @@ void write_geojson(const std::filesystem::path& path, const MeshView<2>& view) {
       for (int k = 0; k <= 3; ++k) {
         const Point2& p = lonlat[e[k % 3]];
         s += k ? ",[" : "[";
-        append_number(s, p[0]), s += ',', append_number(s, p[1]), s += ']';
+        append_number(s, p[0]), s += ',', append_number(s, p[1]);
+        if (!view.heights.empty()) s += ',', append_number(s, view.heights[e[k % 3]]);  // RFC 7946: altitude third
+        s += ']';
       }
       s += "]]}}";
     }

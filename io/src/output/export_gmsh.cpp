@@ -25,13 +25,13 @@ struct Block {
 };
 
 template <int D>
-std::string bounding_box(std::span<const Point<D>> points, const std::vector<std::uint32_t>& nodes) {
+std::string bounding_box(const MeshView<D>& view, const std::vector<std::uint32_t>& nodes) {
   std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
   if (!nodes.empty()) {
-    // Only the coordinates the points have: a 2D mesh lies at z = 0, whose box is 0 .. 0 (not inf .. -inf).
-    for (int i = 0; i < D; ++i) lo[i] = std::numeric_limits<double>::infinity(), hi[i] = -lo[i];
+    // The coordinates the nodes have: a 2D mesh without heights lies at z = 0, whose box is 0 .. 0.
+    for (int i = 0; i < 3; ++i) lo[i] = std::numeric_limits<double>::infinity(), hi[i] = -lo[i];
     for (auto n : nodes)
-      for (int i = 0; i < D; ++i) lo[i] = std::min(lo[i], points[n][i]), hi[i] = std::max(hi[i], points[n][i]);
+      for (int i = 0; i < 3; ++i) lo[i] = std::min(lo[i], node_coordinate(view, n, i)), hi[i] = std::max(hi[i], node_coordinate(view, n, i));
   }
   std::string s;
   for (double x : lo) append_number(s, x), s += ' ';
@@ -87,7 +87,7 @@ void write_gmsh(const std::filesystem::path& path, const MeshView<D>& view) {
         if (b.dim != dim) continue;
         std::vector<std::uint32_t> nodes;
         for (const auto& e : b.elements) nodes.insert(nodes.end(), e.begin(), e.end());
-        append(s, b.entity, ' ', bounding_box<D>(view.points, nodes), "1 ", b.physical);
+        append(s, b.entity, ' ', bounding_box<D>(view, nodes), "1 ", b.physical);
         if (dim == 1) {
           s += " 0\n";  // closed loops: no bounding points
         } else {
@@ -104,9 +104,9 @@ void write_gmsh(const std::filesystem::path& path, const MeshView<D>& view) {
     append(s, "1 ", np, " 1 ", np, '\n');
     append(s, D, " 1 0 ", np, '\n');
     for (std::size_t i = 1; i <= np; ++i) append(s, i, '\n');
-    for (const auto& p : view.points) {
+    for (std::size_t n = 0; n < np; ++n) {
       for (int i = 0; i < 3; ++i) {
-        append_number(s, i < D ? p[i] : 0.0);
+        append_number(s, node_coordinate(view, n, i));
         s += i < 2 ? ' ' : '\n';
       }
     }

@@ -1,4 +1,5 @@
-// OBJ, PLY (ASCII) and OFF: triangle surfaces for general 3D viewers. In 2D the mesh's triangles at z = 0;
+// OBJ, PLY (ASCII) and OFF: triangle surfaces for general 3D viewers. In 2D the mesh's triangles at z = 0
+// (at the nodes' heights for a terrain);
 // in 3D the boundary triangles of the tetrahedra, oriented outwards.
 #include <string>
 #include <vector>
@@ -25,9 +26,9 @@ void write_surface(const std::filesystem::path& path, const MeshView<D>& view, E
       append(s, "OFF\n", np, ' ', nf, " 0\n");
     else
       s += "# shoremesh mesh\n";
-    for (const auto& p : view.points) {
+    for (std::size_t n = 0; n < np; ++n) {
       if (format == ExportFormat::Obj) s += "v ";
-      for (int i = 0; i < 3; ++i) append_number(s, i < D ? p[i] : 0.0), s += i < 2 ? ' ' : '\n';
+      for (int i = 0; i < 3; ++i) append_number(s, node_coordinate(view, n, i)), s += i < 2 ? ' ' : '\n';
     }
     for (const auto& f : faces) {
       // OBJ counts from 1, PLY and OFF from 0 with the corner count first.

@@ -1,6 +1,6 @@
 // VTK XML unstructured grid (.vtu), ASCII: points in 3 components, triangles (VTK type 5) or tetrahedra
-// (type 10), point arrays "input" (1 for input points, 0 for Steiner points) and "depth" (when the view
-// has depths) and per-element quality
+// (type 10), point arrays "input" (1 for input points, 0 for Steiner points), "depth" and "height" (when
+// the view has them; a terrain's height is also the points' z) and per-element quality
 // ("radius_edge", "min_angle") so that ParaView can colour by them.
 #include <string>
 
@@ -28,6 +28,11 @@ void write_vtu(const std::filesystem::path& path, const MeshView<D>& view) {
       for (double d : view.depths) append_number(s, d), s += '\n';
       s += "</DataArray>\n";
     }
+    if (!view.heights.empty()) {
+      s += "<DataArray type=\"Float64\" Name=\"height\" format=\"ascii\">\n";
+      for (double h : view.heights) append_number(s, h), s += '\n';
+      s += "</DataArray>\n";
+    }
     s += "</PointData>\n<CellData>\n";
     std::string radius_edge, min_angle;
     for (const auto& e : view.elements) {
@@ -42,8 +47,8 @@ void write_vtu(const std::filesystem::path& path, const MeshView<D>& view) {
     s += "</CellData>\n<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
     out << s;
     s.clear();
-    for (const auto& p : view.points) {
-      for (int i = 0; i < 3; ++i) append_number(s, i < D ? p[i] : 0.0), s += i < 2 ? ' ' : '\n';
+    for (std::size_t n = 0; n < view.points.size(); ++n) {
+      for (int i = 0; i < 3; ++i) append_number(s, node_coordinate(view, n, i)), s += i < 2 ? ' ' : '\n';
     }
     s += "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
     for (const auto& e : view.elements) {

@@ -42,6 +42,34 @@ double element_size(const ElementCorners<2>& c) {
   return std::sqrt(std::abs((c[1][0] - c[0][0]) * (c[2][1] - c[0][1]) - (c[1][1] - c[0][1]) * (c[2][0] - c[0][0])) / 2);
 }
 
+// Hypsometric tint of the mean height (water below 0 in blues, land from green through brown to white),
+// darkened by a hillshade: the cosine between the triangle's normal and light from azimuth 315, altitude 45.
+Rgb height_colour(const ElementCorners<2>& c, const std::array<double, 3>& h, double low, double high) {
+  const double mean = (h[0] + h[1] + h[2]) / 3;
+  Rgb tint;
+  if (mean < 0) {
+    const float t = static_cast<float>(low < 0 ? std::clamp(mean / low, 0.0, 1.0) : 0.0);
+    tint = {0.65f - 0.55f * t, 0.82f - 0.5f * t, 0.95f - 0.35f * t};
+  } else {
+    const double t = high > 0 ? std::clamp(mean / high, 0.0, 1.0) : 0.0;
+    const Rgb stops[4] = {{0.35f, 0.6f, 0.3f}, {0.75f, 0.7f, 0.4f}, {0.55f, 0.4f, 0.3f}, {0.97f, 0.97f, 0.97f}};
+    const double x = t * 3;
+    const int k = std::min(static_cast<int>(x), 2);
+    const float f = static_cast<float>(x - k);
+    tint = {stops[k].r + f * (stops[k + 1].r - stops[k].r), stops[k].g + f * (stops[k + 1].g - stops[k].g),
+            stops[k].b + f * (stops[k + 1].b - stops[k].b)};
+  }
+  const double ux = c[1][0] - c[0][0], uy = c[1][1] - c[0][1], uz = h[1] - h[0];
+  const double vx = c[2][0] - c[0][0], vy = c[2][1] - c[0][1], vz = h[2] - h[0];
+  double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+  if (nz < 0) nx = -nx, ny = -ny, nz = -nz;
+  const double norm = std::sqrt(nx * nx + ny * ny + nz * nz);
+  const double s = std::sqrt(0.5);  // the light: (-cos 45 sin 45, cos 45 cos 45, sin 45) for azimuth 315
+  const double shade = norm > 0 ? std::max(0.0, (-0.5 * nx + 0.5 * ny + s * nz) / norm) : 1.0;
+  const float k = static_cast<float>(0.3 + 0.7 * shade / s);  // flat ground at full tint
+  return {std::min(1.0f, tint.r * k), std::min(1.0f, tint.g * k), std::min(1.0f, tint.b * k)};
+}
+
 PreviewImage draw_2d(const MeshView<2>& view, const PreviewOptions& o) {
   const auto [lo, hi] = bounds_of(view.points);
   Canvas canvas(lo, hi, o.width, o.height, o.margin, o.background_colour);
@@ -55,13 +83,18 @@ PreviewImage draw_2d(const MeshView<2>& view, const PreviewOptions& o) {
     const double bound = std::asin(std::min(1.0, 1 / (2 * o.rho))) * 180 / std::numbers::pi;
     if (o.colouring == PreviewColouring::Depth && view.depths.size() != view.points.size())
       throw InputError("colouring by depth needs depths at the nodes (--dem, --depth-from or x,y,depth soundings)");
+    if (o.colouring == PreviewColouring::Height && view.heights.size() != view.points.size())
+      throw InputError("colouring by height needs heights at the nodes (a terrain: shoremesh terrain)");
+    double low = std::numeric_limits<double>::infinity(), high = -low;
+    for (double h : view.heights) low = std::min(low, h), high = std::max(high, h);
     double shallow = std::numeric_limits<double>::infinity(), deep = -shallow;
     for (double d : view.depths) shallow = std::min(shallow, d), deep = std::max(deep, d);
     for (std::size_t k = 0; k < corners.size(); ++k) {
       const auto& c = corners[k];
       const auto& e = view.elements[k];
       const Rgb colour =
-          o.colouring == PreviewColouring::Quality ? quality_colour(element_shape<2>(c).min_angle, bound, 60)
+          o.colouring == PreviewColouring::Height ? height_colour(c, {view.heights[e[0]], view.heights[e[1]], view.heights[e[2]]}, low, high)
+          : o.colouring == PreviewColouring::Quality ? quality_colour(element_shape<2>(c).min_angle, bound, 60)
           : o.colouring == PreviewColouring::Depth
               ? depth_colour(deep > shallow ? ((view.depths[e[0]] + view.depths[e[1]] + view.depths[e[2]]) / 3 - shallow) /
                                                   (deep - shallow)

@@ -17,6 +17,8 @@
 // (GDAL/PROJ) to a transverse Mercator centred on the data, so that lengths and --spacing are true metres.
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -27,6 +29,7 @@
 #include "shoremesh/io/input_set.hpp"
 #include "shoremesh/io/projection.hpp"
 #include "shoremesh/point.hpp"
+#include "shoremesh/terrain.hpp"
 
 namespace shoremesh::io {
 
@@ -38,6 +41,7 @@ struct Dem {
   std::array<double, 6> geotransform{0, 1, 0, 0, 0, -1};
   std::vector<float> heights;     // row-major, nodata filled
   std::size_t nodata_cells = 0;   // cells that held nodata (filled)
+  std::vector<std::uint8_t> valid;  // per cell, 0 where it held nodata; empty when none did
   double min = 0, max = 0;        // over the cells that held data
   std::string crs_wkt;            // empty: the raster has no coordinate system
   std::string crs_name;           // "WGS 84 / Pseudo-Mercator", ...
@@ -56,6 +60,18 @@ struct Dem {
 // more than `max_cells` cells, no geotransform (pixel units are meaningless for a DEM), rotated grids, or
 // no data at all.
 Dem read_dem(const std::string& path, std::size_t max_cells = 200'000'000);
+
+// A DEM as the terrain mesher's grid (terrain.hpp): its samples in the plane where the angles are measured,
+// and the way from that plane to lon/lat. A projected DEM keeps its map coordinates (metres; a conformal
+// projection such as UTM or Web Mercator keeps angles); a geographic one is taken to metres by an
+// equirectangular map about its centre (conformal there; its scale errs by under 0.1 % within 2.5 degrees
+// of latitude of it). to_lonlat is empty when the DEM has no coordinate system.
+struct DemGrid {
+  HeightGrid grid;
+  std::function<Point2(const Point2&)> to_lonlat;
+  bool metres = false;  // false: the DEM's map units (no coordinate system, or one PROJ calls local)
+};
+DemGrid dem_grid(const Dem& dem);
 
 // From the mesh's coordinates to a DEM's cells: mesh metres -> (projection's lon/lat) -> DEM CRS -> cells.
 // Without a mesh projection the mesh is taken to be in the DEM's own coordinates.

@@ -30,11 +30,21 @@ struct MeshView {
   // Depths at the nodes, positive down, parallel to `points` (empty: none): fort.14's depth column (before
   // `depth`), a "depth" node field in .msh and .vtu, the corners' depths in GeoJSON.
   std::span<const double> depths;
+  // 2D terrains: heights at the nodes, positive up, parallel to `points` (empty: none). They become the
+  // nodes' z in .msh, .vtu, OBJ, PLY and OFF, and each GeoJSON position's third coordinate (RFC 7946).
+  std::span<const double> heights;
   // 2D: per node, 1 where the water leaves the data (a DEM's or image's edge; every node of a mesh without
   // rings, which ends at the box); a boundary edge between two such nodes
   // is an open boundary in fort.14 (empty: none).
   std::span<const std::uint8_t> open_nodes;
 };
+
+// Coordinate i (0, 1, 2) of node n as the writers write it: the point's, then (2D) the node's height or 0.
+template <int D>
+double node_coordinate(const MeshView<D>& view, std::size_t n, int i) {
+  if (i < D) return view.points[n][i];
+  return view.heights.empty() ? 0.0 : view.heights[n];
+}
 
 // A copy of a Mesh's points, elements, kinds and boundary, and a view of it. Points that no element uses
 // (the fill outside the water) are left out and the rest renumbered in their order.

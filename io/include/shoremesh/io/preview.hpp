@@ -18,7 +18,7 @@ struct Rgb {
   bool operator==(const Rgb&) const = default;
 };
 
-enum class PreviewColouring { None, Quality, Size, Depth };
+enum class PreviewColouring { None, Quality, Size, Depth, Height };
 enum class PreviewView3D { Surface, SliceZ };
 
 struct PreviewOptions {
@@ -30,6 +30,8 @@ struct PreviewOptions {
   // Quality: the minimum angle (dihedral in 3D) from red (0) through yellow (the rho bound, 20.7 degrees
   // for rho = sqrt 2) to green (60). Size: the square root of the area, blue (smallest) to orange (largest), log scale.
   // Depth (2D, the view's depths): the mean of the corners' depths, pale (shallowest) to dark blue (deepest).
+  // Height (2D, the view's heights): hypsometric tints (blues below 0, greens to browns to white above)
+  // by the corners' mean height, hillshaded by the triangle's slope (light from the north-west, 45 degrees up).
   PreviewColouring colouring = PreviewColouring::None;
   double rho = 1.4142135623730951;
   // An image drawn underneath, covering the mesh-coordinate rectangle background_extent
