@@ -106,7 +106,7 @@ int run_terrain(const TerrainOptionsArgs& opt, Progress& progress) {
   TerrainOptions options;
   options.max_error = opt.max_error;
   options.seed_fraction = opt.seed_fraction;
-  options.engine = engine_parameters<2>(opt.rho);
+  options.engine = session_parameters<2>(opt.rho);
   const auto t0 = std::chrono::steady_clock::now();
   std::optional<TerrainSession> session;
   try {
