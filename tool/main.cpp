@@ -20,7 +20,8 @@ int main(int argc, char** argv) {
   const std::map<std::string, Command> commands = {{"mesh", add_mesh_command(app)},
                                                    {"edit", add_edit_command(app)},
                                                    {"info", add_info_command(app)},
-                                                   {"bench", add_bench_command(app)}};
+                                                   {"bench", add_bench_command(app)},
+                                                   {"serve", add_serve_command(app)}};
 
   if (argc > 1 && argv[1][0] != '-' && !commands.contains(argv[1])) {
     std::cerr << "shoremesh: unknown command '" << argv[1] << "' (mesh, edit, info, bench; see shoremesh --help)\n";
