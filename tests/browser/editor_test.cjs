@@ -96,6 +96,46 @@ async function main() {
     await h.post(server.url, 'export undone.off');
     check('undo returns to the original export byte for byte', () =>
       assert.ok(fs.readFileSync(path.join(dir, 'out', 'before.off')).equals(fs.readFileSync(path.join(dir, 'out', 'undone.off')))));
+
+    // Click a shore edge (a point added after its first vertex), select the new point and Delete it, then
+    // undo both: the removed point comes back under a new id, and the second undo must find it by that id.
+    const edge = await page.evaluate(async () => {
+      const s = window.shoremesh;
+      const [id, v] = [...s.verts.entries()].filter(([, p]) => p.ring === 0)[500];
+      const n = s.verts.get(v.next);
+      await s.zoomTo(id, Math.hypot(n.x - v.x, n.y - v.y) / 200);
+      const [ax, ay] = s.screenOf(id), [bx, by] = s.screenOf(v.next);
+      return { id, x: (ax + bx) / 2, y: (ay + by) / 2 };
+    });
+    const lines = [];
+    const waitEdit = async (n) => {
+      await page.waitForFunction((k) => window.shoremesh.edits === k || (window.shoremesh.last && !window.shoremesh.last.ok),
+                                 { timeout: 60000 }, n);
+      const last = await page.evaluate(() => window.shoremesh.last);
+      lines.push(last.line);
+      assert.ok(last.ok, `refused: ${last.line}: ${JSON.stringify(last.reply)}`);
+      return last;
+    };
+    await page.mouse.click(edge.x, edge.y);
+    const added = await waitEdit(3);
+    const [px, py] = await page.evaluate((id) => window.shoremesh.screenOf(id), added.reply.id);
+    await page.mouse.click(px, py);
+    await page.keyboard.press('Delete');
+    await waitEdit(4);
+    for (const n of [5, 6]) {
+      await page.keyboard.down('Control');
+      await page.keyboard.press('z');
+      await page.keyboard.up('Control');
+      await waitEdit(n);
+    }
+    check('a click on a shore edge adds a point after its first vertex',
+          () => assert.ok(lines[0].startsWith('add ') && lines[0].endsWith(` after ${edge.id}`), lines[0]));
+    check('Delete removes the selected point', () => assert.strictEqual(lines[1], `remove ${added.reply.id}`));
+    check('undo of the removal adds it back, undo of the add removes it by its new id',
+          () => assert.ok(lines[2].startsWith('add ') && lines[3] === `remove ${added.reply.id + 1}`, lines.join('; ')));
+    await h.post(server.url, 'export undone2.off');
+    check('after add, remove and two undos the export is the original, byte for byte', () =>
+      assert.ok(fs.readFileSync(path.join(dir, 'out', 'before.off')).equals(fs.readFileSync(path.join(dir, 'out', 'undone2.off')))));
     check('the page raised no error', () => assert.deepStrictEqual(problems, []));
     console.log(`drag of shore point ${edit.id}: ${edit.serverMs.toFixed(2)} ms on the server, ` +
                 `${edit.roundTripMs.toFixed(1)} ms round trip, ${edit.frameMs.toFixed(1)} ms to the frame (headless, SwiftShader)`);

@@ -11,7 +11,8 @@ const state = {
   ready: false, version: 0, triangles: 0, slots: 0, edits: 0, frames: 0, redraws: 0,
   origin: [0, 0], side: 1, units: '',
   verts: new Map(),  // input point id -> {x, y, ring, prev, next} (x, y exact, in the mesh's units)
-  selected: null, last: null, undo: [], redo: [], alias: new Map(),
+  selected: null, last: null, undo: [], redo: [],
+  alias: new Map(), firstId: new Map(), ringAlias: new Map(), ringOrigin: new Map(),
 };
 window.shoremesh = state;
 
@@ -374,8 +375,12 @@ async function send(line) {
 }
 
 // Undo and redo: each history entry knows its edit and its inverse. An undone add or remove makes a new id
-// (ids are never reused), so later entries find their points through `alias`.
-const resolve = (id) => { while (state.alias.has(id)) id = state.alias.get(id); return id; };
+// (ids are never reused): history entries name points (and rings) by the id they had first, and `alias`
+// maps that first id to the current one (`firstId` the other way).
+const resolve = (id) => state.alias.get(id) ?? id;
+const orig = (id) => state.firstId.get(id) ?? id;
+const resolveRing = (r) => state.ringAlias.get(r) ?? r;
+const origRing = (r) => state.ringOrigin.get(r) ?? r;
 const num = (v) => String(v);  // shortest exact decimal: the server reads the same double back
 function lineOf(op) {
   switch (op.type) {
@@ -384,27 +389,28 @@ function lineOf(op) {
                                               : `add ${num(op.at[0])} ${num(op.at[1])} after ${resolve(op.after)}`;
     case 'remove': return `remove ${resolve(op.id)}`;
     case 'add-ring': return `add-ring ${op.xy.map(num).join(' ')}`;
-    case 'remove-ring': return `remove-ring ${resolve(op.ring) + 1}`;
+    case 'remove-ring': return `remove-ring ${resolveRing(op.ring) + 1}`;
   }
 }
-// The inverse of an edit that was just applied (its reply known).
+// The inverse of an edit that was just applied (its reply known; new ids already linked to first ids).
 function inverseOf(op, reply) {
   switch (op.type) {
     case 'move': return { type: 'move', id: op.id, to: op.from, from: op.to };
-    case 'add': return { type: 'remove', id: reply.id, at: op.at, after: op.after };
+    case 'add': return { type: 'remove', id: orig(reply.id), at: op.at, after: op.after };
     case 'remove': return { type: 'add', at: op.at, after: op.after, replaces: op.id };
-    case 'add-ring': return { type: 'remove-ring', ring: reply.ring - 1, ids: reply.ids, xy: op.xy };
+    case 'add-ring': return { type: 'remove-ring', ring: origRing(reply.ring - 1), ids: reply.ids.map(orig), xy: op.xy };
     case 'remove-ring': return { type: 'add-ring', xy: op.xy, replaces: op.ids, replacesRing: op.ring };
   }
 }
+function link(first, now, alias, origin) { alias.set(first, now); origin.set(now, first); }
 async function perform(op, history = 'new') {
   const reply = await send(lineOf(op));
   if (!reply.ok) return reply;
   if (op.replaces !== undefined) {  // the point (or ring) came back under a new id
-    if (Array.isArray(op.replaces)) op.replaces.forEach((id, i) => state.alias.set(id, reply.ids[i]));
-    else state.alias.set(op.replaces, reply.id);
+    if (Array.isArray(op.replaces)) op.replaces.forEach((id, i) => link(id, reply.ids[i], state.alias, state.firstId));
+    else link(op.replaces, reply.id, state.alias, state.firstId);
   }
-  if (op.replacesRing !== undefined) state.alias.set(op.replacesRing, reply.ring - 1);
+  if (op.replacesRing !== undefined) link(op.replacesRing, reply.ring - 1, state.ringAlias, state.ringOrigin);
   const entry = { op, inverse: inverseOf(op, reply) };
   if (history === 'new') { state.undo.push(entry); state.redo = []; }
   else if (history === 'undo') state.redo.push({ op: entry.inverse, inverse: op });
@@ -427,15 +433,15 @@ function removeSelected() {
   const id = state.selected;
   const v = id !== null && state.verts.get(id);
   if (!v) return setStatus('select a point first (click it)', true);
-  return perform({ type: 'remove', id, at: [v.x, v.y], after: v.prev });
+  return perform({ type: 'remove', id: orig(id), at: [v.x, v.y], after: v.prev === undefined ? undefined : orig(v.prev) });
 }
 function removeRingOfSelected() {
   const v = state.selected !== null && state.verts.get(state.selected);
   if (!v || v.ring === undefined) return setStatus('select a shore point of the ring first', true);
   const ids = [], xy = [];
   let id = state.selected;
-  do { const p = state.verts.get(id); ids.push(id); xy.push(p.x, p.y); id = p.next; } while (id !== state.selected);
-  return perform({ type: 'remove-ring', ring: v.ring, ids, xy });
+  do { const p = state.verts.get(id); ids.push(orig(id)); xy.push(p.x, p.y); id = p.next; } while (id !== state.selected);
+  return perform({ type: 'remove-ring', ring: origRing(v.ring), ids, xy });
 }
 
 // ---- the mouse and keys ----------------------------------------------------------------------------------
@@ -507,12 +513,12 @@ view.addEventListener('pointerup', async (e) => {
     const v = state.verts.get(p.hit), to = toWorld(px, py);
     [v.x, v.y] = p.from;  // the server says where it is
     refreshDots([p.hit]);
-    await perform({ type: 'move', id: p.hit, from: p.from, to });
+    await perform({ type: 'move', id: orig(p.hit), from: p.from, to });
   } else if (p.hit !== null) {
     select(p.hit);
   } else if (!p.moved) {
     const edge = nearestEdge(px, py, 6);
-    if (edge) await perform({ type: 'add', at: edge.at, after: edge.after });
+    if (edge) await perform({ type: 'add', at: edge.at, after: orig(edge.after) });
     else select(null);
   }
 });
