@@ -4,7 +4,7 @@
 //
 //   SHOREMESH_BINARY=build/tool/shoremesh SHOREMESH_NODE_MODULES=build/web/node_modules \
 //   SHOREMESH_CHROMIUM=/usr/bin/chromium node bench/editor_latency.cjs N INPUT [serve options...]
-// Then N edits posted from Node without a page, for the server's share of the round trip.
+// Then N edits posted from Node with the browser closed, for the server's share of the round trip.
 'use strict';
 const fs = require('fs');
 const os = require('os');
@@ -38,8 +38,10 @@ async function main() {
     show('server (edit ms)', rows.map((r) => r.serverMs));
     show('POST round trip', rows.map((r) => r.roundTripMs));
     show('to the updated frame', rows.map((r) => r.frameMs));
-    // The same kind of edit posted from here (no page in the way): the last drag undone and redone.
+    // The same kind of edit posted from here with the browser closed (no page rendering on the same CPUs):
+    // the last drag undone and redone.
     const op = await page.evaluate(() => window.shoremesh.undo[window.shoremesh.undo.length - 1].op);
+    await browser.close();
     const lines = [`move ${op.id} ${op.from[0]} ${op.from[1]}`, `move ${op.id} ${op.to[0]} ${op.to[1]}`];
     const direct = [];
     for (let i = 0; i < Number(n); ++i) {
@@ -49,7 +51,7 @@ async function main() {
     }
     show('POST round trip from Node (no page)', direct);
   } finally {
-    await browser.close();
+    if (browser.connected) await browser.close();
     server.child.kill('SIGTERM');
     fs.rmSync(dir, { recursive: true, force: true });
   }

@@ -24,19 +24,17 @@ view.prepend(renderer.domElement);
 const scene = new THREE.Scene();
 const camera = new THREE.OrthographicCamera(-1, 1, 1, -1, -1, 1);
 const cam = { cx: 0, cy: 0, scale: 1 };  // centre (relative to origin) and units per CSS pixel
-const start = performance.now();
-const now = () => performance.now() - start;
 
 const triVertex = `
   precision highp float;
-  uniform mat4 projectionMatrix; uniform mat4 modelViewMatrix; uniform float uTime;
+  uniform mat4 projectionMatrix; uniform mat4 modelViewMatrix; uniform float uVersion;
   in vec2 position; in float kind; in float quality; in float size; in float changed;
   out vec3 vBary; out float vQuality; out float vSize; out float vFlash;
   void main() {
     int c = gl_VertexID % 3;
     vBary = vec3(c == 0, c == 1, c == 2);
     vQuality = quality; vSize = size;
-    vFlash = clamp(1.0 - (uTime - changed) / 2500.0, 0.0, 1.0);
+    vFlash = abs(changed - uVersion) < 0.5 ? 1.0 : 0.0;  // made by the last edit
     gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 0.0, 1.0);
     if (kind > 254.5) gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // an empty slot
   }`;
@@ -90,7 +88,7 @@ const lineVertex = `
 const lineFragment = `precision highp float; out vec4 outColor; void main() { outColor = vec4(0.04, 0.24, 0.57, 1.0); }`;
 
 const uniforms = {
-  uTime: { value: 0 }, uColour: { value: 0 }, uBound: { value: 30 }, uSizeRange: { value: new THREE.Vector2(0, 1) },
+  uVersion: { value: -1 }, uColour: { value: 0 }, uBound: { value: 30 }, uSizeRange: { value: new THREE.Vector2(0, 1) },
   uPointSize: { value: 2 },
 };
 // Double-sided: a slot's corners come sorted, not counter-clockwise.
@@ -98,7 +96,8 @@ const raw = (vertexShader, fragmentShader) =>
   new THREE.RawShaderMaterial({ vertexShader, fragmentShader, uniforms, glslVersion: THREE.GLSL3, side: THREE.DoubleSide });
 
 // The triangles: 3 corners per slot, each with its position, kind, the triangle's min angle and size, and
-// when it last changed (for the highlight).
+// the version of the edit that made it (the last edit's triangles are highlighted, as preview-change does;
+// a static highlight: no frames drawn between edits).
 let mesh = null, corners = null, buffers = null, capacity = 0;
 function allocate(slots) {
   capacity = Math.ceil(slots * 1.25) + 1024;
@@ -125,8 +124,8 @@ function angleAt(ax, ay, bx, by, cx, cy) {
   const ux = bx - ax, uy = by - ay, vx = cx - ax, vy = cy - ay;
   return Math.abs(Math.atan2(ux * vy - uy * vx, ux * vx + uy * vy)) * 180 / Math.PI;
 }
-// Writes slot `s` (xy: 6 numbers relative to the origin; kinds: 3; t: when it changed).
-function writeSlot(s, xy, kinds, t) {
+// Writes slot `s` (xy: 6 numbers relative to the origin; kinds: 3; v: the version that made it).
+function writeSlot(s, xy, kinds, v) {
   const p = buffers.position.array;
   for (let i = 0; i < 6; ++i) p[s * 6 + i] = xy[i];
   const [ax, ay, bx, by, cx, cy] = xy;
@@ -137,7 +136,7 @@ function writeSlot(s, xy, kinds, t) {
     buffers.kind.array[s * 3 + k] = kinds[k];
     buffers.quality.array[s * 3 + k] = q;
     buffers.size.array[s * 3 + k] = size;
-    buffers.changed.array[s * 3 + k] = t;
+    buffers.changed.array[s * 3 + k] = v;
   }
 }
 function clearSlot(s) {
@@ -240,9 +239,7 @@ function fit() {
 }
 const frameWaiters = [];
 function frame() {
-  const t = now();
-  uniforms.uTime.value = t;
-  if (dirty || (state.last && t - state.lastChange < 2600)) {
+  if (dirty) {
     dirty = false;
     updateCamera();
     renderer.render(scene, camera);
@@ -278,7 +275,7 @@ async function load() {
   allocate(head.slots);
   for (let s = 0; s < head.slots; ++s) {
     if (kinds[s * 3] === 255) continue;
-    writeSlot(s, xy.subarray(s * 6, s * 6 + 6), kinds.subarray(s * 3, s * 3 + 3), -1e9);
+    writeSlot(s, xy.subarray(s * 6, s * 6 + 6), kinds.subarray(s * 3, s * 3 + 3), -1);
   }
   let lo = Infinity, hi = -Infinity;
   for (let s = 0; s < head.slots; ++s) if (kinds[s * 3] !== 255) { const v = buffers.size.array[s * 3]; lo = Math.min(lo, v); hi = Math.max(hi, v); }
@@ -303,8 +300,7 @@ function applyChange(change) {
   if (change.slots > capacity) allocate(change.slots);
   const written = [];
   for (const s of change.cleared) { clearSlot(s); written.push(s); }
-  const t = now();
-  for (const a of change.added) { writeSlot(a[0], a.slice(1, 7), a.slice(7, 10), t); written.push(a[0]); }
+  for (const a of change.added) { writeSlot(a[0], a.slice(1, 7), a.slice(7, 10), change.version); written.push(a[0]); }
   upload(written);
   let structural = false;
   for (const p of change.inputs) {
@@ -328,8 +324,8 @@ function applyChange(change) {
     }
   }
   if (structural) rebuildRings(); else refreshDots(change.inputs.map((p) => p.id));
-  Object.assign(state, { version: change.version, triangles: change.triangles, slots: Math.max(state.slots, change.slots),
-                         lastChange: t });
+  Object.assign(state, { version: change.version, triangles: change.triangles, slots: Math.max(state.slots, change.slots) });
+  uniforms.uVersion.value = change.version;
   ++state.redraws;
   $('changed').textContent = `${change.cleared.length} out, ${change.added.length} in`;
   showCounts(change.reply);
