@@ -11,6 +11,7 @@
 #include <cstring>
 #include <deque>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <mutex>
@@ -45,6 +46,7 @@ struct ServeOptions {
   int port = 0;
   std::string host = "127.0.0.1";
   std::string export_dir;
+  std::string log, resume;  // the accepted edit lines, appended as they are accepted
   std::size_t max_body = std::size_t(1) << 20;
 };
 
@@ -294,8 +296,8 @@ bool is_edit_op(const std::string& op) {
 
 class EditServer {
  public:
-  EditServer(EditSession<2>& session, std::filesystem::path export_dir)
-      : session_(session), export_dir_(std::move(export_dir)) {
+  EditServer(EditSession<2>& session, std::filesystem::path export_dir, std::ofstream* log)
+      : session_(session), export_dir_(std::move(export_dir)), log_(log) {
     draw_.reset(session_.session());
   }
 
@@ -320,6 +322,7 @@ class EditServer {
         std::vector<std::size_t> ids;
         if (reply->contains("ids")) ids = (*reply)["ids"].get<std::vector<std::size_t>>();
         if (reply->contains("id") && (*reply)["op"] != "add-ring") ids.push_back((*reply)["id"].get<std::size_t>());
+        if (log_) *log_ << line << std::endl;  // flushed: a killed server resumes from it
         json change = draw_.apply(session_.session(), session_.last_edit(), ids);
         change["version"] = ++version_;
         change["reply"] = *reply;
@@ -376,8 +379,28 @@ class EditServer {
   DrawState draw_;
   std::uint64_t version_ = 0;
   std::filesystem::path export_dir_;
+  std::ofstream* log_;
   Events events_;
 };
+
+// --resume LOG: its edit lines again, in order (ids are never reused, so the same lines give the same ids
+// and, Lemma 7.2, the same state as the killed server's); each must be accepted again.
+void replay(EditSession<2>& session, const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError("cannot read the edit log to resume", path);
+  std::size_t line_no = 0, edits = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++line_no;
+    const auto reply = session.run(line_no, line);
+    if (!reply) continue;
+    if (!reply->value("ok", false))
+      throw InputError("line " + std::to_string(line_no) + " of the edit log is refused now: " +
+                           reply->value("error", "") + " (was it written for these inputs and options?)",
+                       path);
+    ++edits;
+  }
+  std::cout << "resumed " << edits << " edit(s) from " << path << '\n';
+}
 
 bool is_loopback(const std::string& host) {
   return host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0;
@@ -406,7 +429,18 @@ int run_serve(const ServeOptions& opt) {
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   progress.finish();
   std::cout << reply_text(session.build_reply(ms)) << '\n';
-  EditServer editor(session, export_dir);
+  if (!opt.log.empty() && !opt.resume.empty()) throw ParameterError("--log and --resume: give one (--resume keeps logging)");
+  std::ofstream log;
+  if (!opt.resume.empty()) {
+    replay(session, opt.resume);
+    log.open(opt.resume, std::ios::app);
+  } else if (!opt.log.empty()) {
+    if (std::filesystem::exists(opt.log)) throw InputError("the edit log exists: --resume it, or remove it", opt.log);
+    log.open(opt.log);
+  }
+  const std::string log_path = opt.resume.empty() ? opt.log : opt.resume;
+  if (!log_path.empty() && !log) throw InputError("cannot write the edit log", log_path);
+  EditServer editor(session, export_dir, log_path.empty() ? nullptr : &log);
 
   // SIGINT and SIGTERM stop the server from a thread of their own (the handlers' threads inherit the mask).
   sigset_t stop_signals;
@@ -514,6 +548,9 @@ Command add_serve_command(CLI::App& app) {
   cmd->add_option("--host", opt->host, "Address to listen on (default 127.0.0.1; others are warned about)");
   cmd->add_option("--export-dir", opt->export_dir,
                   "Folder that export, preview and preview-change lines write into (they take file names only)");
+  cmd->add_option("--log", opt->log, "Append every accepted edit line to LOG (a new file), for --resume");
+  cmd->add_option("--resume", opt->resume,
+                  "Replay the edit log LOG (of a server on the same inputs and options), then keep appending to it");
   cmd->add_option("--max-body", opt->max_body, "Largest request body in bytes (default 1 MiB)");
   cmd->footer(
       "Endpoints: GET / (the editor), GET /mesh (the triangles in slots, binary), GET /stats,\n"

@@ -57,10 +57,13 @@ class ServeProcess {
     std::fclose(out);
     if (port_ == 0) throw std::runtime_error("serve printed no URL: " + read_file(dir / ".serve_stderr"));
   }
-  ~ServeProcess() {
-    kill(pid_, SIGTERM);
+  ~ServeProcess() { stop(SIGTERM); }
+  void stop(int signal) {
+    if (pid_ <= 0) return;
+    kill(pid_, signal);
     int status = 0;
     waitpid(pid_, &status, 0);
+    pid_ = -1;
   }
   httplib::Client client() const {
     httplib::Client c(host_, port_);
@@ -343,6 +346,40 @@ TEST(ServeCommand, EventsStreamEachAcceptedEditAndThePageIsServed) {
   EXPECT_EQ(change["reply"]["line"], 2);
   EXPECT_EQ(change["inputs"][0]["id"], 1);
   EXPECT_EQ(change["inputs"][0]["x"], 90);
+}
+
+TEST(ServeCommand, AKilledServerResumesFromItsEditLogToTheSameState) {
+  TempDir dir;
+  write_file(dir / "lake.txt", "0,0\n100,0\n100,100\n0,100\n0,0\n");
+  fs::create_directories(dir / "out");
+  const std::string edits = "move 1 90 10\nadd 50 50\nmove 999 1 1\nadd 60 5 after 0\nremove 4\nexport killed.off\n";
+  {
+    ServeProcess server(dir, "lake.txt --export-dir out --log edits.log");
+    auto c = server.client();
+    const auto res = c.Post("/edit?replies=lines", edits, "text/plain");
+    ASSERT_TRUE(res && res->status == 200);
+    EXPECT_EQ(json_lines(res->body).at(3)["id"], 5);
+    server.stop(SIGKILL);  // no chance to write anything more
+  }
+  // The accepted edit lines only, in order.
+  EXPECT_EQ(read_file(dir / "edits.log"), "move 1 90 10\nadd 50 50\nadd 60 5 after 0\nremove 4\n");
+  const RunResult over = shoremesh(dir, "serve lake.txt --log edits.log");
+  EXPECT_EQ(over.code, 1);
+  EXPECT_THAT(over.err, HasSubstr("--resume"));
+  {
+    ServeProcess resumed(dir, "lake.txt --export-dir out --resume edits.log");
+    auto c = resumed.client();
+    const auto res = c.Post("/edit?replies=lines", "export resumed.off\nadd 20 20\n", "text/plain");
+    ASSERT_TRUE(res && res->status == 200);
+    EXPECT_EQ(json_lines(res->body).at(1)["id"], 6);  // the ids go on where the killed server left them
+  }
+  EXPECT_EQ(read_file(dir / "out" / "killed.off"), read_file(dir / "out" / "resumed.off"));
+  EXPECT_EQ(read_file(dir / "edits.log"), "move 1 90 10\nadd 50 50\nadd 60 5 after 0\nremove 4\nadd 20 20\n");
+  // A log that these inputs refuse is an error naming its line, not a different state.
+  write_file(dir / "bad.log", "move 1 90 10\nmove 77 1 1\n");
+  const RunResult bad = shoremesh(dir, "serve lake.txt --resume bad.log");
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_THAT(bad.err, HasSubstr("line 2 of the edit log is refused"));
 }
 
 }  // namespace
