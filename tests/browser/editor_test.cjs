@@ -137,6 +137,52 @@ async function main() {
     check('after add, remove and two undos the export is the original, byte for byte', () =>
       assert.ok(fs.readFileSync(path.join(dir, 'out', 'before.off')).equals(fs.readFileSync(path.join(dir, 'out', 'undone2.off')))));
     check('the page raised no error', () => assert.deepStrictEqual(problems, []));
+
+    // An island drawn with I, three clicks and Enter; undone, redone (a new ring number) and undone again.
+    fs.writeFileSync(path.join(dir, 'square.txt'), '0,0\n100,0\n100,100\n0,100\n0,0\n');
+    const square = await h.startServer(['square.txt'], dir);
+    try {
+      const second = await h.openEditor(browser, square.url);
+      const p2 = second.page;
+      const corners = await p2.evaluate(() => [[40, 40], [60, 40], [50, 60]].map(([x, y]) => {
+        const s = window.shoremesh;
+        s.verts.set(-1, { x, y });
+        const at = s.screenOf(-1);
+        s.verts.delete(-1);
+        return at;
+      }));
+      const before = await p2.evaluate(() => window.shoremesh.triangles);
+      await p2.keyboard.press('i');
+      for (const [x, y] of corners) await p2.mouse.click(x, y);
+      await p2.keyboard.press('Enter');
+      const seen = [];
+      const wait = async (n) => {
+        await p2.waitForFunction((k) => window.shoremesh.edits === k || (window.shoremesh.last && !window.shoremesh.last.ok),
+                                 { timeout: 60000 }, n);
+        const last = await p2.evaluate(() => ({ ...window.shoremesh.last, triangles: window.shoremesh.triangles }));
+        assert.ok(last.ok, `refused: ${last.line}`);
+        seen.push(last);
+      };
+      await wait(1);
+      for (const [key, n] of [['z', 2], ['y', 3], ['z', 4]]) {
+        await p2.keyboard.down('Control');
+        await p2.keyboard.press(key);
+        await p2.keyboard.up('Control');
+        await wait(n);
+      }
+      const [islandStats] = await h.post(square.url, 'stats');
+      check('an island is drawn, undone, redone under a new ring number and undone again', () => {
+        assert.deepStrictEqual(seen.map((e) => e.line.split(' ')[0]), ['add-ring', 'remove-ring', 'add-ring', 'remove-ring']);
+        assert.strictEqual(seen[2].line, seen[0].line);
+        assert.deepStrictEqual([seen[1].line, seen[3].line], ['remove-ring 2', 'remove-ring 3']);
+        assert.ok(seen[0].triangles > before, `${seen[0].triangles} triangles with the island, ${before} without`);
+        assert.strictEqual(seen[3].triangles, before);
+        assert.strictEqual(islandStats.elements, before);
+        assert.deepStrictEqual(second.problems, []);
+      });
+    } finally {
+      square.child.kill('SIGTERM');
+    }
     console.log(`drag of shore point ${edit.id}: ${edit.serverMs.toFixed(2)} ms on the server, ` +
                 `${edit.roundTripMs.toFixed(1)} ms round trip, ${edit.frameMs.toFixed(1)} ms to the frame (headless, SwiftShader)`);
     for (const c of checks) console.log(`ok: ${c}`);

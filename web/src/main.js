@@ -317,9 +317,10 @@ function applyChange(change) {
     } else {
       if (!old) structural = true;
       state.verts.set(p.id, { x: p.x, y: p.y, ring: p.ring, prev: p.prev, next: p.next });
-      if (p.prev !== undefined) {
-        if (state.verts.get(p.prev)?.next !== p.id) { state.verts.get(p.prev).next = p.id; structural = true; }
-        if (state.verts.get(p.next)?.prev !== p.id) { state.verts.get(p.next).prev = p.id; structural = true; }
+      if (p.prev !== undefined) {  // neighbours not seen yet (a new ring's) come later in this change
+        const a = state.verts.get(p.prev), b = state.verts.get(p.next);
+        if (a && a.next !== p.id) { a.next = p.id; structural = true; }
+        if (b && b.prev !== p.id) { b.prev = p.id; structural = true; }
       }
     }
   }
