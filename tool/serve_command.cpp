@@ -391,6 +391,10 @@ void replay(EditSession<2>& session, const std::string& path) {
   std::size_t line_no = 0, edits = 0;
   for (std::string line; std::getline(in, line);) {
     ++line_no;
+    const auto words = words_of(line);
+    if (!words.empty() && words[0][0] != '#' && !is_edit_op(words[0]))
+      throw InputError("line " + std::to_string(line_no) + " of the edit log is not an edit (" + words[0] +
+                           "): a log holds add, remove, move, add-ring and remove-ring lines", path);
     const auto reply = session.run(line_no, line);
     if (!reply) continue;
     if (!reply->value("ok", false))

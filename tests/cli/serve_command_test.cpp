@@ -380,6 +380,11 @@ TEST(ServeCommand, AKilledServerResumesFromItsEditLogToTheSameState) {
   const RunResult bad = shoremesh(dir, "serve lake.txt --resume bad.log");
   EXPECT_EQ(bad.code, 1);
   EXPECT_THAT(bad.err, HasSubstr("line 2 of the edit log is refused"));
+  write_file(dir / "export.log", "move 1 90 10\nexport ../elsewhere.off\n");
+  const RunResult not_edit = shoremesh(dir, "serve lake.txt --resume export.log");
+  EXPECT_EQ(not_edit.code, 1);
+  EXPECT_THAT(not_edit.err, HasSubstr("line 2 of the edit log is not an edit"));
+  EXPECT_FALSE(fs::exists(dir / "elsewhere.off"));
 }
 
 }  // namespace
