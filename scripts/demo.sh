@@ -97,3 +97,7 @@ cat <<EOF2
   $out/superior_edited.geojson for a GIS (lon/lat, e.g. QGIS: Layer > Add Vector Layer)
   $out/edit_log.txt            the edit replies with their timings
 EOF2
+echo
+echo "Edit it in the browser (drag shore points, watch the mesh follow; exports go to $out):"
+echo "  $tool serve ${read_opts[*]} --export-dir $out"
+echo "and open the http://127.0.0.1:PORT/ address it prints."

@@ -18,7 +18,11 @@ packages=(
   libjemalloc-dev                                      # the executables' allocator (huge pages)
   libgtest-dev libgmock-dev libbenchmark-dev           # tests and benchmarks
   python3-meshio python3-numpy gmsh                    # third-party readers of our exports (tests)
+  libcpp-httplib-dev                                   # serve: the editor's HTTP server
+  chromium                                             # serve: the editor's browser test (headless)
 )
+# serve's page is bundled with npm at build time; a Node.js from elsewhere (with its own npm) will do.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then packages+=(nodejs npm); fi
 if [ "${1:-}" = "--list" ]; then printf '%s\n' "${packages[@]}"; exit 0; fi
 
 missing=()

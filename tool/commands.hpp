@@ -20,5 +20,6 @@ Command add_edit_command(CLI::App& app);   // edit_command.cpp
 Command add_info_command(CLI::App& app);   // info_command.cpp
 Command add_bench_command(CLI::App& app);  // bench_command.cpp
 Command add_terrain_command(CLI::App& app);  // terrain_command.cpp
+Command add_serve_command(CLI::App& app);  // serve_command.cpp
 
 }  // namespace shoremesh::tool

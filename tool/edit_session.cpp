@@ -180,6 +180,7 @@ std::size_t EditSession<D>::parse_id(const std::string& word) const {
 template <int D>
 void EditSession<D>::record(const SessionEdit<D>& edit, json& reply) {
   last_delta_ = edit.mesh;
+  last_edit_ = edit;
   reply["rings_ms"] = edit.rings_ms;
   reply["engine_ms"] = edit.engine_ms;
   reply["steiner_added"] = edit.engine.steiner_added.size();

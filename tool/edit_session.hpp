@@ -37,6 +37,11 @@ class EditSession {
   // Runs one edit line (1-based `line` for the reply). Blank and '#' lines give no reply (nullopt).
   std::optional<nlohmann::json> run(std::size_t line, const std::string& text);
 
+  // The library session, and the last accepted edit (its mesh delta and engine report): what `serve`
+  // sends a page so that it redraws only the change.
+  const ShoreSession<D>& session() const { return session_; }
+  const SessionEdit<D>& last_edit() const { return last_edit_; }
+
  private:
   nlohmann::json add(const std::vector<std::string>& words);
   nlohmann::json remove(const std::vector<std::string>& words);
@@ -60,6 +65,7 @@ class EditSession {
   PreviewArgs preview_;
   ShoreSession<D> session_;
   MeshDelta<D> last_delta_;
+  SessionEdit<D> last_edit_;
 };
 
 // One reply as a line of text for a person.

@@ -21,10 +21,11 @@ int main(int argc, char** argv) {
                                                    {"edit", add_edit_command(app)},
                                                    {"info", add_info_command(app)},
                                                    {"bench", add_bench_command(app)},
-                                                   {"terrain", add_terrain_command(app)}};
+                                                   {"terrain", add_terrain_command(app)},
+                                                   {"serve", add_serve_command(app)}};
 
   if (argc > 1 && argv[1][0] != '-' && !commands.contains(argv[1])) {
-    std::cerr << "shoremesh: unknown command '" << argv[1] << "' (mesh, edit, info, bench, terrain; see shoremesh --help)\n";
+    std::cerr << "shoremesh: unknown command '" << argv[1] << "' (mesh, edit, info, bench, terrain, serve; see shoremesh --help)\n";
     return kExitUsage;
   }
   try {

@@ -1,0 +1,616 @@
+// The browser editor of `shoremesh serve`: the water mesh in WebGL (three.js), shore points to drag, and
+// the edit language of `shoremesh edit` over POST /edit. The server keeps every triangle in a slot that
+// stays put until the triangle goes, so an edit's change is a few slot writes here (docs/editor.md).
+import * as THREE from 'three';
+
+const view = document.getElementById('view');
+const $ = (id) => document.getElementById(id);
+
+// What tests and people can read: window.shoremesh.
+const state = {
+  ready: false, version: 0, triangles: 0, slots: 0, edits: 0, frames: 0, redraws: 0,
+  origin: [0, 0], side: 1, units: '',
+  verts: new Map(),  // input point id -> {x, y, ring, prev, next} (x, y exact, in the mesh's units)
+  selected: null, last: null, undo: [], redo: [],
+  alias: new Map(), firstId: new Map(), ringAlias: new Map(), ringOrigin: new Map(),
+};
+window.shoremesh = state;
+
+// ---- drawing -------------------------------------------------------------------------------------------
+const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+renderer.setPixelRatio(window.devicePixelRatio || 1);
+renderer.setClearColor(0xe9e4d8);
+view.prepend(renderer.domElement);
+const scene = new THREE.Scene();
+const camera = new THREE.OrthographicCamera(-1, 1, 1, -1, -1, 1);
+const cam = { cx: 0, cy: 0, scale: 1 };  // centre (relative to origin) and units per CSS pixel
+
+const triVertex = `
+  precision highp float;
+  uniform mat4 projectionMatrix; uniform mat4 modelViewMatrix; uniform float uVersion;
+  in vec2 position; in float kind; in float quality; in float size; in float changed;
+  out vec3 vBary; out float vQuality; out float vSize; out float vFlash;
+  void main() {
+    int c = gl_VertexID % 3;
+    vBary = vec3(c == 0, c == 1, c == 2);
+    vQuality = quality; vSize = size;
+    vFlash = abs(changed - uVersion) < 0.5 ? 1.0 : 0.0;  // made by the last edit
+    gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 0.0, 1.0);
+    if (kind > 254.5) gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // an empty slot
+  }`;
+const triFragment = `
+  precision highp float;
+  uniform int uColour; uniform float uBound; uniform vec2 uSizeRange;
+  in vec3 vBary; in float vQuality; in float vSize; in float vFlash;
+  out vec4 outColor;
+  vec3 ramp(float t) { return mix(mix(vec3(0.93, 0.86, 0.55), vec3(0.45, 0.75, 0.85), clamp(t * 2.0, 0.0, 1.0)),
+                                  vec3(0.16, 0.38, 0.72), clamp(t * 2.0 - 1.0, 0.0, 1.0)); }
+  void main() {
+    vec3 fill = vec3(0.62, 0.80, 0.90);
+    if (uColour == 0) fill = vQuality < uBound ? vec3(0.85, 0.2, 0.15) : ramp((vQuality - uBound) / max(60.0 - uBound, 1.0));
+    if (uColour == 1) fill = ramp((vSize - uSizeRange.x) / max(uSizeRange.y - uSizeRange.x, 1e-6));
+    fill = mix(fill, vec3(1.0, 0.45, 0.0), vFlash * 0.85);
+    vec3 d = fwidth(vBary);
+    vec3 a = smoothstep(vec3(0.0), d * 1.3, vBary);
+    float edge = (1.0 - min(min(a.x, a.y), a.z)) * clamp(1.5 - max(d.x, max(d.y, d.z)) * 12.0, 0.0, 1.0);
+    outColor = vec4(mix(fill, vec3(0.12, 0.2, 0.32), edge * 0.75), 1.0);
+  }`;
+const cornerVertex = `
+  precision highp float;
+  uniform mat4 projectionMatrix; uniform mat4 modelViewMatrix; uniform float uPointSize;
+  in vec2 position; in float kind;
+  out vec3 vColour;
+  void main() {
+    gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 0.0, 1.0);
+    gl_PointSize = kind < 0.5 ? uPointSize : kind < 1.5 ? uPointSize * 1.6 : 0.0;  // Steiner, split
+    vColour = kind < 0.5 ? vec3(0.45) : vec3(0.09, 0.65, 0.65);
+    if (kind > 1.5) gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // shore and loose points: the point layer
+  }`;
+const dotVertex = `
+  precision highp float;
+  uniform mat4 projectionMatrix; uniform mat4 modelViewMatrix; uniform float uPointSize;
+  in vec2 position; in vec3 colour; in float big;
+  out vec3 vColour;
+  void main() {
+    gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 0.0, 1.0);
+    gl_PointSize = max(uPointSize * 2.0, 4.0) * (1.0 + big);
+    vColour = colour;
+  }`;
+const dotFragment = `
+  precision highp float;
+  in vec3 vColour; out vec4 outColor;
+  void main() { if (length(gl_PointCoord - 0.5) > 0.5) discard; outColor = vec4(vColour, 1.0); }`;
+const lineVertex = `
+  precision highp float;
+  uniform mat4 projectionMatrix; uniform mat4 modelViewMatrix;
+  in vec2 position;
+  void main() { gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 0.0, 1.0); }`;
+const lineFragment = `precision highp float; out vec4 outColor; void main() { outColor = vec4(0.04, 0.24, 0.57, 1.0); }`;
+
+const uniforms = {
+  uVersion: { value: -1 }, uColour: { value: 0 }, uBound: { value: 30 }, uSizeRange: { value: new THREE.Vector2(0, 1) },
+  uPointSize: { value: 2 },
+};
+// Double-sided: a slot's corners come sorted, not counter-clockwise.
+const raw = (vertexShader, fragmentShader) =>
+  new THREE.RawShaderMaterial({ vertexShader, fragmentShader, uniforms, glslVersion: THREE.GLSL3, side: THREE.DoubleSide });
+
+// The triangles: 3 corners per slot, each with its position, kind, the triangle's min angle and size, and
+// the version of the edit that made it (the last edit's triangles are highlighted, as preview-change does;
+// a static highlight: no frames drawn between edits).
+let mesh = null, corners = null, buffers = null, capacity = 0;
+function allocate(slots) {
+  capacity = Math.ceil(slots * 1.25) + 1024;
+  const old = buffers;
+  buffers = {
+    position: new THREE.BufferAttribute(new Float32Array(capacity * 6), 2),
+    kind: new THREE.BufferAttribute(new Uint8Array(capacity * 3).fill(255), 1),
+    quality: new THREE.BufferAttribute(new Float32Array(capacity * 3), 1),
+    size: new THREE.BufferAttribute(new Float32Array(capacity * 3), 1),
+    changed: new THREE.BufferAttribute(new Float32Array(capacity * 3).fill(-1e9), 1),
+  };
+  if (old) for (const k in old) buffers[k].array.set(old[k].array);
+  const geometry = new THREE.BufferGeometry();
+  for (const k in buffers) geometry.setAttribute(k, buffers[k]);
+  if (mesh) { scene.remove(mesh, corners); mesh.geometry.dispose(); }
+  mesh = new THREE.Mesh(geometry, raw(triVertex, triFragment));
+  corners = new THREE.Points(geometry, raw(cornerVertex, dotFragment));
+  mesh.frustumCulled = corners.frustumCulled = false;
+  mesh.renderOrder = 0; corners.renderOrder = 1;
+  scene.add(mesh, corners);
+}
+
+function angleAt(ax, ay, bx, by, cx, cy) {
+  const ux = bx - ax, uy = by - ay, vx = cx - ax, vy = cy - ay;
+  return Math.abs(Math.atan2(ux * vy - uy * vx, ux * vx + uy * vy)) * 180 / Math.PI;
+}
+// Writes slot `s` (xy: 6 numbers relative to the origin; kinds: 3; v: the version that made it).
+function writeSlot(s, xy, kinds, v) {
+  const p = buffers.position.array;
+  for (let i = 0; i < 6; ++i) p[s * 6 + i] = xy[i];
+  const [ax, ay, bx, by, cx, cy] = xy;
+  const q = Math.min(angleAt(ax, ay, bx, by, cx, cy), angleAt(bx, by, cx, cy, ax, ay), angleAt(cx, cy, ax, ay, bx, by));
+  const longest = Math.max(Math.hypot(bx - ax, by - ay), Math.hypot(cx - bx, cy - by), Math.hypot(ax - cx, ay - cy));
+  const size = Math.log2(longest || 1e-9);
+  for (let k = 0; k < 3; ++k) {
+    buffers.kind.array[s * 3 + k] = kinds[k];
+    buffers.quality.array[s * 3 + k] = q;
+    buffers.size.array[s * 3 + k] = size;
+    buffers.changed.array[s * 3 + k] = v;
+  }
+}
+function clearSlot(s) {
+  buffers.position.array.fill(0, s * 6, s * 6 + 6);
+  buffers.kind.array.fill(255, s * 3, s * 3 + 3);
+}
+function upload(slots) {  // only the slots written: one bufferSubData range per run of slots
+  slots.sort((a, b) => a - b);
+  for (const k in buffers) {
+    const per = k === 'position' ? 6 : 3;
+    buffers[k].clearUpdateRanges();
+    for (let i = 0; i < slots.length;) {
+      let j = i;
+      while (j + 1 < slots.length && slots[j + 1] <= slots[j] + 1) ++j;
+      buffers[k].addUpdateRange(slots[i] * per, (slots[j] - slots[i] + 1) * per);
+      i = j + 1;
+    }
+    buffers[k].needsUpdate = true;
+  }
+}
+
+// The shore points (draggable) and loose points, and the shoreline: rebuilt when points come or go,
+// written in place when one moves.
+let dots = null, lines = null, dotIndex = new Map();
+function rebuildRings() {
+  const ids = [...state.verts.keys()];
+  dotIndex = new Map(ids.map((id, i) => [id, i]));
+  const pos = new Float32Array(ids.length * 2), colour = new Float32Array(ids.length * 3), big = new Float32Array(ids.length);
+  const seg = new Float32Array(ids.length * 4);
+  ids.forEach((id, i) => writeDot(pos, colour, big, seg, id, i));
+  if (dots) { scene.remove(dots, lines); dots.geometry.dispose(); lines.geometry.dispose(); }
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.BufferAttribute(pos, 2));
+  g.setAttribute('colour', new THREE.BufferAttribute(colour, 3));
+  g.setAttribute('big', new THREE.BufferAttribute(big, 1));
+  dots = new THREE.Points(g, raw(dotVertex, dotFragment));
+  const lg = new THREE.BufferGeometry();
+  lg.setAttribute('position', new THREE.BufferAttribute(seg, 2));
+  lines = new THREE.LineSegments(lg, raw(lineVertex, lineFragment));
+  dots.frustumCulled = lines.frustumCulled = false;
+  lines.renderOrder = 2; dots.renderOrder = 3;
+  scene.add(lines, dots);
+}
+function writeDot(pos, colour, big, seg, id, i) {
+  const v = state.verts.get(id);
+  const x = v.x - state.origin[0], y = v.y - state.origin[1];
+  pos[i * 2] = x; pos[i * 2 + 1] = y;
+  const c = id === state.selected ? [0.95, 0.45, 0.0] : v.ring === undefined ? [0.72, 0.19, 0.48] : [0.04, 0.24, 0.57];
+  colour.set(c, i * 3);
+  big[i] = id === state.selected ? 1 : 0;
+  const n = v.ring === undefined ? v : state.verts.get(v.next) || v;
+  seg.set([x, y, n.x - state.origin[0], n.y - state.origin[1]], i * 4);
+}
+function refreshDots(ids) {  // in place: points that moved or whose selection changed, and their edges
+  const g = dots.geometry, a = g.attributes;
+  const touched = new Set();
+  for (const id of ids) {
+    touched.add(id);
+    const v = state.verts.get(id);
+    if (v && v.prev !== undefined) touched.add(v.prev);
+  }
+  for (const id of touched) {
+    if (!dotIndex.has(id) || !state.verts.has(id)) continue;
+    writeDot(a.position.array, a.colour.array, a.big.array, lines.geometry.attributes.position.array, id, dotIndex.get(id));
+  }
+  a.position.needsUpdate = a.colour.needsUpdate = a.big.needsUpdate = true;
+  lines.geometry.attributes.position.needsUpdate = true;
+}
+
+// ---- the view --------------------------------------------------------------------------------------------
+let dirty = true;
+function requestDraw() { dirty = true; }
+function resize() {
+  renderer.setSize(view.clientWidth, view.clientHeight);
+  requestDraw();
+}
+function updateCamera() {
+  const w = view.clientWidth / 2 * cam.scale, h = view.clientHeight / 2 * cam.scale;
+  camera.left = cam.cx - w; camera.right = cam.cx + w; camera.top = cam.cy + h; camera.bottom = cam.cy - h;
+  camera.updateProjectionMatrix();
+  uniforms.uPointSize.value = Math.min(3, Math.max(0, 2.5 - Math.log10(cam.scale / (state.side / 2e5) + 1e-12)));
+  // The scale bar: a round length near 120 pixels.
+  const target = 120 * cam.scale, p = Math.pow(10, Math.floor(Math.log10(target)));
+  const len = [5, 2, 1].map((m) => m * p).find((l) => l <= target) || p;
+  $('scale-bar').style.width = `${len / cam.scale}px`;
+  $('scale-text').textContent = len >= 1000 && state.units === 'metres' ? `${len / 1000} km` : `${len} ${state.units}`;
+}
+function fit() {
+  let lo = [Infinity, Infinity], hi = [-Infinity, -Infinity];
+  const p = buffers.position.array;
+  for (let i = 0; i < state.slots * 6; i += 2) {
+    if (buffers.kind.array[i / 2] === 255) continue;
+    lo = [Math.min(lo[0], p[i]), Math.min(lo[1], p[i + 1])];
+    hi = [Math.max(hi[0], p[i]), Math.max(hi[1], p[i + 1])];
+  }
+  if (!isFinite(lo[0])) { lo = [0, 0]; hi = [state.side, state.side]; }
+  cam.cx = (lo[0] + hi[0]) / 2; cam.cy = (lo[1] + hi[1]) / 2;
+  cam.scale = 1.05 * Math.max((hi[0] - lo[0]) / view.clientWidth, (hi[1] - lo[1]) / view.clientHeight) || 1;
+  requestDraw();
+}
+const frameWaiters = [];
+function frame() {
+  if (dirty) {
+    dirty = false;
+    updateCamera();
+    renderer.render(scene, camera);
+    ++state.frames;
+    for (const f of frameWaiters.splice(0)) f(performance.now());
+  }
+  requestAnimationFrame(frame);
+}
+function nextFrame() { requestDraw(); return new Promise((resolve) => frameWaiters.push(resolve)); }
+
+// Screen (CSS pixels in the view) <-> mesh coordinates (absolute).
+function toWorld(px, py) {
+  return [state.origin[0] + cam.cx + (px - view.clientWidth / 2) * cam.scale,
+          state.origin[1] + cam.cy - (py - view.clientHeight / 2) * cam.scale];
+}
+function toScreen(x, y) {
+  return [(x - state.origin[0] - cam.cx) / cam.scale + view.clientWidth / 2,
+          view.clientHeight / 2 - (y - state.origin[1] - cam.cy) / cam.scale];
+}
+
+// ---- the mesh from the server ----------------------------------------------------------------------------
+async function load() {
+  const buf = await (await fetch('mesh')).arrayBuffer();
+  const magic = new TextDecoder().decode(new Uint8Array(buf, 0, 4));
+  if (magic !== 'SMSH') throw new Error('GET /mesh: not a shoremesh mesh');
+  const length = new DataView(buf).getUint32(4, true);
+  const head = JSON.parse(new TextDecoder().decode(new Uint8Array(buf, 8, length)));
+  const xy = new Float32Array(buf, 8 + length, head.slots * 6);
+  const kinds = new Uint8Array(buf, 8 + length + head.slots * 24, head.slots * 3);
+  Object.assign(state, { version: head.version, triangles: head.triangles, slots: head.slots, origin: head.origin,
+                         side: head.side, units: head.units || '' });
+  buffers = null;
+  allocate(head.slots);
+  for (let s = 0; s < head.slots; ++s) {
+    if (kinds[s * 3] === 255) continue;
+    writeSlot(s, xy.subarray(s * 6, s * 6 + 6), kinds.subarray(s * 3, s * 3 + 3), -1);
+  }
+  let lo = Infinity, hi = -Infinity;
+  for (let s = 0; s < head.slots; ++s) if (kinds[s * 3] !== 255) { const v = buffers.size.array[s * 3]; lo = Math.min(lo, v); hi = Math.max(hi, v); }
+  uniforms.uSizeRange.value.set(lo, hi);
+  state.verts = new Map();
+  for (const r of head.rings) {
+    const n = r.ids.length;
+    r.ids.forEach((id, i) => state.verts.set(id, { x: r.xy[2 * i], y: r.xy[2 * i + 1], ring: r.ring,
+                                                  prev: r.ids[(i + n - 1) % n], next: r.ids[(i + 1) % n] }));
+  }
+  head.loose.ids.forEach((id, i) => state.verts.set(id, { x: head.loose.xy[2 * i], y: head.loose.xy[2 * i + 1] }));
+  rebuildRings();
+  showCounts();
+  requestDraw();
+}
+
+// One accepted edit's change, in version order (from the POST's answer or the event stream, whichever
+// comes first). A gap means changes were missed: reload everything.
+function applyChange(change) {
+  if (change.version <= state.version) return false;
+  if (change.version !== state.version + 1) { reload(); return false; }
+  if (change.slots > capacity) allocate(change.slots);
+  const written = [];
+  for (const s of change.cleared) { clearSlot(s); written.push(s); }
+  for (const a of change.added) { writeSlot(a[0], a.slice(1, 7), a.slice(7, 10), change.version); written.push(a[0]); }
+  upload(written);
+  let structural = false;
+  for (const p of change.inputs) {
+    const old = state.verts.get(p.id);
+    if (p.gone) {
+      if (old && old.prev !== undefined) {
+        const a = state.verts.get(old.prev), b = state.verts.get(old.next);
+        if (a && a.next === p.id) a.next = old.next;
+        if (b && b.prev === p.id) b.prev = old.prev;
+      }
+      state.verts.delete(p.id);
+      if (state.selected === p.id) state.selected = null;
+      structural = true;
+    } else {
+      if (!old) structural = true;
+      state.verts.set(p.id, { x: p.x, y: p.y, ring: p.ring, prev: p.prev, next: p.next });
+      if (p.prev !== undefined) {  // neighbours not seen yet (a new ring's) come later in this change
+        const a = state.verts.get(p.prev), b = state.verts.get(p.next);
+        if (a && a.next !== p.id) { a.next = p.id; structural = true; }
+        if (b && b.prev !== p.id) { b.prev = p.id; structural = true; }
+      }
+    }
+  }
+  if (structural) rebuildRings(); else refreshDots(change.inputs.map((p) => p.id));
+  Object.assign(state, { version: change.version, triangles: change.triangles, slots: Math.max(state.slots, change.slots) });
+  uniforms.uVersion.value = change.version;
+  ++state.redraws;
+  $('changed').textContent = `${change.cleared.length} out, ${change.added.length} in`;
+  showCounts(change.reply);
+  requestDraw();
+  scheduleStats();
+  return true;
+}
+let reloading = null;
+function reload() {
+  if (!reloading) reloading = load().finally(() => { reloading = null; });
+  return reloading;
+}
+
+// ---- edits -----------------------------------------------------------------------------------------------
+const fmt = (ms) => (ms === undefined ? '' : `${ms.toFixed(ms < 10 ? 2 : 1)} ms`);
+function setStatus(text, refused) {
+  $('status').textContent = text;
+  $('status').className = refused ? 'refused' : '';
+}
+// POSTs one edit line; applies its change; resolves to the reply (ok or refused).
+async function send(line) {
+  const t0 = performance.now();
+  const res = await fetch('edit', { method: 'POST', body: line, headers: { 'Content-Type': 'text/plain' } });
+  const out = await res.json();
+  if (!res.ok) { setStatus(`${line}: ${out.error}`, true); return { ok: false, error: out.error }; }
+  const t1 = performance.now();
+  for (const c of out.changes) applyChange(c);
+  const reply = out.replies[0];
+  const t2 = await nextFrame();
+  state.last = { line, ok: reply.ok, serverMs: reply.ms, roundTripMs: t1 - t0, frameMs: t2 - t0, reply };
+  if (reply.ok) {
+    ++state.edits;
+    $('edit-count').textContent = state.edits;
+    setStatus(`${line} (${fmt(reply.ms)} on the server)`, false);
+    $('ms-server').textContent = fmt(reply.ms);
+  } else {
+    setStatus(`refused: ${line}: ${reply.error}`, true);
+    $('ms-server').textContent = '';
+  }
+  $('ms-round').textContent = fmt(t1 - t0);
+  $('ms-frame').textContent = fmt(t2 - t0);
+  return reply;
+}
+
+// Undo and redo: each history entry knows its edit and its inverse. An undone add or remove makes a new id
+// (ids are never reused): history entries name points (and rings) by the id they had first, and `alias`
+// maps that first id to the current one (`firstId` the other way).
+const resolve = (id) => state.alias.get(id) ?? id;
+const orig = (id) => state.firstId.get(id) ?? id;
+const resolveRing = (r) => state.ringAlias.get(r) ?? r;
+const origRing = (r) => state.ringOrigin.get(r) ?? r;
+const num = (v) => String(v);  // shortest exact decimal: the server reads the same double back
+function lineOf(op) {
+  switch (op.type) {
+    case 'move': return `move ${resolve(op.id)} ${num(op.to[0])} ${num(op.to[1])}`;
+    case 'add': return op.after === undefined ? `add ${num(op.at[0])} ${num(op.at[1])}`
+                                              : `add ${num(op.at[0])} ${num(op.at[1])} after ${resolve(op.after)}`;
+    case 'remove': return `remove ${resolve(op.id)}`;
+    case 'add-ring': return `add-ring ${op.xy.map(num).join(' ')}`;
+    case 'remove-ring': return `remove-ring ${resolveRing(op.ring) + 1}`;
+  }
+}
+// The inverse of an edit that was just applied (its reply known; new ids already linked to first ids).
+function inverseOf(op, reply) {
+  switch (op.type) {
+    case 'move': return { type: 'move', id: op.id, to: op.from, from: op.to };
+    case 'add': return { type: 'remove', id: orig(reply.id), at: op.at, after: op.after };
+    case 'remove': return { type: 'add', at: op.at, after: op.after, replaces: op.id };
+    case 'add-ring': return { type: 'remove-ring', ring: origRing(reply.ring - 1), ids: reply.ids.map(orig), xy: op.xy };
+    case 'remove-ring': return { type: 'add-ring', xy: op.xy, replaces: op.ids, replacesRing: op.ring };
+  }
+}
+function link(first, now, alias, origin) { alias.set(first, now); origin.set(now, first); }
+async function perform(op, history = 'new') {
+  const reply = await send(lineOf(op));
+  if (!reply.ok) return reply;
+  if (op.replaces !== undefined) {  // the point (or ring) came back under a new id
+    if (Array.isArray(op.replaces)) op.replaces.forEach((id, i) => link(id, reply.ids[i], state.alias, state.firstId));
+    else link(op.replaces, reply.id, state.alias, state.firstId);
+  }
+  if (op.replacesRing !== undefined) link(op.replacesRing, reply.ring - 1, state.ringAlias, state.ringOrigin);
+  const entry = { op, inverse: inverseOf(op, reply) };
+  if (history === 'new') { state.undo.push(entry); state.redo = []; }
+  else if (history === 'undo') state.redo.push({ op: entry.inverse, inverse: op });
+  else state.undo.push(entry);
+  return reply;
+}
+async function undo() {
+  const e = state.undo.pop();
+  if (!e) return;
+  const r = await perform(e.inverse, 'undo');
+  if (!r.ok) state.undo.push(e);
+}
+async function redo() {
+  const e = state.redo.pop();
+  if (!e) return;
+  const r = await perform(e.op, 'redo');
+  if (!r.ok) state.redo.push(e);
+}
+function removeSelected() {
+  const id = state.selected;
+  const v = id !== null && state.verts.get(id);
+  if (!v) return setStatus('select a point first (click it)', true);
+  return perform({ type: 'remove', id: orig(id), at: [v.x, v.y], after: v.prev === undefined ? undefined : orig(v.prev) });
+}
+function removeRingOfSelected() {
+  const v = state.selected !== null && state.verts.get(state.selected);
+  if (!v || v.ring === undefined) return setStatus('select a shore point of the ring first', true);
+  const ids = [], xy = [];
+  let id = state.selected;
+  do { const p = state.verts.get(id); ids.push(orig(id)); xy.push(p.x, p.y); id = p.next; } while (id !== state.selected);
+  return perform({ type: 'remove-ring', ring: origRing(v.ring), ids, xy });
+}
+
+// ---- the mouse and keys ----------------------------------------------------------------------------------
+function nearestPoint(px, py, radius) {
+  let best = null, bestD = radius * radius;
+  for (const [id, v] of state.verts) {
+    const [sx, sy] = toScreen(v.x, v.y);
+    const d = (sx - px) ** 2 + (sy - py) ** 2;
+    if (d < bestD) { bestD = d; best = id; }
+  }
+  return best;
+}
+function nearestEdge(px, py, radius) {  // a shore edge near the cursor: the id it starts at and the foot
+  const [wx, wy] = toWorld(px, py);
+  let best = null, bestD = (radius * cam.scale) ** 2;
+  for (const [id, a] of state.verts) {
+    if (a.ring === undefined) continue;
+    const b = state.verts.get(a.next);
+    const dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
+    const t = l2 > 0 ? Math.min(0.9, Math.max(0.1, ((wx - a.x) * dx + (wy - a.y) * dy) / l2)) : 0.5;
+    const fx = a.x + t * dx, fy = a.y + t * dy, d = (fx - wx) ** 2 + (fy - wy) ** 2;
+    if (d < bestD) { bestD = d; best = { after: id, at: [fx, fy] }; }
+  }
+  return best;
+}
+function select(id) {
+  const old = state.selected;
+  state.selected = id;
+  $('selected').textContent = id === null ? 'none' : `id ${id}${state.verts.get(id)?.ring !== undefined ? `, ring ${state.verts.get(id).ring + 1}` : ''}`;
+  refreshDots([old, id].filter((x) => x !== null));
+  requestDraw();
+}
+
+let press = null, island = null;
+view.addEventListener('pointerdown', (e) => {
+  if (e.button !== 0 || !state.ready) return;
+  const r = view.getBoundingClientRect(), px = e.clientX - r.left, py = e.clientY - r.top;
+  const hit = island ? null : nearestPoint(px, py, 8);
+  press = { px, py, hit, moved: false, cx: cam.cx, cy: cam.cy };
+  view.setPointerCapture(e.pointerId);
+});
+view.addEventListener('pointermove', (e) => {
+  if (!press) return;
+  const r = view.getBoundingClientRect(), px = e.clientX - r.left, py = e.clientY - r.top;
+  if (Math.hypot(px - press.px, py - press.py) > 3) press.moved = true;
+  if (!press.moved) return;
+  if (press.hit !== null) {  // the point follows the cursor; the mesh follows on release
+    const v = state.verts.get(press.hit);
+    if (!press.from) press.from = [v.x, v.y];
+    [v.x, v.y] = toWorld(px, py);
+    refreshDots([press.hit]);
+  } else {
+    cam.cx = press.cx - (px - press.px) * cam.scale;
+    cam.cy = press.cy + (py - press.py) * cam.scale;
+  }
+  requestDraw();
+});
+view.addEventListener('pointerup', async (e) => {
+  if (!press) return;
+  const p = press;
+  press = null;
+  const r = view.getBoundingClientRect(), px = e.clientX - r.left, py = e.clientY - r.top;
+  if (island && !p.moved) {
+    island.push(...toWorld(px, py));
+    setStatus(`island: ${island.length / 2} corner(s); Enter closes it, Escape drops it`, false);
+    return;
+  }
+  if (p.hit !== null && p.moved) {
+    const v = state.verts.get(p.hit), to = toWorld(px, py);
+    [v.x, v.y] = p.from;  // the server says where it is
+    refreshDots([p.hit]);
+    await perform({ type: 'move', id: orig(p.hit), from: p.from, to });
+  } else if (p.hit !== null) {
+    select(p.hit);
+  } else if (!p.moved) {
+    const edge = nearestEdge(px, py, 6);
+    if (edge) await perform({ type: 'add', at: edge.at, after: orig(edge.after) });
+    else select(null);
+  }
+});
+view.addEventListener('wheel', (e) => {
+  e.preventDefault();
+  const r = view.getBoundingClientRect(), px = e.clientX - r.left, py = e.clientY - r.top;
+  const [wx, wy] = toWorld(px, py);
+  cam.scale *= Math.exp(e.deltaY * 0.0015);
+  const [nx, ny] = toWorld(px, py);
+  cam.cx += wx - nx; cam.cy += wy - ny;
+  requestDraw();
+}, { passive: false });
+function startIsland() { island = []; setStatus('island: click its corners, Enter closes it, Escape drops it', false); }
+async function finishIsland() {
+  const xy = island;
+  island = null;
+  if (xy.length < 6) return setStatus('an island needs three corners', true);
+  await perform({ type: 'add-ring', xy });
+}
+window.addEventListener('keydown', (e) => {
+  if (e.target.tagName === 'INPUT') return;
+  const k = e.key.toLowerCase();
+  if ((e.ctrlKey || e.metaKey) && k === 'z') { e.preventDefault(); e.shiftKey ? redo() : undo(); }
+  else if ((e.ctrlKey || e.metaKey) && k === 'y') { e.preventDefault(); redo(); }
+  else if (k === 'delete' || k === 'backspace') removeSelected();
+  else if (k === 'i') startIsland();
+  else if (k === 'enter' && island) finishIsland();
+  else if (k === 'escape') { island = null; setStatus('', false); }
+  else if (k === 'f') fit();
+});
+$('remove').onclick = () => removeSelected();
+$('undo').onclick = () => undo();
+$('redo').onclick = () => redo();
+$('island').onclick = () => startIsland();
+$('remove-ring').onclick = () => removeRingOfSelected();
+$('colour').onchange = (e) => { uniforms.uColour.value = Number(e.target.value); showLegend(); requestDraw(); };
+$('export').onclick = async () => {
+  const name = $('export-name').value.trim();
+  const res = await fetch('edit', { method: 'POST', body: `export ${name}` });
+  const out = await res.json();
+  const reply = out.replies ? out.replies[0] : { ok: false, error: out.error };
+  $('export-status').textContent = reply.ok ? `wrote ${reply.path} (${fmt(reply.ms)})` : `refused: ${reply.error}`;
+};
+
+// ---- the side panel --------------------------------------------------------------------------------------
+function showCounts(reply) {
+  $('tri-count').textContent = state.triangles.toLocaleString('en');
+  if (reply) {
+    $('input-count').textContent = reply.input_points?.toLocaleString('en') ?? '';
+    $('split-count').textContent = reply.shore_splits?.toLocaleString('en') ?? '';
+    $('steiner-count').textContent = reply.steiner_points?.toLocaleString('en') ?? '';
+  }
+}
+let statsTimer = null;
+function scheduleStats() { clearTimeout(statsTimer); statsTimer = setTimeout(loadStats, 400); }
+async function loadStats() {
+  const s = await (await fetch('stats')).json();
+  showCounts(s);
+  $('angles').textContent = `${s.min_angle.toFixed(2)}°–${s.max_angle.toFixed(2)}°`;
+  $('shoreline').textContent = s.shore_segments === undefined ? 'no rings'
+    : s.shore_conforming ? `conforming (${s.shore_segments})` : `${s.shore_covered} of ${s.shore_segments} segments`;
+  uniforms.uBound.value = s.min_angle_bound;
+  state.stats = s;
+  showLegend();
+  requestDraw();
+}
+function showLegend() {
+  const mode = uniforms.uColour.value;
+  const ramp = 'linear-gradient(to right, rgb(237,219,140), rgb(115,191,217), rgb(41,97,184))';
+  $('legend').style.background = mode === 0 ? `linear-gradient(to right, rgb(217,51,38) 12%, rgb(237,219,140) 12%, rgb(115,191,217), rgb(41,97,184))`
+    : mode === 1 ? ramp : 'rgb(158,204,230)';
+  const [lo, hi] = uniforms.uSizeRange.value.toArray().map((v) => 2 ** v);
+  $('legend-text').textContent = mode === 0 ? `red: min angle below the bound ${uniforms.uBound.value.toFixed(2)}°; then up to 60°`
+    : mode === 1 ? `longest edge ${lo.toPrecision(3)} to ${hi.toPrecision(3)} ${state.units} (log scale)` : '';
+}
+
+// For tests and scripts: a point's place on the screen, and a view centred on it.
+state.screenOf = (id) => { const v = state.verts.get(id); return toScreen(v.x, v.y); };
+state.zoomTo = (id, unitsPerPixel) => {
+  const v = state.verts.get(id);
+  cam.cx = v.x - state.origin[0]; cam.cy = v.y - state.origin[1]; cam.scale = unitsPerPixel;
+  return nextFrame();
+};
+state.nextFrame = nextFrame;
+state.undoLast = undo;
+state.redoLast = redo;
+
+window.addEventListener('resize', resize);
+resize();
+requestAnimationFrame(frame);
+load().then(() => {
+  fit();
+  const events = new EventSource('events');
+  events.addEventListener('change', (e) => applyChange(JSON.parse(e.data)));
+  events.addEventListener('reload', () => reload());
+  state.ready = true;
+  return loadStats();
+}).catch((err) => setStatus(`cannot load the mesh: ${err.message}`, true));
