@@ -268,15 +268,24 @@ InputSet parse_geojson_text(std::string_view text, const std::string& name, cons
       throw InputError(p.path + ": " + e.what(), name);
     }
   };
-  detail::InputBuilder builder(set, name, Source::Location::Element);
-  for (const auto& r : g.rings) {
+  auto converted = [&](const std::vector<Geometry::Position>& positions) {
     std::vector<Point2> pts;
+    for (const auto& p : positions) pts.push_back(convert(p));
+    return pts;
+  };
+  std::vector<std::vector<Point2>> rings, lines;
+  for (const auto& r : g.rings) rings.push_back(converted(r));
+  for (const auto& l : g.lines) lines.push_back(converted(l));
+  double count = static_cast<double>(g.points.size());  // the points the spacing gives, checked before sampling any
+  for (const auto& r : rings) count += detail::subdivided_count(r, true, options.spacing);
+  for (const auto& l : lines) count += detail::subdivided_count(l, false, options.spacing);
+  detail::check_sampled_count(count, options.spacing, options.max_points, name);
+
+  detail::InputBuilder builder(set, name, Source::Location::Element);
+  for (std::size_t r = 0; r < rings.size(); ++r) {
     std::vector<std::size_t> elements;
-    for (const auto& p : r) {
-      pts.push_back(convert(p));
-      elements.push_back(p.element);
-    }
-    builder.add_ring(pts, RingRole::Shore, elements, options.spacing);
+    for (const auto& p : g.rings[r]) elements.push_back(p.element);
+    builder.add_ring(rings[r], RingRole::Shore, elements, options.spacing, options.max_points);
   }
   assign_roles_by_nesting(set.domain);
   check_rings(set);
@@ -286,12 +295,10 @@ InputSet parse_geojson_text(std::string_view text, const std::string& name, cons
     if (seen.insert(p).second) builder.add_point(p, element);
     else ++repeats;
   };
-  for (const auto& l : g.lines) {
-    std::vector<Point2> pts;
-    for (const auto& p : l) pts.push_back(convert(p));
-    const auto sub = detail::subdivide(pts, false, options.spacing, name, set.points.size());
-    const auto from = detail::subdivided_from(pts, sub);
-    for (std::size_t i = 0; i < sub.size(); ++i) loose(sub[i], l[from[i]].element);
+  for (std::size_t l = 0; l < lines.size(); ++l) {
+    const auto sub = detail::subdivide(lines[l], false, options.spacing, options.max_points);
+    const auto from = detail::subdivided_from(lines[l], sub);
+    for (std::size_t i = 0; i < sub.size(); ++i) loose(sub[i], g.lines[l][from[i]].element);
   }
   for (const auto& p : g.points) loose(convert(p), p.element);
   if (repeats) set.notes.push_back("dropped " + std::to_string(repeats) + " repeated position(s)");
