@@ -275,12 +275,13 @@ Point<D> DynamicWellSpaced<D>::to_unit_checked(const Point<D>& p) const {
   for (int i = 0; i < D; ++i)
     if (!std::isfinite(p[i])) throw InputError("the point has a coordinate that is not a finite number");
   if (!box_.contains(p)) {
-    std::string where;
-    for (int i = 0; i < D; ++i) where += (i ? ", " : "") + readable(p[i]);
-    std::string lo, hi;
+    std::string where, lo, hi;
     for (int i = 0; i < D; ++i) {
-      lo += (i ? ", " : "") + readable(box_.origin[i]);
-      hi += (i ? ", " : "") + readable(box_.origin[i] + box_.side);
+      for (std::string* s : {&where, &lo, &hi})
+        if (i) s->append(", ");
+      where.append(readable(p[i]));
+      lo.append(readable(box_.origin[i]));
+      hi.append(readable(box_.origin[i] + box_.side));
     }
     throw InputError("the point (" + where + ") lies outside the box (" + lo + ") .. (" + hi + ")");
   }

@@ -206,10 +206,10 @@ std::optional<CoordinateSystem> legacy_crs(const json& root, const std::string& 
     const auto cs = parse_coordinate_system("EPSG:" + s.substr(d), name);
     if (cs.kind == CoordinateSystem::Kind::Geographic) return std::nullopt;
     // Systems other than UTM are read as map units, said in the notes.
-    return cs.kind == CoordinateSystem::Kind::Utm ? cs : CoordinateSystem{CoordinateSystem::Kind::Unknown, 0, true, s};
+    return cs.kind == CoordinateSystem::Kind::Utm ? cs : CoordinateSystem{CoordinateSystem::Kind::Unknown, 0, true, s, {}};
   }
   if (s.find("CRS84") != std::string::npos) return std::nullopt;
-  return CoordinateSystem{CoordinateSystem::Kind::Unknown, 0, true, s};
+  return CoordinateSystem{CoordinateSystem::Kind::Unknown, 0, true, s, {}};
 }
 
 }  // namespace
