@@ -31,6 +31,9 @@ std::optional<BoxTransform<D>> parse_box(const std::vector<double>& numbers) {
   for (int i = 0; i < D; ++i) b.origin[i] = numbers[std::size_t(i)];
   b.side = numbers[D];
   if (!(b.side > 0)) throw ParameterError("--box: the side must be above 0 (got " + approx(b.side) + ")");
+  if (b.side < kSmallestSide || b.side > 2 * kLargestCoordinate)
+    throw ParameterError("--box: the side " + readable(b.side) + " is outside what the engine represents (" +
+                         readable(kSmallestSide) + " to " + readable(2 * kLargestCoordinate) + ")");
   return b;
 }
 
@@ -103,7 +106,12 @@ EngineInput<D> engine_input(const io::InputSet& set, const std::optional<BoxTran
 }
 
 void rethrow_with_origin(const PointInputError& e, const io::InputSet& set) {
-  if (e.points().empty() || e.points().front() >= set.origins.size()) throw e;
+  if (e.points().empty() || e.points().front() >= set.origins.size()) {
+    // About the input points as a whole (their extent, their resolution) or a shore split: the files.
+    std::string files;
+    for (const io::Source& s : set.sources) files.append(files.empty() ? "" : ", ").append(s.file);
+    throw InputError(e.message(), files);
+  }
   const io::PointOrigin& o = set.origins[e.points().front()];
   const io::Source& s = set.sources.at(o.source);
   if (s.location == io::Source::Location::Line && o.ring == io::PointOrigin::kNoRing)

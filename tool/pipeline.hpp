@@ -60,7 +60,8 @@ std::optional<ShoreRefinement> shore_refinement(const io::InputSet& set, const s
 template <int D>
 std::vector<Point<D>> engine_points(const io::InputSet& set, const ShoreRefinement* refinement);
 
-// An engine error about particular input points, said with the file and line they came from.
+// An engine error about particular input points, said with the file and line they came from (about the
+// points as a whole: with the input files).
 [[noreturn]] void rethrow_with_origin(const PointInputError& e, const io::InputSet& set);
 
 // The Delaunay mesh of `points` (the first `input_count` are input points); in 2D only the water of

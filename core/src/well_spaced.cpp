@@ -9,12 +9,6 @@
 
 namespace shoremesh {
 
-namespace {
-// Beyond these, squared distances, areas and circumradii in the user's units overflow or underflow.
-constexpr double kLargestCoordinate = 1e100;
-constexpr double kSmallestSide = 1e-100;
-}  // namespace
-
 template <int D>
 WellSpacedSet<D>::WellSpacedSet(const Parameters<D>& parameters)
     : engine_(std::make_unique<WellSpacedEngine<D>>(parameters)) {}
@@ -261,9 +255,12 @@ DynamicWellSpaced<D>::DynamicWellSpaced(std::span<const Point<D>> user_points, c
         throw PointInputError("point " + std::to_string(i) + " lies outside the given box", {i});
   }
   box_ = box ? *box : BoxTransform<D>::fit(user_points);  // a fitted box holds every point
+  // About the points as a whole (no index): the caller names the files they came from.
   if (box_.side < kSmallestSide)
-    throw InputError("the input points span " + readable(box_.side / 1.1) + ", less than the smallest extent the engine "
-                     "represents (" + readable(kSmallestSide) + "): give them in a smaller unit");
+    throw PointInputError("the input points span " + readable(box_.side / 1.1) +
+                              ", less than the smallest extent the engine represents (" + readable(kSmallestSide) +
+                              "): give them in a smaller unit",
+                          {});
   std::vector<Point<D>> unit(user_points.size());
   for (std::size_t i = 0; i < unit.size(); ++i) unit[i] = box_.to_unit(user_points[i]);
   set_.build(unit, purpose);

@@ -81,7 +81,7 @@ std::vector<Case> matrix() {
       {"coordinate near 1e300", {{"b.csv", "x,y\n1e300,1e300\n1.0000000000001e300,1e300\n1e300,1.0000000000001e300\n"}},
        mesh + "b.csv -o keep.msh", 1, {"b.csv:2", "1e+100"}},
       {"extent under 1e-100", {{"s.csv", "x,y\n1e-300,1e-300\n2e-300,1e-300\n1e-300,3e-300\n"}}, mesh + "s.csv -o keep.msh",
-       1, {"1e-100"}},
+       1, {"s.csv: the input points span 2e-300", "1e-100"}},
       {"one point to a mesh", {{"one.csv", "x,y\n1,2\n"}}, mesh + "one.csv -o keep.msh", 1, {"keep.msh", "no triangle"}},
       {"3D input asked in 2D", {}, mesh + "pts.csv --dim 3 -o keep.msh", 1, {"--dim 3"}},
       // GPS, GeoJSON, PSLG, images.
@@ -109,6 +109,9 @@ std::vector<Case> matrix() {
       {"box with the wrong count", {}, mesh + "pts.csv --box 0 0 0 10 -o keep.msh", 2, {"--box takes 3"}},
       {"spacing NaN", {}, mesh + "lake.geojson --spacing nan -o keep.msh", 2, {"--spacing", "nan"}},
       {"spacing negative", {}, mesh + "lake.geojson --spacing -3 -o keep.msh", 2, {"--spacing", "-3"}},
+      {"spacing that cuts too many points", {}, mesh + "lake.geojson --spacing 1e-3 -o keep.msh", 1,
+       {"lake.geojson: --spacing 0.001 would cut the rings and segments into", "more than the 10000000 allowed"}},
+      {"box side under 1e-100", {}, mesh + "pts.csv --box 0 0 1e-200 -o keep.msh", 2, {"--box", "1e-200", "1e-100"}},
       {"min-area NaN", {}, mesh + "pts.csv --min-area nan -o keep.msh", 2, {"--min-area", "nan"}},
       {"threshold NaN", {}, mesh + "pts.csv --threshold nan -o keep.msh", 2, {"--threshold", "nan"}},
       {"colour tolerance negative", {}, mesh + "pts.csv --colour-tolerance -1 -o keep.msh", 2, {"--colour-tolerance", "-1"}},
