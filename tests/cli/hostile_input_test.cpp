@@ -63,6 +63,14 @@ void run_case(const Case& c) {
     EXPECT_THAT(entry.path().filename().string(), Not(HasSubstr(".tmp-"))) << "a temporary file was left";
 }
 
+// Runs `shoremesh ARGS` in `dir` and expects bad input: exit 1 and `message` on standard error.
+RunResult expect_refused(const TempDir& dir, const std::string& args, const std::string& message) {
+  const RunResult r = shoremesh(dir, args);
+  EXPECT_EQ(r.code, 1) << args << ": " << r.err;
+  EXPECT_THAT(r.err, HasSubstr(message)) << args;
+  return r;
+}
+
 std::string lake_with(const std::string& coordinates) {
   return R"({"type":"Feature","properties":{},"geometry":{"type":"Polygon","coordinates":)" + coordinates + "}}";
 }
@@ -193,9 +201,7 @@ TEST(HostileInput, AJpegCutShortIsAnErrorNamingTheFile) {
   const std::string jpeg = read_file(dir / "whole.jpg");
   ASSERT_GT(jpeg.size(), 1000u);
   write_file(dir / "cut.jpg", jpeg.substr(0, jpeg.size() / 4));
-  const RunResult cut = shoremesh(dir, "mesh -q cut.jpg -o b.msh");
-  EXPECT_EQ(cut.code, 1) << cut.err;
-  EXPECT_THAT(cut.err, HasSubstr("cut.jpg: the JPEG is cut short"));
+  expect_refused(dir, "mesh -q cut.jpg -o b.msh", "cut.jpg: the JPEG is cut short");
   EXPECT_FALSE(fs::exists(dir / "b.msh"));
   EXPECT_THAT(shoremesh(dir, "mesh -q whole.jpg -o c.msh").err, Not(HasSubstr("cut short")));
 }
@@ -204,9 +210,8 @@ TEST(HostileInput, AJpegCutShortIsAnErrorNamingTheFile) {
 TEST(HostileInput, CoordinatesTheEngineCannotRepresentAreRefusedNamingTheLimit) {
   TempDir dir;
   write_file(dir / "b.csv", "x,y\n1e300,1e300\n-1e300,1e300\n1e300,-1e300\n");
-  const RunResult r = shoremesh(dir, "mesh -q b.csv -o b.msh");
-  EXPECT_EQ(r.code, 1);
-  EXPECT_THAT(r.err, HasSubstr("b.csv:2: point 0 has a coordinate of 1e+300, beyond the largest the engine represents (1e+100)"));
+  expect_refused(dir, "mesh -q b.csv -o b.msh",
+                 "b.csv:2: point 0 has a coordinate of 1e+300, beyond the largest the engine represents (1e+100)");
   write_file(dir / "lake.geojson", kLake);
   const RunResult e = shoremesh(dir, "edit -q lake.geojson --edits -", "add 1e300 1e300\n");
   EXPECT_EQ(e.code, 1);
@@ -218,9 +223,7 @@ TEST(HostileInput, CoordinatesTheEngineCannotRepresentAreRefusedNamingTheLimit) 
 TEST(HostileInput, AMeshWithNoElementIsAnError) {
   TempDir dir;
   write_file(dir / "one.csv", "x,y\n1,2\n");
-  const RunResult r = shoremesh(dir, "mesh -q one.csv -o one.msh");
-  EXPECT_EQ(r.code, 1);
-  EXPECT_THAT(r.err, HasSubstr("one.msh: the mesh has no triangle: 1 points span no triangle"));
+  expect_refused(dir, "mesh -q one.csv -o one.msh", "one.msh: the mesh has no triangle: 1 points span no triangle");
   EXPECT_FALSE(fs::exists(dir / "one.msh"));
   EXPECT_EQ(shoremesh(dir, "mesh -q one.csv -o one_ws.csv").code, 0);
 }
@@ -229,11 +232,9 @@ TEST(HostileInput, AMeshWithNoElementIsAnError) {
 TEST(HostileInput, ExitCodesFollowTheReadme) {
   TempDir dir;
   write_file(dir / "pts.csv", kPoints);
-  for (const std::string& bad : {"--box 0 0 0", "--spacing nan", "--min-area nan", "--threshold nan", "--colour-tolerance -1"})
-    EXPECT_EQ(shoremesh(dir, "mesh -q pts.csv -o a.msh " + bad).code, 2) << bad;
-  const RunResult proc = shoremesh(dir, "mesh -q pts.csv -o /proc/a.msh");
-  EXPECT_EQ(proc.code, 1);
-  EXPECT_THAT(proc.err, HasSubstr("-o /proc/a.msh: cannot write here: "));
+  for (const char* bad : {"--box 0 0 0", "--spacing nan", "--min-area nan", "--threshold nan", "--colour-tolerance -1"})
+    EXPECT_EQ(shoremesh(dir, std::string("mesh -q pts.csv -o a.msh ") + bad).code, 2) << bad;
+  expect_refused(dir, "mesh -q pts.csv -o /proc/a.msh", "-o /proc/a.msh: cannot write here: ");
 }
 
 // Item 8: messages speak the user's language: options that exist, numbers as given, the id first.
