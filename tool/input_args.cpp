@@ -63,7 +63,7 @@ void add_preview_options(CLI::App* cmd, PreviewArgs& args) {
   cmd->add_option("--preview-colour", args.colouring,
                   "Preview triangles coloured by none, quality, size or depth (with --dem, --depth-from or soundings)")
       ->check(CLI::IsMember({"none", "quality", "size", "depth"}));
-  cmd->add_option("--preview-width", args.width, "Preview width in pixels (default 1024)")->check(CLI::Range(16, 16384));
+  cmd->add_option("--preview-width", args.width, "Preview width in pixels (default 1024)")->check(CLI::Range(16, io::kMaxPreviewSide));
 }
 
 void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
