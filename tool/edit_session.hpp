@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstddef>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -45,6 +46,9 @@ class EditSession {
 
   // Runs one edit line (1-based `line` for the reply). Blank and '#' lines give no reply (nullopt).
   std::optional<nlohmann::json> run(std::size_t line, const std::string& text);
+
+  // The files the session read (its inputs, the edit lines' file): export and preview replace none of them.
+  void set_inputs(std::vector<std::filesystem::path> inputs) { inputs_ = std::move(inputs); }
 
  private:
   nlohmann::json add(const std::vector<std::string>& words);
@@ -108,6 +112,7 @@ class EditSession {
   Mesh<D> mesh_;
   MeshDelta<D> last_delta_;
   std::size_t next_id_ = 0;
+  std::vector<std::filesystem::path> inputs_;
 };
 
 // One reply as a line of text for a person.

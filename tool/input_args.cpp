@@ -274,4 +274,12 @@ io::InputSet read_user_inputs(const InputArgs& a, Progress& progress) {
   return set;
 }
 
+std::vector<std::filesystem::path> input_paths(const InputArgs& args, const io::InputSet& set) {
+  std::vector<std::filesystem::path> paths(args.files.begin(), args.files.end());
+  for (const io::Source& s : set.sources) paths.emplace_back(s.file);
+  for (const std::string* dem : {&args.dem, &args.depth_from})
+    if (!dem->empty()) paths.emplace_back(*dem);
+  return paths;
+}
+
 }  // namespace shoremesh::tool

@@ -56,6 +56,17 @@ bool is_point_set_path(const std::filesystem::path& path) {
   return ext == ".csv";
 }
 
+std::filesystem::path stage_output(io::OutputBatch& batch, const std::filesystem::path& output,
+                                   std::optional<io::ExportFormat> format, const std::string& option) {
+  if (format != io::ExportFormat::Triangle) return batch.add(output, option);
+  // Two files: the writer puts the .ele beside the .node it is given.
+  std::filesystem::path node = output, ele = output;
+  const std::filesystem::path staged = batch.add(node.replace_extension(".node"), option);
+  std::filesystem::path staged_ele = staged;
+  batch.add_written_as(ele.replace_extension(".ele"), staged_ele.replace_extension(".ele"), option);
+  return staged;
+}
+
 template <int D>
 std::vector<Point<D>> input_points(const io::InputSet& set) {
   if constexpr (D == 2) {

@@ -11,6 +11,7 @@
 #include "shoremesh/box_transform.hpp"
 #include "shoremesh/domain.hpp"
 #include "shoremesh/error.hpp"
+#include "shoremesh/io/atomic_file.hpp"
 #include "shoremesh/io/export.hpp"
 #include "shoremesh/io/input_set.hpp"
 #include "shoremesh/io/preview.hpp"
@@ -33,6 +34,10 @@ std::optional<BoxTransform<D>> parse_box(const std::vector<double>& numbers);
 io::ExportFormat parse_export_format(const std::string& name);
 // True when `path` names the point-set CSV (`.csv`), not a mesh.
 bool is_point_set_path(const std::filesystem::path& path);
+// Adds a mesh output (`format`) or, with nullopt, a point set to `batch`, the Triangle format's .node and
+// .ele both, and returns the temporary path to write it to. `option` names where it came from ("-o").
+std::filesystem::path stage_output(io::OutputBatch& batch, const std::filesystem::path& output,
+                                   std::optional<io::ExportFormat> format, const std::string& option);
 
 // The input points of the chosen dimension (3D points dropped to x, y for dim 2). InputError when dim 3
 // is asked of 2D input.

@@ -193,6 +193,45 @@ TEST(HostileInput, AnOutputThatIsAnInputIsRefused) {
   EXPECT_EQ(read_file(dir / "lake.geojson"), kLake);
 }
 
+// Item 3 in the edit session: export, preview and preview-change replace no file the session read, through
+// any path (relative, absolute, a symbolic link), nor the edit lines' own file; a refused line leaves
+// every file as it was, and the lines after it still write. A .poly's vertices may live in its .node:
+// that file is an input of `mesh` and `edit` too.
+TEST(HostileInput, AnEditSessionWritesOverNoInput) {
+  TempDir dir;
+  fs::create_directories(dir / "sub");
+  write_file(dir / "pts.csv", kPoints);
+  fs::create_symlink("pts.csv", dir / "link.png");
+  const std::string edits = "export pts.csv\nexport ./sub/../pts.csv\nexport " + (dir / "pts.csv").string() +
+                            "\npreview link.png\npreview-change pts.csv\nexport edits.csv\nexport ok.csv\npreview ok.png\n";
+  write_file(dir / "edits.csv", edits);
+  const RunResult r = shoremesh(dir, "edit -q pts.csv --edits edits.csv");
+  EXPECT_EQ(r.code, 1) << r.out << r.err;
+  for (const std::string& line : std::vector<std::string>{
+           "line 1: error: export pts.csv: is also an input", "line 2: error: export ./sub/../pts.csv: is also an input",
+           "line 3: error: export " + (dir / "pts.csv").string() + ": is also an input",
+           "line 4: error: preview link.png: is also an input", "line 5: error: preview-change pts.csv: is also an input",
+           "line 6: error: export edits.csv: is also an input"})
+    EXPECT_THAT(r.out, HasSubstr(line));
+  EXPECT_THAT(r.out, HasSubstr("line 7: wrote ok.csv"));
+  EXPECT_THAT(r.out, HasSubstr("line 8: wrote ok.png"));
+  EXPECT_EQ(read_file(dir / "pts.csv"), kPoints);
+  EXPECT_EQ(read_file(dir / "edits.csv"), edits);
+
+  // A .poly that declares no vertex reads them from its .node; the Triangle export would replace it.
+  const std::string node = "4 2 0 0\n1 0 0\n2 4 0\n3 4 3\n4 0 3\n";
+  write_file(dir / "sq.node", node);
+  write_file(dir / "sq.poly", "0 2 0 0\n4 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n0\n");
+  const RunResult poly = shoremesh(dir, "edit -q sq.poly --edits -", "export sq.node\nexport sq.ele\n");
+  EXPECT_THAT(poly.out, HasSubstr("line 1: error: export sq.node: is also an input"));
+  EXPECT_THAT(poly.out, HasSubstr("line 2: error: export sq.node: is also an input"));
+  expect_refused(dir, "mesh -q sq.poly -o sq.ele", "-o sq.node: is also an input");
+  EXPECT_EQ(read_file(dir / "sq.node"), node);
+  EXPECT_FALSE(fs::exists(dir / "sq.ele"));
+  for (const auto& entry : fs::directory_iterator(dir.path()))
+    EXPECT_THAT(entry.path().filename().string(), Not(HasSubstr(".tmp-"))) << "a temporary file was left";
+}
+
 // Item 4: a JPEG cut to a quarter is refused, naming the file; the whole JPEG meshes.
 TEST(HostileInput, AJpegCutShortIsAnErrorNamingTheFile) {
   TempDir dir;
