@@ -7,6 +7,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto gpx = shoremesh::io::parse_gpx_text(text, "fuzz.gpx");
     shoremesh::io::TrackOptions opt;
     opt.spacing = 5;
+    opt.max_points = kFuzzMaxPoints;
     opt.smooth_window = 1;
     (void)shoremesh::io::gps_to_input(gpx, "fuzz.gpx", opt);
   });

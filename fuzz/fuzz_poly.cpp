@@ -6,6 +6,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   return run_parser(data, size, [](std::string_view text) {
     shoremesh::io::PslgOptions opt;
     opt.spacing = 0.25;
+    opt.max_points = kFuzzMaxPoints;
     try {
       (void)shoremesh::io::pslg_to_input(shoremesh::io::parse_node_text(text, "fuzz.node"), opt);
     } catch (const shoremesh::InputError&) {

@@ -35,16 +35,18 @@ fi
 
 CXX=${CXX_FUZZ:-clang++}
 SAN="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
-CXXFLAGS="-std=c++20 -g -O1 $SAN -frounding-math -I$ROOT/core/include -I$ROOT/io/include -I$ROOT/io/src/input"
-# The text parsers and what they call; no OpenCV (images are not fuzzed here).
-SOURCES=(point_file ring_file gps_track geojson_input poly_file georeference projection input_set ring_check)
-LIBS="-lGeographicLib -lpugixml -lOpenImageIO -lOpenImageIO_Util"
+# Coordinate systems go through GDAL/OGR (PROJ): its headers and library (Debian: libgdal-dev).
+CXXFLAGS="-std=c++20 -g -O1 $SAN -frounding-math -I$ROOT/core/include -I$ROOT/io/include -I$ROOT/io/src/input $(gdal-config --cflags)"
+# The text parsers and what they call (paths under io/src); no OpenCV (images are not fuzzed here).
+SOURCES=(input/point_file input/ring_file input/gps_track input/geojson_input input/poly_file input/georeference
+         input/projection input/input_set input/ring_check output/atomic_file point_set_csv)
+LIBS="-lGeographicLib -lpugixml -lOpenImageIO -lOpenImageIO_Util $(gdal-config --libs)"
 
 mkdir -p "$OUT/obj" "$OUT/corpus" "$OUT/crashes"
 echo "fuzz: compiling the io parsers into $OUT/obj"
 pids=()
 for s in "${SOURCES[@]}"; do
-  src="$ROOT/io/src/input/$s.cpp" obj="$OUT/obj/$s.o"
+  src="$ROOT/io/src/$s.cpp" obj="$OUT/obj/${s//\//_}.o"
   if [ ! -f "$obj" ] || [ "$src" -nt "$obj" ] || [ -n "$(find "$ROOT/io/include" "$ROOT/io/src/input" "$ROOT/core/include" -name '*.hpp' -newer "$obj" 2>/dev/null | head -1)" ]; then
     $CXX $CXXFLAGS -fsanitize=fuzzer-no-link -c "$src" -o "$obj" &
     pids+=($!)
@@ -53,7 +55,7 @@ for s in "${SOURCES[@]}"; do
 done
 for p in "${pids[@]}"; do wait "$p"; done
 objs=()
-for s in "${SOURCES[@]}"; do objs+=("$OUT/obj/$s.o"); done
+for s in "${SOURCES[@]}"; do objs+=("$OUT/obj/${s//\//_}.o"); done
 
 seed() {  # seed <target> <name> <content>
   mkdir -p "$OUT/corpus/$1"

@@ -38,6 +38,9 @@ int run_edit(const EditOptions& opt, const io::InputSet& set, Progress& progress
   EditSession<D> session(set, opt.engine.rho, parse_box<D>(opt.engine.box), opt.engine.keep_hull, opt.preview,
                          opt.lonlat_edits);
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  std::vector<std::filesystem::path> inputs = input_paths(opt.in, set);
+  if (opt.edits != "-") inputs.emplace_back(opt.edits);
+  session.set_inputs(std::move(inputs));
   progress.finish();
   if (!opt.json) std::cout << describe_input(set);
   print(session.build_reply(ms), opt.json);

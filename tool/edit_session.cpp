@@ -309,20 +309,25 @@ json EditSession<D>::export_to(const std::vector<std::string>& words) {
   const auto start = Clock::now();
   json reply = {{"path", path.string()}};
   std::string ext = path.extension().string();
+  // As `mesh` writes: never over an input, and all the files (Triangle's two) or none.
+  io::OutputBatch batch(inputs_);
   if (ext == ".rings") {
     if (!session_.has_rings()) throw InputError("export PATH.rings: this session has no shoreline");
     const Domain2 rings = session_.rings();
-    io::write_ring_file(path, rings);
+    io::write_ring_file(batch.add(path, "export"), rings);
     reply["rings"] = rings.rings.size();
   } else if (is_point_set_path(path)) {
     const auto points = session_.canonical_points();
-    io::write_point_set_csv<D>(path, session_.box(), points);
+    io::write_point_set_csv<D>(batch.add(path, "export"), session_.box(), points);
     reply["points"] = points.size();
   } else {
     // Numbered like a fresh run's export on the current input: its canonical point list.
-    export_mesh_file<D>(session_.mesh(), path, std::nullopt, frame_, session_.canonical_points());
+    const io::ExportFormat format = io::export_format_from_path(path);
+    export_mesh_file<D>(session_.mesh(), stage_output(batch, path, format, "export"), format, frame_,
+                        session_.canonical_points());
     reply["elements"] = session_.mesh().element_count();
   }
+  batch.commit();
   reply["ms"] = ms_since(start);
   return reply;
 }
@@ -331,7 +336,9 @@ template <int D>
 json EditSession<D>::preview(const std::vector<std::string>& words) {
   if (words.size() != 2 || words[1].empty()) throw InputError("preview takes a PATH (.png)");
   const auto start = Clock::now();
-  write_preview<D>(session_.mesh(), words[1], preview_);
+  io::OutputBatch batch(inputs_);
+  write_preview<D>(session_.mesh(), batch.add(words[1], "preview"), preview_);
+  batch.commit();
   return {{"path", words[1]}, {"ms", ms_since(start)}};
 }
 
@@ -380,7 +387,9 @@ json EditSession<D>::preview_change(const std::vector<std::string>& words) {
     for (auto& e : near)
       for (auto& v : e) v = static_cast<std::uint32_t>(std::lower_bound(used.begin(), used.end(), v) - used.begin());
     const io::MeshSnapshot<2> snapshot(std::move(points), std::move(near), std::move(kinds));
-    io::render_delta_preview(words[1], snapshot.view(), last_delta_, preview_options(preview_));
+    io::OutputBatch batch(inputs_);
+    io::render_delta_preview(batch.add(words[1], "preview-change"), snapshot.view(), last_delta_, preview_options(preview_));
+    batch.commit();
     return {{"path", words[1]}, {"elements_changed", last_delta_.removed.size() + last_delta_.added.size()},
             {"ms", ms_since(start)}};
   }

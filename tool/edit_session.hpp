@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstddef>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -41,6 +42,8 @@ class EditSession {
   // sends a page so that it redraws only the change.
   const ShoreSession<D>& session() const { return session_; }
   const SessionEdit<D>& last_edit() const { return last_edit_; }
+  // The files the session read (its inputs, the edit lines' file): export and preview replace none of them.
+  void set_inputs(std::vector<std::filesystem::path> inputs) { inputs_ = std::move(inputs); }
 
  private:
   nlohmann::json add(const std::vector<std::string>& words);
@@ -66,6 +69,7 @@ class EditSession {
   ShoreSession<D> session_;
   MeshDelta<D> last_delta_;
   SessionEdit<D> last_edit_;
+  std::vector<std::filesystem::path> inputs_;
 };
 
 // One reply as a line of text for a person.

@@ -65,7 +65,7 @@ void add_preview_options(CLI::App* cmd, PreviewArgs& args) {
                   "Preview triangles coloured by none, quality, size, depth (with --dem, --depth-from or soundings) or "
                   "height (terrain: hillshaded)")
       ->check(CLI::IsMember({"none", "quality", "size", "depth", "height"}));
-  cmd->add_option("--preview-width", args.width, "Preview width in pixels (default 1024)")->check(CLI::Range(16, 16384));
+  cmd->add_option("--preview-width", args.width, "Preview width in pixels (default 1024)")->check(CLI::Range(16, io::kMaxPreviewSide));
 }
 
 void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
@@ -303,6 +303,14 @@ io::InputSet read_user_inputs(const InputArgs& a, Progress& progress) {
     set.open_boundary = std::move(ob);
   }
   return set;
+}
+
+std::vector<std::filesystem::path> input_paths(const InputArgs& args, const io::InputSet& set) {
+  std::vector<std::filesystem::path> paths(args.files.begin(), args.files.end());
+  for (const io::Source& s : set.sources) paths.emplace_back(s.file);
+  for (const std::string* dem : {&args.dem, &args.depth_from})
+    if (!dem->empty()) paths.emplace_back(*dem);
+  return paths;
 }
 
 }  // namespace shoremesh::tool

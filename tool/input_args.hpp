@@ -2,6 +2,7 @@
 // The options every command that reads inputs shares (mesh, edit, info): the files and how to read them.
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -59,6 +60,10 @@ io::InputOptions input_options(const InputArgs& args);
 
 // Reads and merges the inputs (one progress stage per file).
 io::InputSet read_user_inputs(const InputArgs& args, Progress& progress);
+
+// Every file a run read: the inputs, the files they named (a .poly's .node), --dem and --depth-from. An
+// output may replace none of them (io::OutputBatch).
+std::vector<std::filesystem::path> input_paths(const InputArgs& args, const io::InputSet& set);
 
 // "#rrggbb", "R,G,B" or a few names (blue, lightsteelblue, lightblue, cyan, navy, white, black).
 std::array<int, 3> parse_colour(const std::string& text);

@@ -35,19 +35,10 @@ struct OutputPaths {
   std::filesystem::path output, preview;  // the temporaries to write to
 };
 
-OutputPaths plan_outputs(io::OutputBatch& batch, const std::filesystem::path& output, bool point_set,
-                         std::optional<io::ExportFormat> format, const std::string& preview) {
+OutputPaths plan_outputs(io::OutputBatch& batch, const std::filesystem::path& output, std::optional<io::ExportFormat> format,
+                         const std::string& preview) {
   OutputPaths paths;
-  if (!point_set && format == io::ExportFormat::Triangle) {
-    std::filesystem::path node = output, ele = output;
-    node.replace_extension(".node");
-    ele.replace_extension(".ele");
-    paths.output = batch.add(node, "-o");
-    std::filesystem::path staged_ele = paths.output;
-    batch.add_written_as(ele, staged_ele.replace_extension(".ele"), "-o");
-  } else {
-    paths.output = batch.add(output, "-o");
-  }
+  paths.output = stage_output(batch, output, format, "-o");
   if (!preview.empty()) paths.preview = batch.add(preview, "--preview");
   return paths;
 }
@@ -67,8 +58,8 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
     throw ParameterError("--preview-colour height is for terrains (shoremesh terrain DEM --max-error E ...)");
   if (opt.preview_args.colouring == "depth" && !set.depth)
     throw ParameterError("--preview-colour depth needs depths: --dem, --depth-from or x,y,depth soundings");
-  io::OutputBatch batch(std::vector<std::filesystem::path>(opt.in.files.begin(), opt.in.files.end()));
-  const OutputPaths staged = plan_outputs(batch, output, point_set, format, opt.preview);
+  io::OutputBatch batch(input_paths(opt.in, set));
+  const OutputPaths staged = plan_outputs(batch, output, format, opt.preview);
 
   progress.stage("StableWS on " + std::to_string(points.size()) + " points");
   StableResult<D> result;

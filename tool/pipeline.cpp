@@ -25,6 +25,9 @@ std::optional<BoxTransform<D>> parse_box(const std::vector<double>& numbers) {
   for (int i = 0; i < D; ++i) b.origin[i] = numbers[std::size_t(i)];
   b.side = numbers[D];
   if (!(b.side > 0)) throw ParameterError("--box: the side must be above 0 (got " + approx(b.side) + ")");
+  if (b.side < kSmallestSide || b.side > 2 * kLargestCoordinate)
+    throw ParameterError("--box: the side " + readable(b.side) + " is outside what the engine represents (" +
+                         readable(kSmallestSide) + " to " + readable(2 * kLargestCoordinate) + ")");
   return b;
 }
 
@@ -45,6 +48,17 @@ bool is_point_set_path(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   return ext == ".csv";
+}
+
+std::filesystem::path stage_output(io::OutputBatch& batch, const std::filesystem::path& output,
+                                   std::optional<io::ExportFormat> format, const std::string& option) {
+  if (format != io::ExportFormat::Triangle) return batch.add(output, option);
+  // Two files: the writer puts the .ele beside the .node it is given.
+  std::filesystem::path node = output, ele = output;
+  const std::filesystem::path staged = batch.add(node.replace_extension(".node"), option);
+  std::filesystem::path staged_ele = staged;
+  batch.add_written_as(ele.replace_extension(".ele"), staged_ele.replace_extension(".ele"), option);
+  return staged;
 }
 
 template <int D>
@@ -96,7 +110,12 @@ EngineInput<D> engine_input(const io::InputSet& set, const std::optional<BoxTran
 }
 
 void rethrow_with_origin(const PointInputError& e, const io::InputSet& set) {
-  if (e.points().empty() || e.points().front() >= set.origins.size()) throw e;
+  if (e.points().empty() || e.points().front() >= set.origins.size()) {
+    // About the input points as a whole (their extent, their resolution) or a shore split: the files.
+    std::string files;
+    for (const io::Source& s : set.sources) files.append(files.empty() ? "" : ", ").append(s.file);
+    throw InputError(e.message(), files);
+  }
   const io::PointOrigin& o = set.origins[e.points().front()];
   const io::Source& s = set.sources.at(o.source);
   if (s.location == io::Source::Location::Line && o.ring == io::PointOrigin::kNoRing)

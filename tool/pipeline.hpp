@@ -11,6 +11,7 @@
 #include "shoremesh/box_transform.hpp"
 #include "shoremesh/domain.hpp"
 #include "shoremesh/error.hpp"
+#include "shoremesh/io/atomic_file.hpp"
 #include "shoremesh/io/export.hpp"
 #include "shoremesh/io/input_set.hpp"
 #include "shoremesh/io/preview.hpp"
@@ -31,6 +32,10 @@ std::optional<BoxTransform<D>> parse_box(const std::vector<double>& numbers);
 io::ExportFormat parse_export_format(const std::string& name);
 // True when `path` names the point-set CSV (`.csv`), not a mesh.
 bool is_point_set_path(const std::filesystem::path& path);
+// Adds a mesh output (`format`) or, with nullopt, a point set to `batch`, the Triangle format's .node and
+// .ele both, and returns the temporary path to write it to. `option` names where it came from ("-o").
+std::filesystem::path stage_output(io::OutputBatch& batch, const std::filesystem::path& output,
+                                   std::optional<io::ExportFormat> format, const std::string& option);
 
 // The input points of the chosen dimension (3D points dropped to x, y for dim 2). InputError when dim 3
 // is asked of 2D input.
@@ -58,7 +63,8 @@ std::optional<ShoreRefinement> shore_refinement(const io::InputSet& set, const s
 template <int D>
 std::vector<Point<D>> engine_points(const io::InputSet& set, const ShoreRefinement* refinement);
 
-// An engine error about particular input points, said with the file and line they came from.
+// An engine error about particular input points, said with the file and line they came from (about the
+// points as a whole: with the input files).
 [[noreturn]] void rethrow_with_origin(const PointInputError& e, const io::InputSet& set);
 
 // Exports `mesh` to `path` (format from the extension unless given); GeoJSON and fort.14 in lon/lat when

@@ -430,6 +430,7 @@ int run_serve(const ServeOptions& opt) {
   progress.stage("StableWS and mesh of " + std::to_string(set.size()) + " points");
   const auto start = std::chrono::steady_clock::now();
   EditSession<2> session(set, opt.engine.rho, parse_box<2>(opt.engine.box), opt.engine.keep_hull, opt.preview);
+  session.set_inputs(input_paths(opt.in, set));  // exports never replace an input
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   progress.finish();
   std::cout << reply_text(session.build_reply(ms)) << '\n';

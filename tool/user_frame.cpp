@@ -38,7 +38,9 @@ std::string degrees(double v, char positive, char negative) {
 }  // namespace
 
 std::string UserFrame::point(const Point2& p) const {
-  std::string out = "(" + approx(p[0], 9) + ", " + approx(p[1], 9) + ")";
+  // Appended, not "(" + std::string: GCC 12 warns falsely on that (-Wrestrict).
+  std::string out = "(";
+  out.append(approx(p[0], 9)).append(", ").append(approx(p[1], 9)).append(")");
   const std::string s = unit_suffix();
   if (!s.empty()) out += " " + s;
   if (!projection.is_none()) {
@@ -51,7 +53,8 @@ std::string UserFrame::point(const Point2& p) const {
 }
 
 std::string UserFrame::point(const Point3& p) const {
-  std::string out = "(" + approx(p[0], 9) + ", " + approx(p[1], 9) + ", " + approx(p[2], 9) + ")";
+  std::string out = "(";
+  out.append(approx(p[0], 9)).append(", ").append(approx(p[1], 9)).append(", ").append(approx(p[2], 9)).append(")");
   const std::string s = unit_suffix();
   if (!s.empty()) out += " " + s;
   return out;

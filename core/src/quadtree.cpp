@@ -341,8 +341,8 @@ bool Quadtree<D>::required_split(NodeId n, std::span<const Point<D>> positions) 
 // Makes every leaf in `worklist` (and every leaf this creates) balanced against its neighbours: for a
 // leaf at level L, each level-L cell that touches it lies in a node of level >= L-1.
 template <int D>
-void Quadtree<D>::balance_around(std::vector<NodeId>& worklist, std::span<const Point<D>> positions,
-                                 std::vector<NodeId>* created_leaves, std::vector<NodeId>* split_leaves) {
+void Quadtree<D>::balance_around(std::vector<NodeId>& worklist, std::vector<NodeId>* created_leaves,
+                                 std::vector<NodeId>* split_leaves) {
   // Deepest first: forced splits only create leaves at coarser levels, which are checked later.
   std::vector<std::vector<NodeId>> by_level(kMaxLevel + 1);
   for (NodeId n : worklist) by_level[nodes_[n].level].push_back(n);
@@ -453,12 +453,7 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
       tasks.push_back({first + NodeId(k), b, e});
     }
   }
-  std::vector<Point<D>> positions_by_id;  // balance splits need vertex positions by id
-  VertexId max_id = 0;
-  for (VertexId v : ids) max_id = std::max(max_id, v);
-  positions_by_id.resize(std::size_t(max_id) + 1);
-  for (std::size_t i = 0; i < inputs.size(); ++i) positions_by_id[ids[i]] = inputs[i];
-  balance_around(leaves, positions_by_id, nullptr, nullptr);
+  balance_around(leaves, nullptr, nullptr);
   // The search entries bottom-up: a fresh build appends children after their parent.
   for (NodeId n = NodeId(nodes_.size()); n-- > 0;) sync_search(n);
 }
@@ -510,7 +505,7 @@ typename Quadtree<D>::Change Quadtree<D>::add_input(VertexId id, std::span<const
     }
   }
   std::vector<NodeId> more_created, more_split;
-  balance_around(balance_work, positions, &more_created, &more_split);
+  balance_around(balance_work, &more_created, &more_split);
   change.removed_leaves.insert(change.removed_leaves.end(), more_split.begin(), more_split.end());
   change.new_leaves.insert(change.new_leaves.end(), more_created.begin(), more_created.end());
   // A leaf created and split within this call is neither new nor removed for the caller.

@@ -9,12 +9,6 @@
 
 namespace shoremesh {
 
-namespace {
-// Beyond these, squared distances, areas and circumradii in the user's units overflow or underflow.
-constexpr double kLargestCoordinate = 1e100;
-constexpr double kSmallestSide = 1e-100;
-}  // namespace
-
 template <int D>
 WellSpacedSet<D>::WellSpacedSet(const Parameters<D>& parameters)
     : engine_(std::make_unique<WellSpacedEngine<D>>(parameters)) {}
@@ -261,9 +255,12 @@ DynamicWellSpaced<D>::DynamicWellSpaced(std::span<const Point<D>> user_points, c
         throw PointInputError("point " + std::to_string(i) + " lies outside the given box", {i});
   }
   box_ = box ? *box : BoxTransform<D>::fit(user_points);  // a fitted box holds every point
+  // About the points as a whole (no index): the caller names the files they came from.
   if (box_.side < kSmallestSide)
-    throw InputError("the input points span " + readable(box_.side / 1.1) + ", less than the smallest extent the engine "
-                     "represents (" + readable(kSmallestSide) + "): give them in a smaller unit");
+    throw PointInputError("the input points span " + readable(box_.side / 1.1) +
+                              ", less than the smallest extent the engine represents (" + readable(kSmallestSide) +
+                              "): give them in a smaller unit",
+                          {});
   std::vector<Point<D>> unit(user_points.size());
   for (std::size_t i = 0; i < unit.size(); ++i) unit[i] = box_.to_unit(user_points[i]);
   set_.build(unit, purpose);
@@ -275,12 +272,13 @@ Point<D> DynamicWellSpaced<D>::to_unit_checked(const Point<D>& p) const {
   for (int i = 0; i < D; ++i)
     if (!std::isfinite(p[i])) throw InputError("the point has a coordinate that is not a finite number");
   if (!box_.contains(p)) {
-    std::string where;
-    for (int i = 0; i < D; ++i) where += (i ? ", " : "") + readable(p[i]);
-    std::string lo, hi;
+    std::string where, lo, hi;
     for (int i = 0; i < D; ++i) {
-      lo += (i ? ", " : "") + readable(box_.origin[i]);
-      hi += (i ? ", " : "") + readable(box_.origin[i] + box_.side);
+      for (std::string* s : {&where, &lo, &hi})
+        if (i) s->append(", ");
+      where.append(readable(p[i]));
+      lo.append(readable(box_.origin[i]));
+      hi.append(readable(box_.origin[i] + box_.side));
     }
     throw InputError("the point (" + where + ") lies outside the box (" + lo + ") .. (" + hi + ")");
   }

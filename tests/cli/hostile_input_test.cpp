@@ -63,6 +63,14 @@ void run_case(const Case& c) {
     EXPECT_THAT(entry.path().filename().string(), Not(HasSubstr(".tmp-"))) << "a temporary file was left";
 }
 
+// Runs `shoremesh ARGS` in `dir` and expects bad input: exit 1 and `message` on standard error.
+RunResult expect_refused(const TempDir& dir, const std::string& args, const std::string& message) {
+  const RunResult r = shoremesh(dir, args);
+  EXPECT_EQ(r.code, 1) << args << ": " << r.err;
+  EXPECT_THAT(r.err, HasSubstr(message)) << args;
+  return r;
+}
+
 std::string lake_with(const std::string& coordinates) {
   return R"({"type":"Feature","properties":{},"geometry":{"type":"Polygon","coordinates":)" + coordinates + "}}";
 }
@@ -81,7 +89,7 @@ std::vector<Case> matrix() {
       {"coordinate near 1e300", {{"b.csv", "x,y\n1e300,1e300\n1.0000000000001e300,1e300\n1e300,1.0000000000001e300\n"}},
        mesh + "b.csv -o keep.msh", 1, {"b.csv:2", "1e+100"}},
       {"extent under 1e-100", {{"s.csv", "x,y\n1e-300,1e-300\n2e-300,1e-300\n1e-300,3e-300\n"}}, mesh + "s.csv -o keep.msh",
-       1, {"1e-100"}},
+       1, {"s.csv: the input points span 2e-300", "1e-100"}},
       {"one point to a mesh", {{"one.csv", "x,y\n1,2\n"}}, mesh + "one.csv -o keep.msh", 1, {"keep.msh", "no triangle"}},
       {"3D input asked in 2D", {}, mesh + "pts.csv --dim 3 -o keep.msh", 1, {"--dim 3"}},
       // GPS, GeoJSON, PSLG, images.
@@ -109,6 +117,9 @@ std::vector<Case> matrix() {
       {"box with the wrong count", {}, mesh + "pts.csv --box 0 0 0 10 -o keep.msh", 2, {"--box takes 3"}},
       {"spacing NaN", {}, mesh + "lake.geojson --spacing nan -o keep.msh", 2, {"--spacing", "nan"}},
       {"spacing negative", {}, mesh + "lake.geojson --spacing -3 -o keep.msh", 2, {"--spacing", "-3"}},
+      {"spacing that cuts too many points", {}, mesh + "lake.geojson --spacing 1e-3 -o keep.msh", 1,
+       {"lake.geojson: --spacing 0.001 would cut the rings and segments into", "more than the 10000000 allowed"}},
+      {"box side under 1e-100", {}, mesh + "pts.csv --box 0 0 1e-200 -o keep.msh", 2, {"--box", "1e-200", "1e-100"}},
       {"min-area NaN", {}, mesh + "pts.csv --min-area nan -o keep.msh", 2, {"--min-area", "nan"}},
       {"threshold NaN", {}, mesh + "pts.csv --threshold nan -o keep.msh", 2, {"--threshold", "nan"}},
       {"colour tolerance negative", {}, mesh + "pts.csv --colour-tolerance -1 -o keep.msh", 2, {"--colour-tolerance", "-1"}},
@@ -182,6 +193,45 @@ TEST(HostileInput, AnOutputThatIsAnInputIsRefused) {
   EXPECT_EQ(read_file(dir / "lake.geojson"), kLake);
 }
 
+// Item 3 in the edit session: export, preview and preview-change replace no file the session read, through
+// any path (relative, absolute, a symbolic link), nor the edit lines' own file; a refused line leaves
+// every file as it was, and the lines after it still write. A .poly's vertices may live in its .node:
+// that file is an input of `mesh` and `edit` too.
+TEST(HostileInput, AnEditSessionWritesOverNoInput) {
+  TempDir dir;
+  fs::create_directories(dir / "sub");
+  write_file(dir / "pts.csv", kPoints);
+  fs::create_symlink("pts.csv", dir / "link.png");
+  const std::string edits = "export pts.csv\nexport ./sub/../pts.csv\nexport " + (dir / "pts.csv").string() +
+                            "\npreview link.png\npreview-change pts.csv\nexport edits.csv\nexport ok.csv\npreview ok.png\n";
+  write_file(dir / "edits.csv", edits);
+  const RunResult r = shoremesh(dir, "edit -q pts.csv --edits edits.csv");
+  EXPECT_EQ(r.code, 1) << r.out << r.err;
+  for (const std::string& line : std::vector<std::string>{
+           "line 1: error: export pts.csv: is also an input", "line 2: error: export ./sub/../pts.csv: is also an input",
+           "line 3: error: export " + (dir / "pts.csv").string() + ": is also an input",
+           "line 4: error: preview link.png: is also an input", "line 5: error: preview-change pts.csv: is also an input",
+           "line 6: error: export edits.csv: is also an input"})
+    EXPECT_THAT(r.out, HasSubstr(line));
+  EXPECT_THAT(r.out, HasSubstr("line 7: wrote ok.csv"));
+  EXPECT_THAT(r.out, HasSubstr("line 8: wrote ok.png"));
+  EXPECT_EQ(read_file(dir / "pts.csv"), kPoints);
+  EXPECT_EQ(read_file(dir / "edits.csv"), edits);
+
+  // A .poly that declares no vertex reads them from its .node; the Triangle export would replace it.
+  const std::string node = "4 2 0 0\n1 0 0\n2 4 0\n3 4 3\n4 0 3\n";
+  write_file(dir / "sq.node", node);
+  write_file(dir / "sq.poly", "0 2 0 0\n4 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n0\n");
+  const RunResult poly = shoremesh(dir, "edit -q sq.poly --edits -", "export sq.node\nexport sq.ele\n");
+  EXPECT_THAT(poly.out, HasSubstr("line 1: error: export sq.node: is also an input"));
+  EXPECT_THAT(poly.out, HasSubstr("line 2: error: export sq.node: is also an input"));
+  expect_refused(dir, "mesh -q sq.poly -o sq.ele", "-o sq.node: is also an input");
+  EXPECT_EQ(read_file(dir / "sq.node"), node);
+  EXPECT_FALSE(fs::exists(dir / "sq.ele"));
+  for (const auto& entry : fs::directory_iterator(dir.path()))
+    EXPECT_THAT(entry.path().filename().string(), Not(HasSubstr(".tmp-"))) << "a temporary file was left";
+}
+
 // Item 4: a JPEG cut to a quarter is refused, naming the file; the whole JPEG meshes.
 TEST(HostileInput, AJpegCutShortIsAnErrorNamingTheFile) {
   TempDir dir;
@@ -190,9 +240,7 @@ TEST(HostileInput, AJpegCutShortIsAnErrorNamingTheFile) {
   const std::string jpeg = read_file(dir / "whole.jpg");
   ASSERT_GT(jpeg.size(), 1000u);
   write_file(dir / "cut.jpg", jpeg.substr(0, jpeg.size() / 4));
-  const RunResult cut = shoremesh(dir, "mesh -q cut.jpg -o b.msh");
-  EXPECT_EQ(cut.code, 1) << cut.err;
-  EXPECT_THAT(cut.err, HasSubstr("cut.jpg: the JPEG is cut short"));
+  expect_refused(dir, "mesh -q cut.jpg -o b.msh", "cut.jpg: the JPEG is cut short");
   EXPECT_FALSE(fs::exists(dir / "b.msh"));
   EXPECT_THAT(shoremesh(dir, "mesh -q whole.jpg -o c.msh").err, Not(HasSubstr("cut short")));
 }
@@ -201,9 +249,8 @@ TEST(HostileInput, AJpegCutShortIsAnErrorNamingTheFile) {
 TEST(HostileInput, CoordinatesTheEngineCannotRepresentAreRefusedNamingTheLimit) {
   TempDir dir;
   write_file(dir / "b.csv", "x,y\n1e300,1e300\n-1e300,1e300\n1e300,-1e300\n");
-  const RunResult r = shoremesh(dir, "mesh -q b.csv -o b.msh");
-  EXPECT_EQ(r.code, 1);
-  EXPECT_THAT(r.err, HasSubstr("b.csv:2: point 0 has a coordinate of 1e+300, beyond the largest the engine represents (1e+100)"));
+  expect_refused(dir, "mesh -q b.csv -o b.msh",
+                 "b.csv:2: point 0 has a coordinate of 1e+300, beyond the largest the engine represents (1e+100)");
   write_file(dir / "lake.geojson", kLake);
   const RunResult e = shoremesh(dir, "edit -q lake.geojson --edits -", "add 1e300 1e300\n");
   EXPECT_EQ(e.code, 1);
@@ -215,9 +262,7 @@ TEST(HostileInput, CoordinatesTheEngineCannotRepresentAreRefusedNamingTheLimit) 
 TEST(HostileInput, AMeshWithNoElementIsAnError) {
   TempDir dir;
   write_file(dir / "one.csv", "x,y\n1,2\n");
-  const RunResult r = shoremesh(dir, "mesh -q one.csv -o one.msh");
-  EXPECT_EQ(r.code, 1);
-  EXPECT_THAT(r.err, HasSubstr("one.msh: the mesh has no triangle: 1 points span no triangle"));
+  expect_refused(dir, "mesh -q one.csv -o one.msh", "one.msh: the mesh has no triangle: 1 points span no triangle");
   EXPECT_FALSE(fs::exists(dir / "one.msh"));
   EXPECT_EQ(shoremesh(dir, "mesh -q one.csv -o one_ws.csv").code, 0);
 }
@@ -226,11 +271,9 @@ TEST(HostileInput, AMeshWithNoElementIsAnError) {
 TEST(HostileInput, ExitCodesFollowTheReadme) {
   TempDir dir;
   write_file(dir / "pts.csv", kPoints);
-  for (const std::string& bad : {"--box 0 0 0", "--spacing nan", "--min-area nan", "--threshold nan", "--colour-tolerance -1"})
-    EXPECT_EQ(shoremesh(dir, "mesh -q pts.csv -o a.msh " + bad).code, 2) << bad;
-  const RunResult proc = shoremesh(dir, "mesh -q pts.csv -o /proc/a.msh");
-  EXPECT_EQ(proc.code, 1);
-  EXPECT_THAT(proc.err, HasSubstr("-o /proc/a.msh: cannot write here: "));
+  for (const char* bad : {"--box 0 0 0", "--spacing nan", "--min-area nan", "--threshold nan", "--colour-tolerance -1"})
+    EXPECT_EQ(shoremesh(dir, std::string("mesh -q pts.csv -o a.msh ") + bad).code, 2) << bad;
+  expect_refused(dir, "mesh -q pts.csv -o /proc/a.msh", "-o /proc/a.msh: cannot write here: ");
 }
 
 // Item 8: messages speak the user's language: options that exist, numbers as given, the id first.

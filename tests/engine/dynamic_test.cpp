@@ -118,7 +118,9 @@ void random_edits_equal_fresh_runs(std::vector<Point<D>> initial, int edits, std
     EXPECT_LE(report.steiner_added.size(), come.size()) << context;
     for (const auto& p : report.steiner_removed) EXPECT_TRUE(std::binary_search(gone.begin(), gone.end(), p)) << context;
     for (const auto& p : report.steiner_added) EXPECT_TRUE(std::binary_search(come.begin(), come.end(), p)) << context;
-    if (k % 100 == 0) ASSERT_NO_THROW(set.check_valid()) << context;
+    if (k % 100 == 0) {
+      ASSERT_NO_THROW(set.check_valid()) << context;
+    }
     // Long runs take a while: say how far they are.
     if (k % 100 == 99 && std::getenv("SHOREMESH_LONG_TESTS"))
       std::fprintf(stderr, "%dD: %d of %d edits equal fresh runs (%zu inputs, %zu Steiner points)\n", D, k + 1, edits,
@@ -196,8 +198,9 @@ void reused_cells_equal_fresh_runs(const std::vector<Point<D>>& initial, int edi
   const double computed = double(set.counters().clipped_voronoi_calls - built.clipped_voronoi_calls);
   const double reused = double(set.counters().cells_reused - built.cells_reused);
   const double listed = double(set.counters().neighbourhoods_reused - built.neighbourhoods_reused);
-  if (min_reused_share > 0)  // none on grids: there most cells have a vertex on several bisectors
+  if (min_reused_share > 0) {  // none on grids: there most cells have a vertex on several bisectors
     EXPECT_GE(reused / (reused + computed), min_reused_share) << reused << " reused, " << computed << " computed";
+  }
   EXPECT_GE(listed / computed, min_listed_share) << listed << " of " << computed << " computed from lists";
   const double updated = double(set.counters().cells_updated - built.cells_updated);
   EXPECT_GE(updated / computed, min_updated_share) << updated << " of " << computed << " cut from the earlier cell";

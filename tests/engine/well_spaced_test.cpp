@@ -209,7 +209,9 @@ void leaving_out_idle_fills_keeps_the_output(const std::vector<Point<D>>& input,
   EXPECT_LE(double(b.counters.operations()), max_ops_share * double(a.counters.operations()))
       << b.counters.operations() << " vs " << a.counters.operations() << " operations";
   EXPECT_EQ(a.counters.fills_idle_by_rank, 0u);
-  if (max_ops_share < 1) EXPECT_GT(b.counters.fills_idle_by_rank, 0u);
+  if (max_ops_share < 1) {
+    EXPECT_GT(b.counters.fills_idle_by_rank, 0u);
+  }
 }
 
 TEST(IdleFills, LeftOutWithTheSameOutput2D) {
@@ -258,7 +260,9 @@ void expect_numbered_by_place(const std::vector<Point<D>>& input) {
   const engine::VertexId live = engine::VertexId(e.live_vertex_count());
   for (engine::VertexId v = 0; v < live; ++v) {  // free slots, if any, come last
     ASSERT_TRUE(e.vertex(v).alive) << "a free slot before live vertex " << v;
-    if (v > 0) ASSERT_LE(engine::z_order_key<D>(e.positions()[v - 1]), engine::z_order_key<D>(e.positions()[v])) << v;
+    if (v > 0) {
+      ASSERT_LE(engine::z_order_key<D>(e.positions()[v - 1]), engine::z_order_key<D>(e.positions()[v])) << v;
+    }
     if (e.vertex(v).is_input) input_seen = true;
     else if (input_seen) ++steiner_between_inputs;
   }
@@ -269,7 +273,9 @@ void expect_numbered_by_place(const std::vector<Point<D>>& input) {
     const auto& a = e.op(o - 1);
     const auto& b = e.op(o);
     ASSERT_LE(a.vertex, b.vertex) << "operation " << o;
-    if (a.vertex == b.vertex) ASSERT_LT(time_of(o - 1), time_of(o)) << "operation " << o;
+    if (a.vertex == b.vertex) {
+      ASSERT_LT(time_of(o - 1), time_of(o)) << "operation " << o;
+    }
   }
   EXPECT_EQ(e.op(e.vertex(0).dispatch).kind, Engine::OpKind::Dispatch);
   // The references followed the renumbering: each vertex's dispatch is a dispatch of that vertex.

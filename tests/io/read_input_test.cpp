@@ -113,3 +113,47 @@ TEST(ReadInput, SpacingThatWouldCutTooManyPointsIsRefused) {
   const auto e = expect_input_error([&] { read_input(samples("pslg/double_hex.poly"), poly); });
   EXPECT_THAT(e.message(), HasSubstr("choose a larger --spacing"));
 }
+
+// The points a spacing cuts are counted before any is made, rings, lines, segments and the other points
+// together (a fuzzed .poly vertex at -713454 with a spacing of 0.25 asked for millions, GPX at 5 m too): at
+// the cap the input is read; one over it is refused naming the file, the spacing and the count.
+TEST(ReadInput, ASpacingThatWouldCreateMoreThanTheCapIsRefusedWithTheCount) {
+  shoremesh::io::test::ScratchDir dir;
+  struct Case {
+    std::string file, text;
+    double spacing;
+    std::size_t points;  // what the spacing gives
+  };
+  const std::vector<Case> cases = {
+      // A square of side 10 in pieces of 2.5 (16 points) and a loose segment of 10 (its ends and 3 inside).
+      {"sq.poly", "6 2 0 0\n1 0 0\n2 10 0\n3 10 10\n4 0 10\n5 20 0\n6 30 0\n5 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n5 5 6\n0\n",
+       3, 21},
+      // About 1112 m of meridian in 12 pieces of at most 100 m (13 points), and a waypoint or a point.
+      {"walk.gpx",
+       R"(<gpx version="1.1"><wpt lat="45.1" lon="14.1"/><trk><trkseg><trkpt lat="45" lon="14"/>)"
+       R"(<trkpt lat="45.01" lon="14"/></trkseg></trk></gpx>)",
+       100, 14},
+      {"line.geojson",
+       R"({"type":"GeometryCollection","geometries":[{"type":"LineString","coordinates":[[14,45],[14,45.01]]},)"
+       R"({"type":"Point","coordinates":[14.1,45.1]}]})",
+       100, 14},
+  };
+  for (const Case& c : cases) {
+    const std::string path = dir.write(c.file, c.text);
+    InputOptions opt;
+    opt.poly.spacing = opt.track.spacing = opt.geojson.spacing = c.spacing;
+    opt.poly.max_points = opt.track.max_points = opt.geojson.max_points = c.points;
+    EXPECT_EQ(read_input(path, opt).points.size(), c.points) << c.file;
+    opt.poly.max_points = opt.track.max_points = opt.geojson.max_points = c.points - 1;
+    const auto e = expect_input_error([&] { read_input(path, opt); });
+    EXPECT_EQ(e.file(), path);
+    EXPECT_EQ(e.message(), "--spacing " + readable(c.spacing) + " would cut the rings and segments into " +
+                               std::to_string(c.points) + " points, more than the " + std::to_string(c.points - 1) +
+                               " allowed; choose a larger --spacing");
+  }
+  // A count beyond every integer is said as a number, not overflowed: 5 segments of 10 at 1e-300.
+  InputOptions tiny;
+  tiny.poly.spacing = 1e-300;
+  EXPECT_THAT(expect_input_error([&] { read_input(dir.path("sq.poly"), tiny); }).message(),
+              HasSubstr("into 5e+301 points, more than the 10000000 allowed"));
+}

@@ -194,6 +194,23 @@ TEST(Preview, Surface3DAndSliceCoverTheCubeOnly) {
   EXPECT_TRUE(white(slice.at(2, 2)));
 }
 
+// The height follows the mesh's aspect ratio only up to kMaxPreviewSide: a triangle 10^5 times taller
+// than wide asked for 10^8 rows of 1024 pixels (1.2 TB of floats) before.
+TEST(Preview, HeightFromAThinMeshsAspectIsCapped) {
+  const std::vector<Point2> points{{0, 0}, {1, 0}, {0.5, 1e5}};
+  const MeshSnapshot<2> thin{Mesh2(points, 3)};
+  const PreviewImage image = io::draw_preview<2>(thin.view(), small(1024, 8, 2));
+  EXPECT_EQ(image.height, io::kMaxPreviewSide);
+  EXPECT_EQ(image.width, 1024);
+  EXPECT_EQ(image.rgb.size(), std::size_t{1024} * io::kMaxPreviewSide * 3);
+  // The whole mesh is in the picture: its top and bottom corners land inside.
+  for (const Point2& p : points) {
+    const auto px = image.to_pixel(p[0], p[1]);
+    EXPECT_GE(px[1], 0) << p[1];
+    EXPECT_LE(px[1], image.height) << p[1];
+  }
+}
+
 TEST(Preview, UnknownImageFormatIsAnInputErrorAndWritesNothing) {
   ScratchDir dir;
   const auto snap = quad();

@@ -13,6 +13,11 @@
 
 namespace shoremesh {
 
+// The coordinates and box sides the engine represents: beyond them, squared distances, areas and
+// circumradii in the user's units overflow or underflow. Inputs and boxes outside are refused.
+inline constexpr double kLargestCoordinate = 1e100;
+inline constexpr double kSmallestSide = 1e-100;
+
 template <int D>
 class WellSpacedEngine;  // core/src: quadtree, operations, clipped Voronoi cells
 

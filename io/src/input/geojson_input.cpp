@@ -311,15 +311,24 @@ InputSet parse_geojson_text(std::string_view text, const std::string& name, cons
       throw InputError(p.path + ": " + e.what(), name);
     }
   };
-  detail::InputBuilder builder(set, name, Source::Location::Element);
-  for (const auto& r : g.rings) {
+  auto converted = [&](const std::vector<Geometry::Position>& positions) {
     std::vector<Point2> pts;
+    for (const auto& p : positions) pts.push_back(convert(p));
+    return pts;
+  };
+  std::vector<std::vector<Point2>> rings, lines;
+  for (const auto& r : g.rings) rings.push_back(converted(r));
+  for (const auto& l : g.lines) lines.push_back(converted(l));
+  double count = static_cast<double>(g.points.size());  // the points the spacing gives, checked before sampling any
+  for (const auto& r : rings) count += detail::subdivided_count(r, true, options.spacing);
+  for (const auto& l : lines) count += detail::subdivided_count(l, false, options.spacing);
+  detail::check_sampled_count(count, options.spacing, options.max_points, name);
+
+  detail::InputBuilder builder(set, name, Source::Location::Element);
+  for (std::size_t r = 0; r < rings.size(); ++r) {
     std::vector<std::size_t> elements;
-    for (const auto& p : r) {
-      pts.push_back(convert(p));
-      elements.push_back(p.element);
-    }
-    builder.add_ring(pts, RingRole::Shore, elements, options.spacing);
+    for (const auto& p : g.rings[r]) elements.push_back(p.element);
+    builder.add_ring(rings[r], RingRole::Shore, elements, options.spacing, options.max_points);
   }
   // LineStrings are open chains of constraints (a breakwater, a channel's edge): mesh edges in the water
   // that bound nothing. A position repeated right after itself is one vertex.
@@ -337,7 +346,7 @@ InputSet parse_geojson_text(std::string_view text, const std::string& name, cons
       elements.push_back(p.element);
     }
     if (pts.size() < 2) throw InputError(l.front().path + ": a LineString needs two distinct positions", name);
-    builder.add_ring(pts, RingRole::Line, elements, options.spacing);
+    builder.add_ring(pts, RingRole::Line, elements, options.spacing, options.max_points);
   }
   if (repeated_in_lines) set.notes.push_back("dropped " + std::to_string(repeated_in_lines) + " position(s) repeated along a LineString");
   if (!g.lines.empty())

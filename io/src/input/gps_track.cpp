@@ -341,12 +341,17 @@ InputSet gps_to_input(const GpsData& data, const std::string& file, const TrackO
   if (std::isnan(options.close_tolerance)) throw InputError("track close distance nan is not a number", file);
   const double tolerance = options.close_tolerance >= 0 ? options.close_tolerance : std::max(2 * options.spacing, 25.0);
 
+  // Each sequence projected (a walk also smoothed and thinned, and whether it closes), in reading order.
+  struct Walk {
+    Projected r;
+    bool waypoints = false, closed = false;
+  };
   struct Loose {
     Point2 p;
     std::size_t line;
   };
+  std::vector<Walk> walks;
   std::vector<Loose> loose;
-  std::size_t closed_count = 0;
   for (const auto& s : data.sequences) {
     if (s.kind == GpsSequence::Kind::Waypoints && !options.waypoints) continue;
     Projected p;
@@ -359,7 +364,7 @@ InputSet gps_to_input(const GpsData& data, const std::string& file, const TrackO
       p.lines.push_back(g.line);
     }
     if (s.kind == GpsSequence::Kind::Waypoints) {
-      for (std::size_t i = 0; i < p.xy.size(); ++i) loose.push_back({p.xy[i], p.lines[i]});
+      walks.push_back({std::move(p), true, false});
       continue;
     }
     // A closed walk: end within tolerance of the start (and not a back-and-forth of two points).
@@ -373,13 +378,24 @@ InputSet gps_to_input(const GpsData& data, const std::string& file, const TrackO
     }
     smooth(p, options.smooth_window, closed);
     Projected r = resample(p, options.spacing, closed);
-    if (closed && r.xy.size() >= 3) {
-      builder.add_ring(r.xy, RingRole::Shore, r.lines, options.spacing);
+    closed = closed && r.xy.size() >= 3;
+    walks.push_back({std::move(r), false, closed});
+  }
+  double count = 0;  // the points the spacing gives, checked before sampling any
+  for (const Walk& w : walks)
+    count += w.waypoints ? static_cast<double>(w.r.xy.size()) : detail::subdivided_count(w.r.xy, w.closed, options.spacing);
+  detail::check_sampled_count(count, options.spacing, options.max_points, file);
+  std::size_t closed_count = 0;
+  for (const Walk& w : walks) {
+    if (w.waypoints) {
+      for (std::size_t i = 0; i < w.r.xy.size(); ++i) loose.push_back({w.r.xy[i], w.r.lines[i]});
+    } else if (w.closed) {
+      builder.add_ring(w.r.xy, RingRole::Shore, w.r.lines, options.spacing, options.max_points);
       ++closed_count;
     } else {
-      const auto sub = detail::subdivide(r.xy, false, options.spacing, file, set.points.size() + loose.size());
-      const auto from = detail::subdivided_from(r.xy, sub);
-      for (std::size_t i = 0; i < sub.size(); ++i) loose.push_back({sub[i], r.lines[from[i]]});
+      const auto sub = detail::subdivide(w.r.xy, false, options.spacing, options.max_points);
+      const auto from = detail::subdivided_from(w.r.xy, sub);
+      for (std::size_t i = 0; i < sub.size(); ++i) loose.push_back({sub[i], w.r.lines[from[i]]});
     }
   }
   assign_roles_by_nesting(set.domain);

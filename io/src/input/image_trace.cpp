@@ -469,7 +469,7 @@ TracedImage trace_image(const std::string& path, const ImageTraceOptions& opt) {
     if (pixels > opt.max_pixels)
       throw InputError("image too large: " + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " = " +
                            std::to_string(pixels) + " pixels, more than the limit of " + std::to_string(opt.max_pixels) +
-                           " (max_pixels); refused before decoding",
+                           "; refused before decoding",
                        path);
     if (pixels == 0) throw InputError("image has no pixels", path);
     in->close();

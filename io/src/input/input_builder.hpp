@@ -1,8 +1,9 @@
 #pragma once
 // Internal: assembling an InputSet (sources, points with origins, rings stored contiguously in points).
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -29,9 +30,10 @@ class InputBuilder {
     set_.domain.rings.push_back({std::move(pts), role});
   }
   // The same, with points inserted along every segment longer than `spacing` (0: none), evenly; each
-  // inserted point takes the location of the vertex before it.
+  // inserted point takes the location of the vertex before it. The caller has checked the count
+  // against `max` (check_sampled_count).
   void add_ring(const std::vector<Point2>& pts, RingRole role, const std::vector<std::size_t>& locations,
-                double spacing);
+                double spacing, std::size_t max = kMaxSampledPoints);
   std::size_t point_count() const { return set_.points.size(); }
   const std::string& file() const { return set_.sources[source_].file; }
 
@@ -40,18 +42,39 @@ class InputBuilder {
   std::uint32_t source_ = 0;
 };
 
-// At most this many points from one input after sampling its segments: a spacing far below the input's
-// scale would otherwise fill the memory (or overflow the piece count) instead of failing.
-constexpr std::size_t kMaxSampledPoints = 10'000'000;
+// How many points subdivide(pts, closed, spacing) gives, as a double: with a spacing far below the
+// segments' lengths the count exceeds every integer type (an infinite or NaN length gives inf or NaN).
+inline double subdivided_count(const std::vector<Point2>& pts, bool closed, double spacing) {
+  if (!(spacing > 0) || pts.empty()) return static_cast<double>(pts.size());
+  const std::size_t n = pts.size(), edges = closed ? n : n - 1;
+  double count = static_cast<double>(n - edges);  // an open line's last point
+  for (std::size_t i = 0; i < edges; ++i) {
+    const Point2& a = pts[i];
+    const Point2& b = pts[(i + 1) % n];
+    count += std::max(1.0, std::ceil(std::hypot(b[0] - a[0], b[1] - a[1]) / spacing));
+  }
+  return count;
+}
+
+// Refuses, before any sampling, a spacing by which one input would have more than `max` points: `count`
+// is the sum of subdivided_count over its rings and lines plus its other points. The message names the
+// file, the spacing and the count. A NaN spacing is refused as such.
+inline void check_sampled_count(double count, double spacing, std::size_t max, const std::string& file) {
+  if (std::isnan(spacing)) throw InputError("spacing nan is not a number", file);
+  if (count <= static_cast<double>(max)) return;
+  throw InputError("--spacing " + readable(spacing) + " would cut the rings and segments into " + readable(count) +
+                       " points, more than the " + std::to_string(max) + " allowed; choose a larger --spacing",
+                   file);
+}
 
 // `pts` with points inserted evenly along every segment longer than `spacing` (none when spacing <= 0), so
-// that no piece is longer; `closed`: the last point connects to the first. Throws InputError (naming
-// `file`) for a NaN spacing, and when the input's points, `already` of them before these, would exceed
-// kMaxSampledPoints.
+// that no piece is longer; `closed`: the last point connects to the first. The caller has checked the
+// count with check_sampled_count; a count beyond `max` here is a bug (std::logic_error).
 inline std::vector<Point2> subdivide(const std::vector<Point2>& pts, bool closed, double spacing,
-                                     const std::string& file, std::size_t already = 0) {
-  if (std::isnan(spacing)) throw InputError("spacing nan is not a number", file);
-  if (spacing <= 0 || pts.empty()) return pts;
+                                     std::size_t max = kMaxSampledPoints) {
+  if (!(spacing > 0) || pts.empty()) return pts;
+  if (!(subdivided_count(pts, closed, spacing) <= static_cast<double>(max)))
+    throw std::logic_error("subdivide: the sampled count was not checked");
   std::vector<Point2> out;
   const std::size_t n = pts.size(), edges = closed ? n : n - 1;
   for (std::size_t i = 0; i < n; ++i) {
@@ -59,14 +82,7 @@ inline std::vector<Point2> subdivide(const std::vector<Point2>& pts, bool closed
     if (i >= edges) break;
     const Point2& a = pts[i];
     const Point2& b = pts[(i + 1) % n];
-    const double wanted = std::ceil(std::hypot(b[0] - a[0], b[1] - a[1]) / spacing);
-    if (!(wanted <= double(kMaxSampledPoints - std::min(kMaxSampledPoints, already + out.size())))) {
-      std::ostringstream message;
-      message << "spacing " << spacing << " cuts the segments into more than " << kMaxSampledPoints
-              << " points; choose a larger --spacing";
-      throw InputError(message.str(), file);
-    }
-    const auto pieces = static_cast<std::size_t>(wanted);
+    const auto pieces = static_cast<std::size_t>(std::ceil(std::hypot(b[0] - a[0], b[1] - a[1]) / spacing));
     for (std::size_t k = 1; k < pieces; ++k) {
       const double t = static_cast<double>(k) / static_cast<double>(pieces);
       out.push_back({a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])});
@@ -89,8 +105,8 @@ inline std::vector<std::size_t> subdivided_from(const std::vector<Point2>& pts, 
 }
 
 inline void InputBuilder::add_ring(const std::vector<Point2>& pts, RingRole role,
-                                   const std::vector<std::size_t>& locations, double spacing) {
-  std::vector<Point2> sub = subdivide(pts, role != RingRole::Line, spacing, file(), point_count());
+                                   const std::vector<std::size_t>& locations, double spacing, std::size_t max) {
+  std::vector<Point2> sub = subdivide(pts, role != RingRole::Line, spacing, max);
   std::vector<std::size_t> sub_locations;
   for (const std::size_t v : subdivided_from(pts, sub)) sub_locations.push_back(locations.empty() ? 0 : locations[v]);
   add_ring(std::move(sub), role, sub_locations);

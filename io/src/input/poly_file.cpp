@@ -219,28 +219,41 @@ InputSet pslg_to_input(const PslgFile& p, const PslgOptions& options) {
     } while (v != p.segments[s0][0] && cycle.size() <= group_segments.size());
     if (cycle.size() == group_segments.size()) cycles.push_back(std::move(cycle));
   }
-  detail::InputBuilder vertices(set, p.vertex_file, Source::Location::Line);
+  std::vector<std::vector<Point2>> rings;
+  std::vector<std::vector<std::size_t>> ring_lines;
   for (const auto& cycle : cycles) {
-    std::vector<Point2> ring;
-    std::vector<std::size_t> lines;
+    rings.emplace_back();
+    ring_lines.emplace_back();
     for (const std::size_t v : cycle) {
       vertex_in_ring[v] = true;
-      ring.push_back(p.points[v]);
-      lines.push_back(p.point_lines[v]);
+      rings.back().push_back(p.points[v]);
+      ring_lines.back().push_back(p.point_lines[v]);
     }
-    vertices.add_ring(ring, RingRole::Shore, lines, options.spacing);
   }
+  // A segment that is not part of a cycle gives the points inserted along it (its ends are points of
+  // their own).
+  auto loose_segment = [&](std::size_t s) { return !(vertex_in_ring[p.segments[s][0]] && vertex_in_ring[p.segments[s][1]]); };
+  double count = 0;  // the points the spacing gives, checked before sampling any
+  for (const auto& ring : rings) count += detail::subdivided_count(ring, true, options.spacing);
+  for (std::size_t v = 0; v < n; ++v) count += !vertex_in_ring[v];
+  for (std::size_t s = 0; s < p.segments.size(); ++s)
+    if (loose_segment(s))
+      count += detail::subdivided_count({p.points[p.segments[s][0]], p.points[p.segments[s][1]]}, false, options.spacing) - 2;
+  detail::check_sampled_count(count, options.spacing, options.max_points, p.vertex_file);
+
+  detail::InputBuilder vertices(set, p.vertex_file, Source::Location::Line);
+  for (std::size_t r = 0; r < rings.size(); ++r)
+    vertices.add_ring(rings[r], RingRole::Shore, ring_lines[r], options.spacing, options.max_points);
   assign_roles_by_nesting(set.domain);
   check_rings(set);
   for (std::size_t v = 0; v < n; ++v)
     if (!vertex_in_ring[v]) vertices.add_point(p.points[v], p.point_lines[v]);
   std::size_t loose_segments = 0;
   for (std::size_t s = 0; s < p.segments.size(); ++s) {
-    const auto [a, b] = p.segments[s];
-    if (vertex_in_ring[a] && vertex_in_ring[b]) continue;  // part of a cycle (a cycle's vertices are all in it)
+    if (!loose_segment(s)) continue;
     ++loose_segments;
-    // The points inserted along it (its ends are points of their own).
-    const auto sub = detail::subdivide({p.points[a], p.points[b]}, false, options.spacing, p.vertex_file, set.points.size());
+    const auto [a, b] = p.segments[s];
+    const auto sub = detail::subdivide({p.points[a], p.points[b]}, false, options.spacing, options.max_points);
     for (std::size_t k = 1; k + 1 < sub.size(); ++k) vertices.add_point(sub[k], p.point_lines[a]);
   }
   if (!cycles.empty()) set.notes.push_back(std::to_string(cycles.size()) + " closed segment cycles became rings");

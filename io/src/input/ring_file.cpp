@@ -87,20 +87,23 @@ InputSet ring_file_to_input(const RingFile& rf, const std::string& file, bool lo
     set.projection = chosen.projection;
     set.notes.push_back(chosen.note);
   }
-  detail::InputBuilder builder(set, file, Source::Location::Line);
-  for (std::size_t r = 0; r < rf.rings.size(); ++r) {
-    std::vector<Point2> pts = rf.rings[r];
+  std::vector<std::vector<Point2>> rings = rf.rings;
+  double count = 0;  // the points the spacing gives, checked before sampling any
+  for (std::size_t r = 0; r < rings.size(); ++r) {
     if (lonlat) {
-      for (std::size_t k = 0; k < pts.size(); ++k) {
+      for (std::size_t k = 0; k < rings[r].size(); ++k) {
         try {
-          pts[k] = set.projection.forward({pts[k][0], pts[k][1]});
+          rings[r][k] = set.projection.forward({rings[r][k][0], rings[r][k][1]});
         } catch (const std::domain_error& e) {
           throw InputError(e.what(), file, rf.lines[r][k]);
         }
       }
     }
-    builder.add_ring(pts, RingRole::Shore, rf.lines[r], spacing);
+    count += detail::subdivided_count(rings[r], true, spacing);
   }
+  detail::check_sampled_count(count, spacing, kMaxSampledPoints, file);
+  detail::InputBuilder builder(set, file, Source::Location::Line);
+  for (std::size_t r = 0; r < rings.size(); ++r) builder.add_ring(rings[r], RingRole::Shore, rf.lines[r], spacing);
   assign_roles_by_nesting(set.domain);
   check_rings(set);
   return set;

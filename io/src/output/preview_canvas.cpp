@@ -24,7 +24,7 @@ Rgb mix(Rgb a, Rgb b, double t) {
 Canvas::Canvas(P lo, P hi, int width, int height, int margin, Rgb background) {
   const double dx = std::max(hi[0] - lo[0], 1e-300), dy = std::max(hi[1] - lo[1], 1e-300);
   const int inner_w = std::max(1, width - 2 * margin);
-  if (height <= 0) height = static_cast<int>(std::lround(inner_w * dy / dx)) + 2 * margin;
+  if (height <= 0) height = static_cast<int>(std::lround(std::min<double>(inner_w * dy / dx + 2 * margin, kMaxPreviewSide)));
   height = std::max(height, 1);
   const int inner_h = std::max(1, height - 2 * margin);
   image_.width = width;

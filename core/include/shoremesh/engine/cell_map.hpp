@@ -10,7 +10,8 @@
 
 namespace shoremesh::engine {
 
-using CellKey = unsigned __int128;
+// A GCC/Clang extension type; __extension__ says so to -Wpedantic.
+__extension__ typedef unsigned __int128 CellKey;
 
 // Levels go up to 40 (cells of side 2^-40 of the box): 3 x 40 coordinate bits plus the level fit 128 bits.
 inline constexpr int kMaxLevel = 40;

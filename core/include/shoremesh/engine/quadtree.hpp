@@ -220,8 +220,8 @@ class Quadtree {
   template <class Count>
   bool crowded_by(int level, const Coords& c, std::uint32_t own, Count&& count) const;
   bool required_split(NodeId n, std::span<const Point<D>> positions) const;
-  void balance_around(std::vector<NodeId>& worklist, std::span<const Point<D>> positions,
-                      std::vector<NodeId>* created_leaves, std::vector<NodeId>* split_leaves);
+  void balance_around(std::vector<NodeId>& worklist, std::vector<NodeId>* created_leaves,
+                      std::vector<NodeId>* split_leaves);
   template <class F>
   void for_each_neighbour_cell(int level, const Coords& c, int reach, F&& f) const;
   template <class F>

@@ -29,6 +29,7 @@ struct GeoJsonOptions {
   std::optional<Projection> projection;
   ProjectionChoice choice = ProjectionChoice::LocalTransverseMercator;
   double spacing = 0;
+  std::size_t max_points = kMaxSampledPoints;  // a spacing that would give more points is refused
 };
 
 InputSet parse_geojson_text(std::string_view text, const std::string& name, const GeoJsonOptions& options = {});

@@ -58,6 +58,7 @@ struct TrackOptions {
   // out, and the kept fixes lie about `spacing` apart), then longer gaps are cut evenly. 0 keeps every
   // fix except exact repeats.
   double spacing = 0;
+  std::size_t max_points = kMaxSampledPoints;  // a spacing that would give more points is refused
   // Smoothing before resampling: moving average of 2*smooth_window+1 projected points (0: none). The first and
   // last points of an open track are kept in place.
   int smooth_window = 0;

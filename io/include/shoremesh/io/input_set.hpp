@@ -23,6 +23,12 @@ enum class Units {
 };
 const char* to_string(Units u);  // "metres", "pixels", "map units"
 
+// The most points one input may have once a spacing has cut its rings and segments (its other points
+// included). A spacing far below the input's scale would otherwise fill the memory, and the engine's
+// time, instead of failing; the readers refuse it before sampling, naming the file, the spacing and the
+// count it would create. Their options may lower it (the fuzz targets do, to keep each run short).
+constexpr std::size_t kMaxSampledPoints = 10'000'000;
+
 // Where a point came from. `location` is a 1-based line for text formats (point files, CSV tracks, .node/.poly,
 // GPX via the XML parser's offsets), a 1-based element index for GeoJSON (the n-th coordinate position read),
 // and 0 for traced image points (whose ring tells where they are).

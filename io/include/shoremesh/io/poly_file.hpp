@@ -42,6 +42,7 @@ PslgFile read_poly_file(const std::string& path);  // reads the sibling .node wh
 
 struct PslgOptions {
   double spacing = 0;  // > 0: subdivide segments so that no piece is longer (map units); 0: vertices only
+  std::size_t max_points = kMaxSampledPoints;  // a spacing that would give more points is refused
 };
 
 InputSet pslg_to_input(const PslgFile& pslg, const PslgOptions& options = {});

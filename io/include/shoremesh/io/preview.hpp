@@ -21,9 +21,13 @@ struct Rgb {
 enum class PreviewColouring { None, Quality, Size, Depth, Height };
 enum class PreviewView3D { Surface, SliceZ };
 
+// The largest side of a preview whose height follows the mesh's aspect ratio: a river 10^5 times longer
+// than wide would otherwise ask for 10^8 rows (gigabytes); past it the picture is narrower instead.
+inline constexpr int kMaxPreviewSide = 16384;
+
 struct PreviewOptions {
   int width = 1024;           // pixels
-  int height = 0;             // pixels; 0 follows the mesh's aspect ratio
+  int height = 0;             // pixels; 0 follows the mesh's aspect ratio, up to kMaxPreviewSide
   int margin = 16;            // pixels of background around the mesh
   double line_width = 1.0;    // pixels
   double point_radius = 1.6;  // pixels; 0 hides the points
