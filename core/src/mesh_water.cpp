@@ -72,19 +72,7 @@ void WaterTest::replace_stretch(std::size_t r, const std::vector<Point2>& before
     remove_from_slabs(old_ids[k]);
     free_edges_.push_back(old_ids[k]);
   });
-  auto new_edge = [&](std::size_t k) {
-    std::uint32_t e;
-    if (free_edges_.empty()) {
-      e = static_cast<std::uint32_t>(edges_.size());
-      edges_.push_back({});
-    } else {
-      e = free_edges_.back();
-      free_edges_.pop_back();
-    }
-    edges_[e] = {after[k], after[(k + 1) % n]};
-    add_to_slabs(e);
-    return e;
-  };
+  auto new_edge = [&](std::size_t k) { return add_edge(after[k], after[(k + 1) % n]); };
   if (m == n) {  // a vertex moved: the other edges keep their places
     for_each_changed(n, [&](std::size_t k) { old_ids[k] = new_edge(k); });
     return;
@@ -111,19 +99,21 @@ void WaterTest::replace_ring(std::size_t r, const std::vector<Point2>& after) {
     slab_height_ = 1;
     slabs_.assign(1, {});
   }
-  for (std::size_t k = 0; k < after.size(); ++k) {
-    std::uint32_t e;
-    if (free_edges_.empty()) {
-      e = static_cast<std::uint32_t>(edges_.size());
-      edges_.push_back({});
-    } else {
-      e = free_edges_.back();
-      free_edges_.pop_back();
-    }
-    edges_[e] = {after[k], after[(k + 1) % after.size()]};
-    add_to_slabs(e);
-    ring_edges_[r].push_back(e);
+  for (std::size_t k = 0; k < after.size(); ++k) ring_edges_[r].push_back(add_edge(after[k], after[(k + 1) % after.size()]));
+}
+
+std::uint32_t WaterTest::add_edge(const Point2& a, const Point2& b) {
+  std::uint32_t e;
+  if (free_edges_.empty()) {
+    e = static_cast<std::uint32_t>(edges_.size());
+    edges_.push_back({});
+  } else {
+    e = free_edges_.back();
+    free_edges_.pop_back();
   }
+  edges_[e] = {a, b};
+  add_to_slabs(e);
+  return e;
 }
 
 // Monotone in y, so an edge spanning [lo, hi] is found from any query height inside that range.

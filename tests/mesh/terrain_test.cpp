@@ -101,7 +101,9 @@ TEST(Terrain, EverySampleWithinTheErrorBoundMeasuredIndependently) {
       const TerrainError own = s.error();
       EXPECT_EQ(own.over, 0u);
       EXPECT_NEAR(own.max, worst, 1e-6 * (1 + worst));
-      if (e >= 2 && fraction == 0) EXPECT_LT(s.points().size(), 70u * 55u / 2);  // above the noise: far fewer nodes than samples
+      if (e >= 2 && fraction == 0) {
+        EXPECT_LT(s.points().size(), 70u * 55u / 2);  // above the noise: far fewer nodes than samples
+      }
       s.check_valid();
     }
   }

@@ -38,6 +38,7 @@ class WaterTest {
   static constexpr std::uint32_t kNoEdge = 0xffffffffu;
   std::size_t slab_of(double y) const;
   void add_to_slabs(std::uint32_t e);
+  std::uint32_t add_edge(const Point2& a, const Point2& b);  // a free slot (or a new one), in its slabs
   void remove_from_slabs(std::uint32_t e);
 
   std::vector<Edge> edges_;  // with the edges replaced since the build (no slab lists them)
