@@ -52,17 +52,6 @@ double parse_number(const std::string& word) {
 }
 
 template <int D>
-SessionInput<D> session_input(const io::InputSet& set) {
-  SessionInput<D> in;
-  in.points = input_points<D>(set);
-  if constexpr (D == 2) {
-    in.rings = set.domain;
-    in.ring_offsets = set.ring_offsets;
-  }
-  return in;
-}
-
-template <int D>
 typename ShoreSession<D>::Options session_options(double rho, std::optional<BoxTransform<D>> box, bool keep_hull) {
   typename ShoreSession<D>::Options o;
   o.rho = rho;

@@ -75,37 +75,31 @@ std::vector<Point<D>> input_points(const io::InputSet& set) {
   }
 }
 
-std::vector<Point2> loose_points(const io::InputSet& set) {
-  std::vector<Point2> out;
-  if (set.dimension != 2) return out;
-  for (std::size_t i = 0; i < set.points.size(); ++i)
-    if (set.origins.empty() || set.origins[i].ring == io::PointOrigin::kNoRing) out.push_back(set.points[i]);
-  return out;
-}
-
-std::optional<ShoreRefinement> shore_refinement(const io::InputSet& set, const std::optional<BoxTransform<2>>& box) {
-  if (set.dimension != 2 || set.domain.empty()) return std::nullopt;
-  // No split below 2^-32 of the engine's box: the given one, or the one the engine fits to the input.
-  return refine_shore(set.domain, loose_points(set), box ? box->side : BoxTransform<2>::fit(set.points).side);
-}
-
 template <int D>
-std::vector<Point<D>> engine_points(const io::InputSet& set, const ShoreRefinement* refinement) {
-  std::vector<Point<D>> points = input_points<D>(set);
-  if constexpr (D == 2)
-    if (refinement)
-      for (const Point2& p : refinement->split_points()) points.push_back(p);
-  return points;
+SessionInput<D> session_input(const io::InputSet& set) {
+  SessionInput<D> in;
+  in.points = input_points<D>(set);
+  if constexpr (D == 2) {
+    in.rings = set.domain;
+    in.ring_offsets = set.ring_offsets;
+  }
+  return in;
 }
 
 template <int D>
 EngineInput<D> engine_input(const io::InputSet& set, const std::optional<BoxTransform<D>>& box) {
+  SessionInput<D> session = session_input<D>(set);
   EngineInput<D> in;
-  std::optional<ShoreRefinement> refinement;
-  if constexpr (D == 2) refinement = shore_refinement(set, box);
-  in.points = engine_points<D>(set, refinement ? &*refinement : nullptr);
-  in.input_count = set.size();
-  if (refinement) in.domain = refinement->refined();
+  std::vector<Point2> splits;
+  if constexpr (D == 2) {
+    if (const auto refinement = refine_input(session, box)) {
+      splits = refinement->split_points();
+      in.domain = refinement->refined();
+    }
+  }
+  in.input_count = session.points.size();
+  in.points = std::move(session.points);
+  if constexpr (D == 2) in.points.insert(in.points.end(), splits.begin(), splits.end());
   return in;
 }
 
@@ -304,8 +298,8 @@ std::string describe_input(const io::InputSet& set) {
 
 template std::optional<BoxTransform<2>> parse_box<2>(const std::vector<double>&);
 template std::optional<BoxTransform<3>> parse_box<3>(const std::vector<double>&);
-template std::vector<Point<2>> engine_points<2>(const io::InputSet&, const ShoreRefinement*);
-template std::vector<Point<3>> engine_points<3>(const io::InputSet&, const ShoreRefinement*);
+template SessionInput<2> session_input<2>(const io::InputSet&);
+template SessionInput<3> session_input<3>(const io::InputSet&);
 template EngineInput<2> engine_input<2>(const io::InputSet&, const std::optional<BoxTransform<2>>&);
 template EngineInput<3> engine_input<3>(const io::InputSet&, const std::optional<BoxTransform<3>>&);
 template std::vector<Point<2>> input_points<2>(const io::InputSet&);

@@ -42,11 +42,13 @@ std::filesystem::path stage_output(io::OutputBatch& batch, const std::filesystem
 template <int D>
 std::vector<Point<D>> input_points(const io::InputSet& set);
 
-// The input points on no ring (loose points, tracks kept open).
-std::vector<Point2> loose_points(const io::InputSet& set);
+// What the library's session (and a fresh run) takes: the input points of the chosen dimension, and in 2D
+// the rings with their offsets.
+template <int D>
+SessionInput<D> session_input(const io::InputSet& set);
 
 // What the engine and the mesh take: the input points, then (2D with rings) the canonical split points of
-// the shore (ShoreRefinement), which make every shore segment a mesh edge; the mesh's domain is the rings
+// the shore (refine_input), which make every shore segment a mesh edge; the mesh's domain is the rings
 // with those splits in them.
 template <int D>
 struct EngineInput {
@@ -56,12 +58,6 @@ struct EngineInput {
 };
 template <int D>
 EngineInput<D> engine_input(const io::InputSet& set, const std::optional<BoxTransform<D>>& box);
-// The canonical splits of a 2D input's rings for the engine's `box` (the given one, or the one fitted to
-// the input); nullopt without rings.
-std::optional<ShoreRefinement> shore_refinement(const io::InputSet& set, const std::optional<BoxTransform<2>>& box);
-// The engine's input: the input points, then the refinement's splits (none without one).
-template <int D>
-std::vector<Point<D>> engine_points(const io::InputSet& set, const ShoreRefinement* refinement);
 
 // An engine error about particular input points, said with the file and line they came from (about the
 // points as a whole: with the input files).

@@ -57,9 +57,29 @@ Parameters<D> session_parameters(double rho) {
   return parameters;
 }
 
-std::optional<ShoreRefinement> refine_shore(const Domain2& rings, std::span<const Point2> loose, double box_side) {
-  if (rings.empty()) return std::nullopt;
-  return ShoreRefinement(rings, loose, RefinementRule::for_box(box_side));
+std::optional<ShoreRefinement> refine_input(const SessionInput<2>& input, const std::optional<BoxTransform<2>>& box) {
+  if (input.rings.empty()) return std::nullopt;
+  const std::size_t n = input.points.size();
+  if (input.ring_offsets.size() != input.rings.rings.size())
+    throw InputError("session input: " + std::to_string(input.rings.rings.size()) + " rings but " +
+                     std::to_string(input.ring_offsets.size()) + " ring offsets");
+  std::vector<bool> on_ring(n, false);
+  for (std::size_t r = 0; r < input.rings.rings.size(); ++r) {
+    const auto& pts = input.rings.rings[r].points;
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      const std::size_t id = input.ring_offsets[r] + k;
+      if (id >= n || input.points[id] != pts[k] || on_ring[id])
+        throw InputError("session input: ring " + std::to_string(r + 1) + " vertex " + std::to_string(k + 1) +
+                         " is not input point " + std::to_string(id));
+      on_ring[id] = true;
+    }
+  }
+  std::vector<Point2> loose;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!on_ring[i]) loose.push_back(input.points[i]);
+  // No split below 2^-32 of the engine's box: the given one, or the one the engine fits to the input.
+  const double side = box ? box->side : BoxTransform<2>::fit(input.points).side;
+  return ShoreRefinement(input.rings, loose, RefinementRule::for_box(side));
 }
 
 template <int D>
@@ -278,31 +298,16 @@ ShoreSession<D>::ShoreSession(const SessionInput<D>& input, const Options& optio
   const std::size_t n = input.points.size();
   if constexpr (D == 2) {
     if (!input.rings.empty()) {
-      if (input.ring_offsets.size() != input.rings.rings.size())
-        throw InputError("session input: " + std::to_string(input.rings.rings.size()) + " rings but " +
-                         std::to_string(input.ring_offsets.size()) + " ring offsets");
       if (const auto defect = find_ring_defect(input.rings)) throw InputError("invalid rings: " + defect->describe());
-      std::vector<bool> on_ring(n, false);
+      m.refinement = refine_input(input, options.box);  // checks that the ring offsets name the rings' points
       for (std::size_t r = 0; r < input.rings.rings.size(); ++r) {
         std::vector<std::size_t> ids;
-        const auto& pts = input.rings.rings[r].points;
-        for (std::size_t k = 0; k < pts.size(); ++k) {
-          const std::size_t id = input.ring_offsets[r] + k;
-          if (id >= n || input.points[id] != pts[k] || on_ring[id])
-            throw InputError("session input: ring " + std::to_string(r + 1) + " vertex " + std::to_string(k + 1) +
-                             " is not input point " + std::to_string(id));
-          on_ring[id] = true;
-          ids.push_back(id);
-          m.ring_of[id] = {r, k};
+        for (std::size_t k = 0; k < input.rings.rings[r].points.size(); ++k) {
+          ids.push_back(input.ring_offsets[r] + k);
+          m.ring_of[ids.back()] = {r, k};
         }
         m.ring_ids.push_back(std::move(ids));
       }
-      std::vector<Point2> loose;
-      for (std::size_t i = 0; i < n; ++i)
-        if (!on_ring[i]) loose.push_back(input.points[i]);
-      // No split below 2^-32 of the engine's box: the given one, or the one the engine fits to the input.
-      const double side = options.box ? options.box->side : BoxTransform<2>::fit(input.points).side;
-      m.refinement = refine_shore(input.rings, loose, side);
       m.ring_index.emplace(input.rings);
     }
   }

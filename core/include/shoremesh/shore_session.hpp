@@ -39,8 +39,10 @@ struct SessionInput {
 template <int D>
 Parameters<D> session_parameters(double rho);
 
-// The shore's canonical splits of `rings` for the engine's box of side `box_side`; nullopt without rings.
-std::optional<ShoreRefinement> refine_shore(const Domain2& rings, std::span<const Point2> loose, double box_side);
+// The shore's canonical splits of a 2D input's rings (valid ones) for the engine's box: the given one, or
+// the one the engine fits to the input points; nullopt without rings. InputError when the ring offsets do
+// not name the rings' points.
+std::optional<ShoreRefinement> refine_input(const SessionInput<2>& input, const std::optional<BoxTransform<2>>& box);
 
 // The mesh of `points` (the first `input_count` are input points): with rings, every segment of `domain`
 // is a constraint and the mesh is all of the water (not clipped to the box: the box is fitted to the
