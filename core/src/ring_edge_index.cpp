@@ -61,10 +61,11 @@ std::size_t edge_index(const std::vector<Point2>& ring, const Point2& a, const P
 struct RingEdgeIndex::Tree {
   bgi::rtree<Entry, bgi::quadratic<16>> rtree;
 
-  // Among the indexed edges meeting edge e of ring `ring` in `rings` (other than e itself and its two
-  // neighbours), the first in (ring, edge) order.
-  std::optional<std::pair<std::size_t, std::size_t>> first_met(const Domain2& rings, std::size_t ring,
-                                                               std::size_t e) const {
+  // Among the indexed edges meeting edge e of ring `ring` in `rings` (other than e itself, its two
+  // neighbours and those `skip` names), the first in (ring, edge) order.
+  template <class Skip = bool (*)(const IndexedEdge&)>
+  std::optional<std::pair<std::size_t, std::size_t>> first_met(const Domain2& rings, std::size_t ring, std::size_t e,
+                                                               Skip skip = [](const IndexedEdge&) { return false; }) const {
     const auto& pts = rings.rings[ring].points;
     const std::size_t n = pts.size();
     const Point2 &a = pts[e], &b = pts[(e + 1) % n];
@@ -73,6 +74,7 @@ struct RingEdgeIndex::Tree {
     rtree.query(bgi::intersects(box_of(a, b)), std::back_inserter(near));
     std::optional<std::pair<std::size_t, std::size_t>> first;
     for (const auto& [box, f] : near) {
+      if (skip(f)) continue;
       if (f.ring == ring && ((f.a == a && f.b == b) || (f.a == prev && f.b == a) || (f.a == b && f.b == next)))
         continue;  // itself, its neighbours
       if (!detail::segments_meet(a, b, f.a, f.b)) continue;
@@ -131,23 +133,9 @@ std::optional<RingDefect> RingEdgeIndex::defect_at(const Domain2& after, const R
     if (f.ring != ring) return false;
     return insert ? f.a == split_a && f.b == split_b : f.a == edit.gone || f.b == edit.gone;
   };
-  std::vector<Entry> near;
-  for (const std::size_t e : {before, vertex}) {
-    const Point2 &a = pts[e], &b = pts[(e + 1) % n];
-    const Point2 &prev = pts[(e + n - 1) % n], &next = pts[(e + 2) % n];
-    near.clear();
-    tree_->rtree.query(bgi::intersects(box_of(a, b)), std::back_inserter(near));
-    std::optional<std::pair<std::size_t, std::size_t>> first;
-    for (const auto& [box, f] : near) {
-      if (taken_away(f)) continue;
-      if (f.ring == ring && ((f.a == a && f.b == b) || (f.a == prev && f.b == a) || (f.a == b && f.b == next)))
-        continue;  // itself, its neighbours
-      if (!detail::segments_meet(a, b, f.a, f.b)) continue;
-      const std::pair<std::size_t, std::size_t> at{f.ring, edge_index(after.rings.at(f.ring).points, f.a, f.b)};
-      if (!first || at < *first) first = at;
-    }
-    if (first) return detail::crossing(ring, e, first->first, first->second);
-  }
+  for (const std::size_t e : {before, vertex})
+    if (const auto first = tree_->first_met(after, ring, e, taken_away))
+      return detail::crossing(ring, e, first->first, first->second);
   return std::nullopt;
 }
 
