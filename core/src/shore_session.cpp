@@ -142,7 +142,7 @@ struct ShoreSession<D>::Impl {
       if (it == ring_of.end()) return std::nullopt;
       const auto [r, k] = it->second;
       const Domain2& now = refinement->rings();
-      RingChange change{now, RingVertexEdit{kind, r, k, now.rings[r].points[k]}, r};
+      RingChange change{now, RingVertexEdit{kind, r, k, now.rings[r].points[k]}, r, {}};
       auto& ring = change.domain.rings[r].points;
       // The rings were valid before: only the edges at the changed vertex (or across the gap the removed
       // one leaves, from the vertex before it) are new, and only they need a look (the ring index).
