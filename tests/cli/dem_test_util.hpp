@@ -110,8 +110,11 @@ inline void expect_boundary_listed_once(const Fort14& f) {
     }
   EXPECT_EQ(neta, f.neta);
   EXPECT_EQ(nvel, f.nvel);
-  for (const auto& [edge, n] : uses)
-    if (n == 1) EXPECT_EQ(listed[edge], 1) << "boundary edge " << edge.first << "-" << edge.second;
+  for (const auto& [edge, n] : uses) {
+    if (n == 1) {
+      EXPECT_EQ(listed[edge], 1) << "boundary edge " << edge.first << "-" << edge.second;
+    }
+  }
   for (const auto& [edge, n] : listed) EXPECT_EQ(uses[edge], 1) << "listed edge is not a boundary edge";
 }
 
