@@ -128,13 +128,13 @@ struct ShoreSession<D>::Impl {
   }
   void refuse_shared_end(std::size_t id, const std::string& what) const {
     if (shared_end(id))
-      throw InputError(what + ": input point " + std::to_string(id) + " is where line " +
+      throw InputError(what + " is refused: input point " + std::to_string(id) + " is where line " +
                        std::to_string(lines_at.at(id).front() + 1) + " ends on its ring; remove the line first");
   }
   // Rings share a vertex only where a line ends on a closed ring: a new vertex at another vertex is refused.
   void refuse_vertex_at(const Point2& p, const std::string& what) const {
     if (ring_index->has_vertex(p))
-      throw InputError(what + ": the point (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) +
+      throw InputError(what + " would break the shoreline: the point (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) +
                        ") is a vertex of a ring or line already (rings and lines share a vertex only where a line "
                        "ends on a ring)");
   }
@@ -168,8 +168,11 @@ struct ShoreSession<D>::Impl {
       if (it == ring_of.end()) return std::nullopt;
       const auto [r, k] = it->second;
       const Domain2& now = refinement->rings();
-      if (kind == Kind::Remove || kind == Kind::Move) refuse_shared_end(id, kind == Kind::Move ? "moving it" : "removing it");
-      if (kind != Kind::Remove && p != now.rings[r].points[k]) refuse_vertex_at(p, "the edit");
+      const std::string what = kind == Kind::Move     ? "moving input point " + std::to_string(id)
+                               : kind == Kind::Insert ? "adding a point after input point " + std::to_string(id)
+                                                      : "removing input point " + std::to_string(id);
+      if (kind == Kind::Remove || kind == Kind::Move) refuse_shared_end(id, what);
+      if (kind != Kind::Remove && p != now.rings[r].points[k]) refuse_vertex_at(p, what);
       RingChange change{now, RingVertexEdit{kind, r, k, now.rings[r].points[k]}, r};
       auto& ring = change.domain.rings[r].points;
       // The rings were valid before: only the edges at the changed vertex (or across the gap the removed
@@ -198,12 +201,7 @@ struct ShoreSession<D>::Impl {
         defect = ring_index->defect_of_new_ring(change.domain, r);
         ring_index->insert_ring(r, now.rings[r]);
       }
-      if (defect) {
-        const std::string what = kind == Kind::Move     ? "moving input point " + std::to_string(id)
-                                 : kind == Kind::Insert ? "adding a point after input point " + std::to_string(id)
-                                                        : "removing input point " + std::to_string(id);
-        throw InputError(what + " would break the shoreline: " + defect->describe());
-      }
+      if (defect) throw InputError(what + " would break the shoreline: " + defect->describe());
       return change;
     }
   }

@@ -198,6 +198,29 @@ FreshRun fresh_run(const SessionInput<2>& in, const BoxTransform<2>& box) {
   return {Mesh2(ws.points, ws.input_count, refined), refined};
 }
 
+// After edit `made`: whether the session's mesh equals a fresh run on its current input, triangle for
+// triangle; with `full`, also valid and conforming (checked from its elements).
+bool equals_a_fresh_run(const ShoreSession<2>& session, int made, bool full) {
+  const SessionInput<2> now = session.current_input();
+  const FreshRun fresh = fresh_run(now, session.box());
+  const bool equal = mesh_test::corner_list(session.mesh()) == mesh_test::corner_list(fresh.mesh);
+  EXPECT_TRUE(equal) << "after edit " << made;
+  if (full) {
+    session.mesh().check_valid();
+    check_conforming(session.mesh(), now.rings, fresh.refined, "after edit " + std::to_string(made));
+    EXPECT_TRUE(session.shoreline().conforming());
+  }
+  return equal;
+}
+
+// A jetty from shore point a: three segments of about `step` toward angle t, a little zigzag.
+std::vector<Point2> jetty_from(const Point2& a, double t, double step) {
+  std::vector<Point2> jetty{a};
+  for (int i = 1; i < 4; ++i)
+    jetty.push_back({a[0] + step * i * std::cos(t) + (i % 2 ? 0.3 * step : 0), a[1] + step * i * std::sin(t)});
+  return jetty;
+}
+
 SessionInput<2> session_input(const Domain2& rings) {
   SessionInput<2> in;
   in.rings = rings;
@@ -276,10 +299,7 @@ TEST(ConformingMesh, RandomEditsThroughTheLibrarySessionOnSuperiorEqualAFreshRun
         ASSERT_TRUE(id);
         const Point2 a = session.input_point(*id);
         const double t = 6.283185307179586 * u(rng), step = 300 + 600 * u(rng);
-        std::vector<Point2> jetty{a};
-        for (int i = 1; i < 4; ++i)
-          jetty.push_back({a[0] + step * i * std::cos(t) + (i % 2 ? 0.3 * step : 0), a[1] + step * i * std::sin(t)});
-        session.add_ring(jetty, /*line=*/true);
+        session.add_ring(jetty_from(a, t, step), /*line=*/true);
         ++jetty_adds;
       } else if (what < 0.95) {  // an island: a small hexagon a little off a shore point
         const auto id = ring_vertex();
@@ -307,14 +327,7 @@ TEST(ConformingMesh, RandomEditsThroughTheLibrarySessionOnSuperiorEqualAFreshRun
       continue;
     }
     ++made;
-    const SessionInput<2> now = session.current_input();
-    const FreshRun fresh = fresh_run(now, session.box());
-    ASSERT_EQ(mesh_test::corner_list(session.mesh()), mesh_test::corner_list(fresh.mesh)) << "after edit " << made;
-    if (made % 25 == 0 || made == edits) {
-      session.mesh().check_valid();
-      check_conforming(session.mesh(), now.rings, fresh.refined, "after edit " + std::to_string(made));
-      EXPECT_TRUE(session.shoreline().conforming());
-    }
+    ASSERT_TRUE(equals_a_fresh_run(session, made, made % 25 == 0 || made == edits));
   }
   EXPECT_EQ(made, edits);
   // The mix the test is for: every kind of edit happened.
@@ -371,10 +384,7 @@ TEST(ConformingMesh, JettiesThroughRandomEditsEqualAFreshRun) {
         ASSERT_TRUE(id);
         const Point2 a = session.input_point(*id);
         const double t = 6.283185307179586 * u(rng), step = 40 + 60 * u(rng);
-        std::vector<Point2> jetty{a};
-        for (int i = 1; i < 4; ++i)
-          jetty.push_back({a[0] + step * i * std::cos(t) + (i % 2 ? 0.3 * step : 0), a[1] + step * i * std::sin(t)});
-        session.add_ring(jetty, /*line=*/true);
+        session.add_ring(jetty_from(a, t, step), /*line=*/true);
         closed_ring.push_back(false);
         roots.push_back(*id);
         ++jetties;
@@ -424,14 +434,7 @@ TEST(ConformingMesh, JettiesThroughRandomEditsEqualAFreshRun) {
       continue;
     }
     ++made;
-    const SessionInput<2> now = session.current_input();
-    const FreshRun fresh = fresh_run(now, session.box());
-    ASSERT_EQ(mesh_test::corner_list(session.mesh()), mesh_test::corner_list(fresh.mesh)) << "after edit " << made;
-    if (made % 10 == 0) {
-      session.mesh().check_valid();
-      check_conforming(session.mesh(), now.rings, fresh.refined, "after edit " + std::to_string(made));
-      EXPECT_TRUE(session.shoreline().conforming());
-    }
+    ASSERT_TRUE(equals_a_fresh_run(session, made, made % 10 == 0));
   }
   EXPECT_GE(made, 120);
   EXPECT_GT(jetties, 10);
