@@ -49,7 +49,8 @@ int main() {
   SessionInput<2> input;
   const std::vector<std::vector<Point2>> rings{polygon({0, 0}, 1000, 48, 0.1), polygon({250, 100}, 150, 12, 0)};
   for (std::size_t r = 0; r < rings.size(); ++r) {
-    input.ring_offsets.push_back(input.points.size());
+    input.ring_ids.emplace_back();
+    for (std::size_t k = 0; k < rings[r].size(); ++k) input.ring_ids.back().push_back(input.points.size() + k);
     input.points.insert(input.points.end(), rings[r].begin(), rings[r].end());
     input.rings.rings.push_back({rings[r], r == 0 ? RingRole::Shore : RingRole::Island});
   }

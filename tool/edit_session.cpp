@@ -435,9 +435,16 @@ std::string reply_text(const json& r) {
            (r.contains("after") ? " to ring " + count(r, "ring") + " after id " + count(r, "after") : std::string()) +
            change();
   if (op == "remove") return line + "removed id " + count(r, "id") + change();
+  // A run of new ids as a range; otherwise (a line's end shared with a ring keeps the ring's id) each.
   auto id_range = [&] {
     const auto& ids = r["ids"];
-    return ids.empty() ? std::string() : ", ids " + ids.front().dump() + ".." + ids.back().dump();
+    if (ids.empty()) return std::string();
+    bool run = true;
+    for (std::size_t k = 1; k < ids.size(); ++k) run = run && ids[k].get<long long>() == ids[k - 1].get<long long>() + 1;
+    if (run) return ", ids " + ids.front().dump() + ".." + ids.back().dump();
+    std::string each;
+    for (const auto& id : ids) each += (each.empty() ? "" : " ") + id.dump();
+    return ", ids " + each;
   };
   if (op == "add-ring" || op == "add-line")
     return line + "added ring " + count(r, "ring") + " (" + r.value("role", "") + ", " + count(r, "points") + " points" +

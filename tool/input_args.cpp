@@ -109,6 +109,9 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
                     "GPS tracks: a walk that ends within this many metres of its start is a shore ring (default: "
                     "twice the spacing, at least 25 m; 0: every walk stays loose points)")
       ->check(above_zero(false));
+  group->add_flag("--gps-open-lines", a.gps_open_lines,
+                  "GPS tracks: a walk that does not close is a constraint line (a chain of mesh edges in the water: a "
+                  "breakwater, a channel's edge, a survey line), not loose points");
   group->add_flag("--lonlat", a.lonlat, "Point and ring files hold lon,lat degrees (projected to metres)");
   group->add_option("--projection", a.projection,
                     "Projection of lon/lat input, and of projected input whose scale leaves 0.1 % of 1 over the "
@@ -206,6 +209,7 @@ io::InputOptions input_options(const InputArgs& a) {
   if (!a.map_box.empty()) o.image.georeference.box = io::MapBox{a.map_box[0], a.map_box[1], a.map_box[2], a.map_box[3]};
   o.image.georeference.crs = a.crs;
   if (a.track_close_distance) o.track.close_tolerance = *a.track_close_distance;
+  o.track.open_lines = a.gps_open_lines;
   if (a.spacing) {
     o.image.spacing = *a.spacing;
     o.image.spacing_unit = io::ImageTraceOptions::SpacingUnit::Map;

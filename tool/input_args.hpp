@@ -27,6 +27,7 @@ struct InputArgs {
   std::vector<double> map_box;     // images: XMIN YMIN XMAX YMAX of the image's outer edges
   std::string crs;                 // images: coordinate system of --map-box (or of a world file without .prj)
   std::optional<double> track_close_distance;  // GPS walks ending this near their start become rings
+  bool gps_open_lines = false;                 // open GPS walks become constraint lines
   bool lonlat = false;
   std::string projection = "local";  // local | utm
   std::string dem;                 // a DEM traced at shoreline_level, and the depth source

@@ -2,8 +2,13 @@
 
 #include <algorithm>
 #include <cctype>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
 #include "shoremesh/error.hpp"
 #include "shoremesh/io/dem.hpp"
@@ -14,6 +19,14 @@
 #include "shoremesh/shore_session.hpp"
 
 namespace shoremesh::tool {
+
+namespace {
+struct PointKey {
+  std::size_t operator()(const Point2& p) const {
+    return std::hash<double>{}(p[0] + 0.0) * 0x9E3779B97F4A7C15ull ^ std::hash<double>{}(p[1] + 0.0);
+  }
+};
+}  // namespace
 
 template <int D>
 std::optional<BoxTransform<D>> parse_box(const std::vector<double>& numbers) {
@@ -81,7 +94,7 @@ SessionInput<D> session_input(const io::InputSet& set) {
   in.points = input_points<D>(set);
   if constexpr (D == 2) {
     in.rings = set.domain;
-    in.ring_offsets = set.ring_offsets;
+    in.ring_ids = set.ring_ids;
   }
   return in;
 }
@@ -228,6 +241,43 @@ QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransfo
           hides = hides || std::hypot(p[0] - shape.circumcentre[0], p[1] - shape.circumcentre[1]) < radius * (1 - 1e-9);
         ++(hides ? q.shore_below_bound : q.interior_below_bound);
       }
+      // Each ring vertex's water angle: the sum of its triangles' angles there.
+      std::unordered_map<Point2, double, PointKey> ring_angle;
+      for (const Ring& ring : mesh.domain().rings)
+        for (const Point2& p : ring.points) ring_angle.emplace(p, 0.0);
+      auto angles_of = [](const ElementCorners<2>& c) {
+        std::array<double, 3> a{};
+        for (std::size_t i = 0; i < 3; ++i) {
+          const Point2 &p = c[i], &u = c[(i + 1) % 3], &w = c[(i + 2) % 3];
+          a[i] = std::atan2(std::abs((u[0] - p[0]) * (w[1] - p[1]) - (u[1] - p[1]) * (w[0] - p[0])),
+                            (u[0] - p[0]) * (w[0] - p[0]) + (u[1] - p[1]) * (w[1] - p[1]));
+        }
+        return a;
+      };
+      for (const auto& e : elements) {
+        const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
+        const auto a = angles_of(c);
+        for (std::size_t i = 0; i < 3; ++i)
+          if (const auto it = ring_angle.find(c[i]); it != ring_angle.end()) it->second += a[i];
+      }
+      const double sixty = std::numbers::pi / 3 * (1 - 1e-9);
+      auto sharp = [&](const Point2& p) {
+        const auto it = ring_angle.find(p);
+        return it != ring_angle.end() && it->second > 0 && it->second < sixty;
+      };
+      for (const auto& [p, angle] : ring_angle) q.sharp_corners += angle > 0 && angle < sixty;
+      double worst_elsewhere = std::numeric_limits<double>::infinity();
+      for (const auto& e : elements) {
+        const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
+        const ElementShape<2> shape = element_shape<2>(c);
+        if (shape.radius_edge <= rho) continue;
+        if (sharp(c[0]) || sharp(c[1]) || sharp(c[2])) {
+          ++q.below_bound_at_sharp_corners;
+        } else if (const auto a = angles_of(c); *std::min_element(a.begin(), a.end()) < worst_elsewhere) {
+          worst_elsewhere = *std::min_element(a.begin(), a.end());
+          q.worst_elsewhere_at = frame.point(shape.centroid);
+        }
+      }
       const ShorelineReport s = mesh.shoreline_crossings();
       q.shore_segments = s.segments;
       q.shore_covered = s.covered;
@@ -272,6 +322,13 @@ std::string quality_text(const QualityNumbers& q, int dimension) {
           << " below the bound are made by the shore's constraints (a point across the shore lies in their "
              "circumcircle); others below the bound: "
           << q.interior_below_bound;
+    if (const std::size_t below = q.shore_below_bound + q.interior_below_bound) {
+      out << "\n  below the bound: " << below << " triangles, " << q.below_bound_at_sharp_corners
+          << " of them at an input corner sharper than 60 deg (" << q.sharp_corners
+          << " such corners: the exception every quality mesher documents), " << below - q.below_bound_at_sharp_corners
+          << " elsewhere";
+      if (!q.worst_elsewhere_at.empty()) out << " (the worst near " << q.worst_elsewhere_at << ")";
+    }
     out << "\n";
   }
   return out.str();

@@ -26,15 +26,15 @@ std::string RingDefect::describe() const {
   return {};
 }
 
-std::optional<RingDefect> find_ring_defect(const Domain2& domain) {
+std::optional<RingDefect> find_ring_defect(const Domain2& domain, bool shared_vertices) {
   for (std::size_t r = 0; r < domain.rings.size(); ++r)
     if (auto d = detail::local_ring_defect(domain.rings[r], r)) return d;
   const RingEdgeIndex index(domain);
-  if (auto d = index.first_crossing(domain)) return d;
+  if (auto d = index.first_crossing(domain, shared_vertices)) return d;
   const bool water = std::any_of(domain.rings.begin(), domain.rings.end(),
                                  [](const Ring& r) { return r.closed() && !r.points.empty(); });
   for (std::size_t r = 0; water && r < domain.rings.size(); ++r)
-    if (!domain.rings[r].closed() && !index.inside(domain.rings[r].points.front()))
+    if (!domain.rings[r].closed() && !index.inside(index.line_probe(domain.rings[r])))
       return RingDefect{RingDefect::Kind::LineOnLand, r, 0, r, 0};
   return std::nullopt;
 }

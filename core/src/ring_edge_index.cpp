@@ -62,10 +62,12 @@ struct RingEdgeIndex::Tree {
   bgi::rtree<Entry, bgi::quadratic<16>> rtree;
 
   // Among the indexed edges meeting edge e of ring `ring` in `rings` (other than e itself, its two
-  // neighbours and those `skip` names), the first in (ring, edge) order.
+  // neighbours and those `skip` names), the first in (ring, edge) order. `shared_vertices`: edges that
+  // have a common end meet only where they fold onto one another.
   template <class Skip = bool (*)(const IndexedEdge&)>
   std::optional<std::pair<std::size_t, std::size_t>> first_met(const Domain2& rings, std::size_t ring, std::size_t e,
-                                                               Skip skip = [](const IndexedEdge&) { return false; }) const {
+                                                               Skip skip = [](const IndexedEdge&) { return false; },
+                                                               bool shared_vertices = false) const {
     const auto& pts = rings.rings[ring].points;
     const std::size_t n = pts.size();
     const Point2 &a = pts[e], &b = pts[(e + 1) % n];
@@ -77,7 +79,7 @@ struct RingEdgeIndex::Tree {
       if (skip(f)) continue;
       if (f.ring == ring && ((f.a == a && f.b == b) || (f.a == prev && f.b == a) || (f.a == b && f.b == next)))
         continue;  // itself, its neighbours
-      if (!detail::segments_meet(a, b, f.a, f.b)) continue;
+      if (!(shared_vertices ? detail::edges_conflict(a, b, f.a, f.b) : detail::segments_meet(a, b, f.a, f.b))) continue;
       const std::pair<std::size_t, std::size_t> at{f.ring, edge_index(rings.rings.at(f.ring).points, f.a, f.b)};
       if (!first || at < *first) first = at;
     }
@@ -100,12 +102,13 @@ RingEdgeIndex& RingEdgeIndex::operator=(RingEdgeIndex&&) noexcept = default;
 
 std::size_t RingEdgeIndex::size() const { return tree_->rtree.size(); }
 
-std::optional<RingDefect> RingEdgeIndex::first_crossing(const Domain2& domain) const {
+std::optional<RingDefect> RingEdgeIndex::first_crossing(const Domain2& domain, bool shared_vertices) const {
   // The first edge in (ring, edge) order that meets another: its partner comes later in that order (an
   // earlier one would have been found at the partner).
   for (std::size_t r = 0; r < domain.rings.size(); ++r)
     for (std::size_t e = 0; e < domain.rings[r].segment_count(); ++e)
-      if (const auto f = tree_->first_met(domain, r, e)) return detail::crossing(r, e, f->first, f->second);
+      if (const auto f = tree_->first_met(domain, r, e, [](const IndexedEdge&) { return false; }, shared_vertices))
+        return detail::crossing(r, e, f->first, f->second);
   return std::nullopt;
 }
 
@@ -134,7 +137,7 @@ std::optional<RingDefect> RingEdgeIndex::defect_at(const Domain2& after, const R
     return insert ? f.a == split_a && f.b == split_b : f.a == edit.gone || f.b == edit.gone;
   };
   for (const std::size_t e : {before, vertex})
-    if (const auto first = tree_->first_met(after, ring, e, taken_away))
+    if (const auto first = tree_->first_met(after, ring, e, taken_away, true))
       return detail::crossing(ring, e, first->first, first->second);
   return std::nullopt;
 }
@@ -165,7 +168,7 @@ std::optional<RingDefect> RingEdgeIndex::defect_of_new_ring(const Domain2& after
   alone.rings[ring] = new_ring;
   std::optional<RingDefect> first = RingEdgeIndex(alone).first_crossing(alone);
   for (std::size_t e = 0; e < new_ring.segment_count(); ++e)
-    if (const auto f = tree_->first_met(after, ring, e)) {
+    if (const auto f = tree_->first_met(after, ring, e, [](const IndexedEdge&) { return false; }, true)) {
       const RingDefect d = detail::crossing(ring, e, f->first, f->second);
       if (!first || std::tie(d.ring_a, d.vertex_a, d.ring_b, d.vertex_b) <
                         std::tie(first->ring_a, first->vertex_a, first->ring_b, first->vertex_b))
@@ -182,7 +185,7 @@ std::optional<RingDefect> RingEdgeIndex::defect_of_new_ring(const Domain2& after
   // A line must lie in the water (when there is any).
   const bool water = std::any_of(after.rings.begin(), after.rings.end(),
                                  [](const Ring& r) { return r.closed() && !r.points.empty(); });
-  if (water && !inside(new_ring.points.front())) return RingDefect{RingDefect::Kind::LineOnLand, ring, 0, ring, 0};
+  if (water && !inside(line_probe(new_ring))) return RingDefect{RingDefect::Kind::LineOnLand, ring, 0, ring, 0};
   return std::nullopt;
 }
 
@@ -195,6 +198,19 @@ void RingEdgeIndex::erase_ring(std::size_t r, const Ring& ring) {
   const auto entries = ring_entries(r, ring);
   if (tree_->rtree.remove(entries.begin(), entries.end()) != entries.size())
     throw std::logic_error("ring edge index: a removed ring's edge was not indexed");
+}
+
+bool RingEdgeIndex::has_vertex(const Point2& p, bool closed_only) const {
+  for (auto it = tree_->rtree.qbegin(bgi::intersects(box_of(p, p))); it != tree_->rtree.qend(); ++it)
+    if ((it->second.a == p || it->second.b == p) && !(closed_only && it->second.line)) return true;
+  return false;
+}
+
+Point2 RingEdgeIndex::line_probe(const Ring& line) const {
+  for (const Point2& p : line.points)
+    if (!has_vertex(p, true)) return p;
+  const Point2 &a = line.points.at(0), &b = line.points.at(1);
+  return {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
 }
 
 bool RingEdgeIndex::inside(const Point2& p) const {

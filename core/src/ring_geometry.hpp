@@ -42,6 +42,19 @@ inline bool adjacent_edges_overlap(const Point2& a, const Point2& b, const Point
   return sa == sc && sa != 0;
 }
 
+// Edges ab and cd of the rings conflict: they share a point other than a common end. Rings and lines may
+// share a vertex (where they touch, a jetty's end on the shore, a .poly vertex where segments meet): edges
+// with one common end meet only there unless they fold onto one another; the same edge twice conflicts.
+inline bool edges_conflict(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
+  const bool ac = a == c, ad = a == d, bc = b == c, bd = b == d;
+  if ((ac && bd) || (ad && bc)) return true;
+  if (ac) return adjacent_edges_overlap(b, a, d);
+  if (ad) return adjacent_edges_overlap(b, a, c);
+  if (bc) return adjacent_edges_overlap(a, b, d);
+  if (bd) return adjacent_edges_overlap(a, b, c);
+  return segments_meet(a, b, c, d);
+}
+
 // Edges i and j of a ring of n vertices follow one another (they share a vertex by construction).
 inline bool consecutive_edges(std::size_t i, std::size_t j, std::size_t n) { return (i + 1) % n == j || (j + 1) % n == i; }
 

@@ -88,7 +88,9 @@ struct ShoreRefinement::Impl {
   std::vector<Edge> edges;
   std::vector<std::uint32_t> free_edges;
   std::unordered_map<EdgeKey, std::uint32_t, EdgeKeyHash> edge_of;
-  std::unordered_map<Point2, Neighbours, PointHash> ring_vertex;  // a ring vertex's neighbours on its ring
+  // A ring vertex's neighbours on each ring through it (several where rings share a vertex: a .poly's
+  // segments meeting there, a line ending on a shore), by ring number. A shared vertex is one point.
+  std::unordered_map<Point2, std::vector<std::pair<std::size_t, Neighbours>>, PointHash> ring_vertex;
   std::unordered_map<Point2, std::uint32_t, PointHash> split_owner;  // a split point's edge
   PointTree points;  // every input point: ring vertices, loose points, split points
   DiskTree disks;    // every subsegment (leaf or split) with the box of its test disk
@@ -120,8 +122,10 @@ struct ShoreRefinement::Impl {
       const Edge& e = edges[it->second];
       f(e.a, e.b);
     } else if (auto v = ring_vertex.find(q); v != ring_vertex.end()) {
-      f(q, v->second.prev);
-      f(q, v->second.next);
+      for (const auto& [ring, n] : v->second) {
+        f(q, n.prev);
+        f(q, n.next);
+      }
     }
   }
 
@@ -183,9 +187,24 @@ struct ShoreRefinement::Impl {
     }
   }
 
+  bool has_point(const Point2& p) const {
+    for (auto it = points.qbegin(bgi::intersects(bpoint(p))); it != points.qend(); ++it)
+      if (point_of(*it) == p) return true;
+    return false;
+  }
+
+  // A point that is there already (a vertex another ring shares) is one point.
   void add_point(const Point2& p, std::vector<Node>& work) {
-    points.insert(bpoint(p));
+    if (!has_point(p)) points.insert(bpoint(p));
     leaves_near(p, work);
+  }
+
+  // Ring r no longer has vertex p (its other rings keep it).
+  void drop_ring_vertex(std::size_t r, const Point2& p) {
+    const auto it = ring_vertex.find(p);
+    if (it == ring_vertex.end()) return;
+    std::erase_if(it->second, [&](const auto& e) { return e.first == r; });
+    if (it->second.empty()) ring_vertex.erase(it);
   }
 
   // Applies the rule until no leaf is encroached (the least fixed point from the current state).
@@ -263,23 +282,31 @@ struct ShoreRefinement::Impl {
 
   // A line's ends have one neighbour: the other is the point itself (an edge of no length, which
   // excludes nothing in may_encroach).
-  void add_ring_vertices(const Ring& ring, std::size_t first, std::size_t count) {
+  void add_ring_vertices(std::size_t r, const Ring& ring, std::size_t first, std::size_t count) {
     const std::size_t n = ring.points.size();
     for (std::size_t j = first; j < first + count; ++j) {
       const std::size_t k = j % n;
       const bool open_start = !ring.closed() && k == 0, open_end = !ring.closed() && k + 1 == n;
-      ring_vertex[ring.points[k]] = {ring.points[open_start ? k : (k + n - 1) % n], ring.points[open_end ? k : (k + 1) % n]};
+      const Neighbours pair{ring.points[open_start ? k : (k + n - 1) % n], ring.points[open_end ? k : (k + 1) % n]};
+      drop_ring_vertex(r, ring.points[k]);
+      ring_vertex[ring.points[k]].emplace_back(r, pair);
     }
   }
 
   void build(std::span<const Point2> loose) {
-    std::vector<BPoint> all;
-    for (const Ring& ring : rings.rings) {
-      add_ring_vertices(ring, 0, ring.points.size());
-      for (const Point2& p : ring.points) all.push_back(bpoint(p));
+    std::vector<Point2> all;
+    for (std::size_t r = 0; r < rings.rings.size(); ++r) {
+      const Ring& ring = rings.rings[r];
+      add_ring_vertices(r, ring, 0, ring.points.size());
+      all.insert(all.end(), ring.points.begin(), ring.points.end());
     }
-    for (const Point2& p : loose) all.push_back(bpoint(p));
-    points = PointTree(all.begin(), all.end());  // packed bulk load
+    all.insert(all.end(), loose.begin(), loose.end());
+    std::sort(all.begin(), all.end());  // a vertex that rings share is one point
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    std::vector<BPoint> tree_points;
+    tree_points.reserve(all.size());
+    for (const Point2& p : all) tree_points.push_back(bpoint(p));
+    points = PointTree(tree_points.begin(), tree_points.end());  // packed bulk load
     std::vector<Node> work;
     for (const Ring& ring : rings.rings)
       for (std::size_t k = 0; k < ring.segment_count(); ++k) {
@@ -366,7 +393,7 @@ SplitChange ShoreRefinement::update(const Domain2& rings, std::span<const Point2
     if (o.empty() || n.empty() || line) {  // a ring came or went, or a line changed: all of its vertices and edges
       for (const Point2& p : o) {
         removed_points.push_back(p);
-        m.ring_vertex.erase(p);
+        m.drop_ring_vertex(r, p);
       }
       for (std::size_t k = 0; old_ring && k < old_ring->segment_count(); ++k) {
         const auto it = m.edge_of.find(edge_key(o[k], o[(k + 1) % o.size()]));
@@ -377,7 +404,7 @@ SplitChange ShoreRefinement::update(const Domain2& rings, std::span<const Point2
       added_points.insert(added_points.end(), n.begin(), n.end());
       for (std::size_t k = 0; new_ring && k < new_ring->segment_count(); ++k)
         if (n[k] != n[(k + 1) % n.size()]) new_edges.push_back(edge_key(n[k], n[(k + 1) % n.size()]));
-      if (!n.empty()) m.add_ring_vertices(rings.rings[r], 0, n.size());
+      if (!n.empty()) m.add_ring_vertices(r, rings.rings[r], 0, n.size());
       continue;
     }
     const std::size_t common = std::min(o.size(), n.size());
@@ -387,7 +414,7 @@ SplitChange ShoreRefinement::update(const Domain2& rings, std::span<const Point2
     // Changed vertices: o[prefix, o.size() - suffix) went, n[prefix, n.size() - suffix) came.
     for (std::size_t k = prefix; k < o.size() - suffix; ++k) {
       removed_points.push_back(o[k]);
-      m.ring_vertex.erase(o[k]);
+      m.drop_ring_vertex(r, o[k]);
     }
     for (std::size_t k = prefix; k < n.size() - suffix; ++k) added_points.push_back(n[k]);
     // Edges from vertex prefix - 2 to vertex size - suffix + 1 (cyclically), old and new.
@@ -409,7 +436,7 @@ SplitChange ShoreRefinement::update(const Domain2& rings, std::span<const Point2
     stretch_edges(n, [&](const Point2& p, const Point2& q) {
       if (p != q) new_edges.push_back(edge_key(p, q));
     });
-    m.add_ring_vertices(rings.rings[r], prefix + n.size() - 2, std::min(n.size(), n.size() - suffix - prefix + 4));
+    m.add_ring_vertices(r, rings.rings[r], prefix + n.size() - 2, std::min(n.size(), n.size() - suffix - prefix + 4));
   }
 
   // Edges whose subsegments (at any level) had a removed point in their test disk lose their splits too,
@@ -429,7 +456,10 @@ SplitChange ShoreRefinement::update(const Domain2& rings, std::span<const Point2
   }
 
   std::unordered_set<EdgeKey, EdgeKeyHash> keep(new_edges.begin(), new_edges.end());
-  for (const Point2& p : removed_points) m.points.remove(bpoint(p));
+  // A vertex that another ring keeps (a line's end on a shore) stays a point; the edges near it were
+  // reset all the same (its corners changed).
+  for (const Point2& p : removed_points)
+    if (!m.ring_vertex.count(p)) m.points.remove(bpoint(p));
   std::vector<Node> work;
   for (std::uint32_t i : dirty) {
     // An edge of an old stretch stays only when the new rings have it; the others are unchanged edges.

@@ -60,18 +60,21 @@ Parameters<D> session_parameters(double rho) {
 std::optional<ShoreRefinement> refine_input(const SessionInput<2>& input, const std::optional<BoxTransform<2>>& box) {
   if (input.rings.empty()) return std::nullopt;
   const std::size_t n = input.points.size();
-  if (input.ring_offsets.size() != input.rings.rings.size())
-    throw InputError("session input: " + std::to_string(input.rings.rings.size()) + " rings but " +
-                     std::to_string(input.ring_offsets.size()) + " ring offsets");
+  if (input.ring_ids.size() != input.rings.rings.size())
+    throw InputError("session input: " + std::to_string(input.rings.rings.size()) + " rings but ids for " +
+                     std::to_string(input.ring_ids.size()));
   std::vector<bool> on_ring(n, false);
   for (std::size_t r = 0; r < input.rings.rings.size(); ++r) {
     const auto& pts = input.rings.rings[r].points;
+    if (input.ring_ids[r].size() != pts.size())
+      throw InputError("session input: ring " + std::to_string(r + 1) + " has " + std::to_string(pts.size()) +
+                       " points but " + std::to_string(input.ring_ids[r].size()) + " ids");
     for (std::size_t k = 0; k < pts.size(); ++k) {
-      const std::size_t id = input.ring_offsets[r] + k;
-      if (id >= n || input.points[id] != pts[k] || on_ring[id])
+      const std::size_t id = input.ring_ids[r][k];
+      if (id >= n || input.points[id] != pts[k])
         throw InputError("session input: ring " + std::to_string(r + 1) + " vertex " + std::to_string(k + 1) +
                          " is not input point " + std::to_string(id));
-      on_ring[id] = true;
+      on_ring[id] = true;  // a vertex that rings share is one input point
     }
   }
   std::vector<Point2> loose;
@@ -109,9 +112,32 @@ struct ShoreSession<D>::Impl {
   std::optional<RingEdgeIndex> ring_index;  // the edges of the user's rings
   std::vector<std::vector<std::size_t>> ring_ids;  // ring r's vertices as input ids (empty: removed)
   std::unordered_map<std::size_t, std::pair<std::size_t, std::size_t>> ring_of;  // id -> (ring, position)
+  // A line may end on a closed ring's vertex (a jetty on the shore): that vertex is one input point, on
+  // both; ring_of names the closed ring. The closed rings' vertices by point, to find it; the lines ending
+  // at a vertex, by its id (it can be neither moved nor removed while one does).
+  std::unordered_map<Point2, std::size_t, ExactHash> vertex_id;
+  std::unordered_map<std::size_t, std::vector<std::size_t>> lines_at;
   std::optional<Mesh<D>> mesh;
 
   std::size_t engine_id(std::size_t id) const { return engine_of_user.at(id); }
+
+  // A line's end shared with a closed ring (id `id`), or nothing.
+  bool shared_end(std::size_t id) const {
+    const auto it = lines_at.find(id);
+    return it != lines_at.end() && !it->second.empty();
+  }
+  void refuse_shared_end(std::size_t id, const std::string& what) const {
+    if (shared_end(id))
+      throw InputError(what + " is refused: input point " + std::to_string(id) + " is where line " +
+                       std::to_string(lines_at.at(id).front() + 1) + " ends on its ring; remove the line first");
+  }
+  // Rings share a vertex only where a line ends on a closed ring: a new vertex at another vertex is refused.
+  void refuse_vertex_at(const Point2& p, const std::string& what) const {
+    if (ring_index->has_vertex(p))
+      throw InputError(what + " would break the shoreline: the point (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) +
+                       ") is a vertex of a ring or line already (rings and lines share a vertex only where a line "
+                       "ends on a ring)");
+  }
 
   // A change of the user's rings, checked, as the refinement, the index and the ids take it.
   struct RingChange {
@@ -142,6 +168,11 @@ struct ShoreSession<D>::Impl {
       if (it == ring_of.end()) return std::nullopt;
       const auto [r, k] = it->second;
       const Domain2& now = refinement->rings();
+      const std::string what = kind == Kind::Move     ? "moving input point " + std::to_string(id)
+                               : kind == Kind::Insert ? "adding a point after input point " + std::to_string(id)
+                                                      : "removing input point " + std::to_string(id);
+      if (kind == Kind::Remove || kind == Kind::Move) refuse_shared_end(id, what);
+      if (kind != Kind::Remove && p != now.rings[r].points[k]) refuse_vertex_at(p, what);
       RingChange change{now, RingVertexEdit{kind, r, k, now.rings[r].points[k]}, r, {}};
       auto& ring = change.domain.rings[r].points;
       // The rings were valid before: only the edges at the changed vertex (or across the gap the removed
@@ -170,12 +201,7 @@ struct ShoreSession<D>::Impl {
         defect = ring_index->defect_of_new_ring(change.domain, r);
         ring_index->insert_ring(r, now.rings[r]);
       }
-      if (defect) {
-        const std::string what = kind == Kind::Move     ? "moving input point " + std::to_string(id)
-                                 : kind == Kind::Insert ? "adding a point after input point " + std::to_string(id)
-                                                        : "removing input point " + std::to_string(id);
-        throw InputError(what + " would break the shoreline: " + defect->describe());
-      }
+      if (defect) throw InputError(what + " would break the shoreline: " + defect->describe());
       return change;
     }
   }
@@ -186,18 +212,22 @@ struct ShoreSession<D>::Impl {
     using Kind = RingVertexEdit::Kind;
     const std::size_t r = change.ring;
     auto& ids = ring_ids[r];
+    const bool closed = change.domain.rings[r].closed();
     std::size_t first = 0;  // the ids from here on changed position
     if (kind == Kind::Insert) {
       first = ring_of.at(after_id).second + 1;
       ids.insert(ids.begin() + static_cast<std::ptrdiff_t>(first), id);
+      if (closed) vertex_id[change.domain.rings[r].points[first]] = id;
     } else if (kind == Kind::Remove) {
       first = ring_of.at(id).second;
       ring_of.erase(id);
       ids.erase(ids.begin() + static_cast<std::ptrdiff_t>(first));
+      if (closed) vertex_id.erase(change.edit->gone);
     } else {
       return;
     }
-    for (std::size_t j = first; j < ids.size(); ++j) ring_of[ids[j]] = {r, j};
+    for (std::size_t j = first; j < ids.size(); ++j)
+      if (closed || !shared_end(ids[j])) ring_of[ids[j]] = {r, j};
   }
 
   // Applies the user's edits of the engine's input (engine ids) together with what they do to the shore's
@@ -298,16 +328,36 @@ ShoreSession<D>::ShoreSession(const SessionInput<D>& input, const Options& optio
   const std::size_t n = input.points.size();
   if constexpr (D == 2) {
     if (!input.rings.empty()) {
-      if (const auto defect = find_ring_defect(input.rings)) throw InputError("invalid rings: " + defect->describe());
-      m.refinement = refine_input(input, options.box);  // checks that the ring offsets name the rings' points
-      for (std::size_t r = 0; r < input.rings.rings.size(); ++r) {
-        std::vector<std::size_t> ids;
-        for (std::size_t k = 0; k < input.rings.rings[r].points.size(); ++k) {
-          ids.push_back(input.ring_offsets[r] + k);
-          m.ring_of[ids.back()] = {r, k};
+      // Closed rings first: a line's end may be one of their vertices (a jetty); no other vertex is
+      // shared (one edit of it would change several rings at once, which the ring index, the splits'
+      // update and the mesh take one ring at a time).
+      if (input.ring_ids.size() != input.rings.rings.size())
+        throw InputError("session input: " + std::to_string(input.rings.rings.size()) + " rings but ids for " +
+                         std::to_string(input.ring_ids.size()));
+      m.ring_ids = input.ring_ids;
+      for (const bool lines : {false, true})
+        for (std::size_t r = 0; r < input.ring_ids.size(); ++r) {
+          const Ring& ring = input.rings.rings[r];
+          if (ring.closed() == lines) continue;
+          for (std::size_t k = 0; k < input.ring_ids[r].size(); ++k) {
+            const std::size_t id = input.ring_ids[r][k];
+            const auto it = m.ring_of.find(id);
+            if (it == m.ring_of.end()) {
+              m.ring_of[id] = {r, k};
+              if (!lines && k < ring.points.size()) m.vertex_id[ring.points[k]] = id;
+            } else if (lines && (k == 0 || k + 1 == ring.points.size()) &&
+                       input.rings.rings[it->second.first].closed()) {
+              m.lines_at[id].push_back(r);
+            } else {
+              throw InputError("input point " + std::to_string(id) + " is a vertex of ring " +
+                               std::to_string(it->second.first + 1) + " and of ring " + std::to_string(r + 1) +
+                               ": an edit session takes shared vertices only where a line ends on a ring");
+            }
+          }
         }
-        m.ring_ids.push_back(std::move(ids));
-      }
+      if (const auto defect = find_ring_defect(input.rings, !m.lines_at.empty()))
+        throw InputError("invalid rings: " + defect->describe());
+      m.refinement = refine_input(input, options.box);  // checks that the ring ids name the rings' points
       m.ring_index.emplace(input.rings);
     }
   }
@@ -390,6 +440,11 @@ SessionEdit<D> ShoreSession<D>::move(std::size_t id, const Point<D>& p) {
   if (rings) {
     out.ring = rings->ring;
     m.commit_index(*rings);
+    if constexpr (D == 2)
+      if (rings->domain.rings[rings->ring].closed()) {
+        m.vertex_id.erase(old);
+        m.vertex_id[p] = id;
+      }
   }
   m.update_mesh(std::move(removed), std::move(added), edit_start, start, out);
   return out;
@@ -426,27 +481,44 @@ SessionEdit<D> ShoreSession<D>::add_ring(std::span<const Point2> points, bool li
     throw InputError("rings are for 2D sessions");
   } else {
     if (!m.refinement) throw InputError("this session has no shoreline: a ring needs rings to join");
-    for (const Point2& p : points) m.check_in_box(p);
-    const auto edit_start = Clock::now();
     const std::size_t r = m.ring_ids.size();
+    const std::string what = std::string("the new ") + (line ? "line" : "ring") + " (ring " + std::to_string(r + 1) + ")";
+    // A line's end may be a closed ring's vertex (a jetty on the shore): that point is shared, not new.
+    std::vector<std::optional<std::size_t>> shared(points.size());
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      m.check_in_box(points[k]);
+      const bool end = line && (k == 0 || k + 1 == points.size());
+      if (const auto it = m.vertex_id.find(points[k]); end && it != m.vertex_id.end()) shared[k] = it->second;
+      else m.refuse_vertex_at(points[k], what);
+    }
+    const auto edit_start = Clock::now();
     Domain2 after = m.refinement->rings();
     after.rings.push_back({std::vector<Point2>(points.begin(), points.end()), line ? RingRole::Line : RingRole::Shore});
     if (const auto defect = m.ring_index->defect_of_new_ring(after, r))
-      throw InputError(std::string("the new ") + (line ? "line" : "ring") + " (ring " + std::to_string(r + 1) +
-                       ") would break the shoreline: " + defect->describe());
+      throw InputError(what + " would break the shoreline: " + defect->describe());
     // A ring's role from its nesting: inside an odd number of rings it bounds land (an island).
     if (!line) after.rings[r].role = m.ring_index->inside(points.front()) ? RingRole::Island : RingRole::Shore;
     SessionEdit<D> out;
     const auto start = Clock::now();
     std::vector<Edit<D>> edits;
-    for (const Point2& p : points) edits.push_back({Edit<D>::Kind::Add, 0, p});
-    std::vector<Point<D>> removed, added(points.begin(), points.end());
+    std::vector<Point<D>> removed, added;
+    for (std::size_t k = 0; k < points.size(); ++k)
+      if (!shared[k]) {
+        edits.push_back({Edit<D>::Kind::Add, 0, points[k]});
+        added.push_back(points[k]);
+      }
     const auto ids = m.apply_edits(std::move(edits), &after, {}, {}, removed, added, out.engine);
     std::vector<std::size_t> user_ids;
-    for (std::size_t k = 0; k < ids.size(); ++k) {
+    for (std::size_t k = 0, j = 0; k < points.size(); ++k) {
+      if (shared[k]) {
+        user_ids.push_back(*shared[k]);
+        m.lines_at[*shared[k]].push_back(r);
+        continue;
+      }
       const std::size_t id = m.engine_of_user.size();
-      m.engine_of_user.push_back(ids[k]);
+      m.engine_of_user.push_back(ids[j++]);
       m.ring_of[id] = {r, k};
+      if (!line) m.vertex_id[points[k]] = id;
       user_ids.push_back(id);
     }
     m.ring_ids.push_back(user_ids);
@@ -471,6 +543,8 @@ SessionEdit<D> ShoreSession<D>::remove_ring(std::size_t r) {
     if (m.ring_ids[r].empty()) throw InputError("ring " + std::to_string(r + 1) + " was removed");
     if (m.refinement->rings().rings[r].closed() && m.live_closed_rings() == 1)
       throw InputError("ring " + std::to_string(r + 1) + " is the last ring; without one the water is undefined");
+    if (m.refinement->rings().rings[r].closed())
+      for (std::size_t id : m.ring_ids[r]) m.refuse_shared_end(id, "removing ring " + std::to_string(r + 1));
     // The water flips inside a closed ring that goes: a line there would be left on land.
     if (m.refinement->rings().rings[r].closed())
       for (std::size_t l = 0; l < m.ring_ids.size(); ++l) {
@@ -488,13 +562,26 @@ SessionEdit<D> ShoreSession<D>::remove_ring(std::size_t r) {
     out.ring = r;
     out.id = m.ring_ids[r].front();
     const auto start = Clock::now();
+    // A line's end on a ring stays: it is the ring's vertex.
+    const bool closed = gone_ring.closed();
+    auto kept = [&](std::size_t id) { return !closed && m.ring_of.at(id).first != r; };
     std::vector<Edit<D>> edits;
-    for (std::size_t id : m.ring_ids[r]) edits.push_back({Edit<D>::Kind::Remove, m.engine_id(id), {}});
-    std::vector<Point<D>> removed(gone.begin(), gone.end()), added;
+    std::vector<Point<D>> removed, added;
+    for (std::size_t k = 0; k < gone.size(); ++k)
+      if (!kept(m.ring_ids[r][k])) {
+        edits.push_back({Edit<D>::Kind::Remove, m.engine_id(m.ring_ids[r][k]), {}});
+        removed.push_back(gone[k]);
+      }
     m.apply_edits(std::move(edits), &after, {}, {}, removed, added, out.engine);
-    for (std::size_t id : m.ring_ids[r]) {
+    for (std::size_t k = 0; k < gone.size(); ++k) {
+      const std::size_t id = m.ring_ids[r][k];
+      if (kept(id)) {
+        std::erase(m.lines_at.at(id), r);
+        continue;
+      }
       m.engine_of_user[id] = Impl::kRemoved;
       m.ring_of.erase(id);
+      if (closed) m.vertex_id.erase(gone[k]);
     }
     out.ring_ids = std::move(m.ring_ids[r]);
     m.ring_ids[r].clear();
@@ -602,15 +689,21 @@ SessionInput<D> ShoreSession<D>::current_input() const {
     if (m.refinement) {
       SessionInput<D> ringed;
       std::vector<bool> on_ring(m.engine_of_user.size(), false);
+      std::vector<std::size_t> placed(m.engine_of_user.size(), Impl::kRemoved);
       for (std::size_t r = 0; r < m.ring_ids.size(); ++r) {
         if (m.ring_ids[r].empty()) continue;
-        ringed.ring_offsets.push_back(ringed.points.size());
         Ring ring{{}, m.refinement->rings().rings[r].role};
+        std::vector<std::size_t> ids;
         for (std::size_t id : m.ring_ids[r]) {
-          on_ring[id] = true;
           ring.points.push_back(in.points[renumbered[id]]);
-          ringed.points.push_back(ring.points.back());
+          if (!on_ring[id]) {  // a line's end on a ring is one point, the ring's
+            on_ring[id] = true;
+            placed[id] = ringed.points.size();
+            ringed.points.push_back(ring.points.back());
+          }
+          ids.push_back(placed[id]);
         }
+        ringed.ring_ids.push_back(std::move(ids));
         ringed.rings.rings.push_back(std::move(ring));
       }
       for (std::size_t id = 0; id < m.engine_of_user.size(); ++id)

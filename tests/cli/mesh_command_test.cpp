@@ -11,6 +11,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "cli_test_util.hpp"
 #include "shoremesh/io/point_file.hpp"
@@ -373,6 +374,197 @@ TEST(MeshCommand, ExportedMeshHasTheShoreAsItsBoundaryAndTheRingsArea) {
   EXPECT_THAT(r.out, HasSubstr("shore segments are mesh edges (the shore is the mesh's boundary"));
   expect_conforming_export(read_triangle_files(dir / "letter.node"), letter,
                            ring_area(letter[0]) - ring_area(letter[1]), "letter A");
+}
+
+// A .poly as the test reads it (no code of the tool's): vertices, segments (0-based), hole seeds.
+struct Pslg {
+  std::vector<Point2> points;
+  std::vector<std::array<std::size_t, 2>> segments;
+  std::vector<Point2> holes;
+};
+
+Pslg read_pslg(const std::string& text) {
+  std::istringstream in;
+  std::string body;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) body += line.substr(0, line.find('#')) + "\n";
+  in.str(body);
+  Pslg g;
+  std::size_t n = 0, dim = 0, attributes = 0, markers = 0;
+  in >> n >> dim >> attributes >> markers;
+  long first = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    long id = 0;
+    Point2 p;
+    double skip = 0;
+    in >> id >> p[0] >> p[1];
+    for (std::size_t k = 0; k < attributes + markers; ++k) in >> skip;
+    if (i == 0) first = id;
+    g.points.push_back(p);
+  }
+  std::size_t m = 0;
+  in >> m >> markers;
+  for (std::size_t i = 0; i < m; ++i) {
+    long id = 0, a = 0, b = 0, marker = 0;
+    in >> id >> a >> b;
+    if (markers) in >> marker;
+    g.segments.push_back({std::size_t(a - first), std::size_t(b - first)});
+  }
+  std::size_t h = 0;
+  in >> h;
+  for (std::size_t i = 0; i < h; ++i) {
+    long id = 0;
+    Point2 p;
+    in >> id >> p[0] >> p[1];
+    g.holes.push_back(p);
+  }
+  return g;
+}
+
+bool in_polygon(const std::vector<Point2>& poly, const Point2& p) {
+  bool in = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    const Point2 &a = poly[j], &b = poly[i];
+    if ((a[1] > p[1]) != (b[1] > p[1]) && p[0] < a[0] + (p[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1])) in = !in;
+  }
+  return in;
+}
+
+double signed_area(const std::vector<Point2>& poly) {
+  double a = 0;
+  for (std::size_t k = 0; k < poly.size(); ++k)
+    a += 0.5 * (poly[k][0] * poly[(k + 1) % poly.size()][1] - poly[(k + 1) % poly.size()][0] * poly[k][1]);
+  return a;
+}
+
+// The water as Triangle's -p defines it, computed here on its own (floating point, for these small
+// inputs): the faces of the segments (walks that keep each face on their left, neighbours sorted by
+// angle); a face of positive area is bounded, and is water unless it holds a hole seed; a face of
+// negative area is a connected part's outside, water when the bounded face holding the part is. Returns
+// the water's area and the segments with water on at least one side.
+struct PslgWater {
+  double area = 0;
+  std::vector<std::vector<Point2>> wet_segments;
+};
+
+PslgWater pslg_water(const Pslg& g) {
+  std::map<std::size_t, std::vector<std::size_t>> around;
+  for (const auto& s : g.segments) around[s[0]].push_back(s[1]), around[s[1]].push_back(s[0]);
+  auto angle = [&](std::size_t v, std::size_t w) {
+    return std::atan2(g.points[w][1] - g.points[v][1], g.points[w][0] - g.points[v][0]);
+  };
+  for (auto& [v, ws] : around) std::sort(ws.begin(), ws.end(), [&](std::size_t a, std::size_t b) { return angle(v, a) < angle(v, b); });
+  std::map<std::pair<std::size_t, std::size_t>, std::size_t> face_of;
+  std::vector<std::vector<Point2>> faces;
+  for (const auto& s : g.segments)
+    for (auto [u, v] : {std::pair{s[0], s[1]}, std::pair{s[1], s[0]}}) {
+      if (face_of.count({u, v})) continue;
+      faces.emplace_back();
+      while (face_of.emplace(std::pair{u, v}, faces.size() - 1).second) {
+        faces.back().push_back(g.points[u]);
+        const auto& ws = around[v];
+        const std::size_t k = std::size_t(std::find(ws.begin(), ws.end(), u) - ws.begin());
+        const std::size_t w = ws[(k + ws.size() - 1) % ws.size()];
+        u = v, v = w;
+      }
+    }
+  // The bounded face holding p, other than those through p: the smallest (nested faces are smaller).
+  auto holding = [&](const Point2& p) -> std::optional<std::size_t> {
+    std::optional<std::size_t> best;
+    for (std::size_t f = 0; f < faces.size(); ++f)
+      if (signed_area(faces[f]) > 0 && in_polygon(faces[f], p) &&
+          std::find(faces[f].begin(), faces[f].end(), p) == faces[f].end() &&
+          (!best || signed_area(faces[f]) < signed_area(faces[*best])))
+        best = f;
+    return best;
+  };
+  std::vector<bool> water(faces.size(), false);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    if (signed_area(faces[f]) > 0)
+      water[f] = std::none_of(g.holes.begin(), g.holes.end(), [&](const Point2& h) { return holding(h) == f; });
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    if (signed_area(faces[f]) <= 0) {  // zero: a part without cycles (a free chain)
+      const auto outer = holding(faces[f].front());
+      water[f] = outer && water[*outer];
+    }
+  PslgWater out;
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    if (water[f]) out.area += signed_area(faces[f]);
+  for (const auto& s : g.segments)
+    if (water[face_of.at({s[0], s[1]})] || water[face_of.at({s[1], s[0]})])
+      out.wet_segments.push_back({g.points[s[0]], g.points[s[1]]});
+  return out;
+}
+
+// Triangle's A.poly redrawn for this test: the letter's outline with a triangular hole (a seed in it), the
+// top edge split at its middle with a segment down to the hole's apex (water on both sides, vertices of
+// three segments), and a free chain of two segments in the left leg.
+const char* kLetterA = R"(12 2 0 0
+1 0 0
+2 1.2 0
+3 1.6 1.2
+4 3.4 1.2
+5 3.8 0
+6 5 0
+7 3.1 6
+8 2.5 6
+9 1.9 6
+10 2.0 2.2
+11 3.0 2.2
+12 2.5 4.2
+15 0
+1 1 2
+2 2 3
+3 3 4
+4 4 5
+5 5 6
+6 6 7
+7 7 8
+8 8 9
+9 9 1
+10 10 11
+11 11 12
+12 12 10
+13 12 8
+14 13 14
+15 14 15
+1
+1 2.5 3.0
+)";
+
+TEST(MeshCommand, PslgSegmentsAreMeshEdgesHolesAreEmptyAndTheAreaIsTheWaters) {
+  TempDir dir;
+  // The letter needs its free chain's vertices: appended to its vertex list here.
+  std::string letter = kLetterA;
+  letter.replace(0, 2, "15");
+  const std::size_t segments_at = letter.find("15 0\n");
+  letter.insert(segments_at, "13 1.0 2.0\n14 1.3 3.0\n15 1.5 3.6\n");
+  write_file(dir / "A.poly", letter);
+  const std::vector<std::tuple<std::string, std::string, std::string>> cases{
+      {"fish-and-rectangle", samples("pslg/fish-and-rectangle.poly"), "--spacing 0.1"},
+      {"double_hex", samples("pslg/double_hex.poly"), ""},
+      {"letter A", (dir / "A.poly").string(), ""},
+      {"letter A at a spacing", (dir / "A.poly").string(), "--spacing 0.4"},
+  };
+  for (const auto& [what, path, options] : cases) {
+    const Pslg g = read_pslg(read_file(path));
+    const RunResult r = shoremesh(dir, "mesh " + quote(path) + " " + options + " -o out.node");
+    ASSERT_EQ(r.code, 0) << what << ": " << r.err;
+    EXPECT_THAT(r.out, HasSubstr("shore segments are mesh edges (the shore is the mesh's boundary")) << what;
+    const TriangleFiles t = read_triangle_files(dir / "out.node");
+    // Every segment with water beside it is a chain of mesh edges (a two-point ring: both ways); those
+    // with land on both sides (between two hole faces) bound nothing.
+    const PslgWater water = pslg_water(g);
+    EXPECT_GT(water.area, 0) << what;
+    expect_conforming_export(t, water.wet_segments, water.area, what);
+    // Holes are empty: no triangle holds a hole seed.
+    for (const Point2& h : g.holes)
+      for (const auto& tri : t.triangles) {
+        const Point2 &a = t.nodes[tri[0]], &b = t.nodes[tri[1]], &c = t.nodes[tri[2]];
+        auto side = [&](const Point2& p, const Point2& q) { return (q[0] - p[0]) * (h[1] - p[1]) - (q[1] - p[1]) * (h[0] - p[0]); };
+        EXPECT_FALSE(side(a, b) > 0 && side(b, c) > 0 && side(c, a) > 0) << what << ": a triangle holds hole seed " << h[0] << "," << h[1];
+      }
+  }
 }
 
 }  // namespace

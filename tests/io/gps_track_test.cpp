@@ -389,3 +389,44 @@ TEST(GpxTrack, RoutesAndWaypointsAreRead) {
   opt.waypoints = false;
   EXPECT_EQ(gps_to_input(d, "r.gpx", opt).points.size(), 2u);
 }
+
+namespace {
+// A track of fixes at (x, y) metres from 46N, 8E.
+std::string track_gpx(const std::vector<Point2>& xy) {
+  const double lat0 = 46, lon0 = 8, mlat = 111132.0, mlon = 111320.0 * std::cos(lat0 * std::numbers::pi / 180);
+  std::string body = "<trk><name>line</name><trkseg>\n";
+  for (const Point2& p : xy) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "<trkpt lat=\"%.9f\" lon=\"%.9f\"></trkpt>\n", lat0 + p[1] / mlat, lon0 + p[0] / mlon);
+    body += buf;
+  }
+  return body + "</trkseg></trk>\n";
+}
+
+std::string with_track(const std::string& gpx, const std::vector<Point2>& xy) {
+  const std::size_t end = gpx.rfind("</gpx>");
+  return gpx.substr(0, end) + track_gpx(xy) + gpx.substr(end);
+}
+}  // namespace
+
+TEST(GpxTrack, OpenWalksBecomeConstraintLinesWhenAsked) {
+  shoremesh::io::test::ScratchDir dir;
+  // A walk around a lake of 1 km radius and a survey line across its middle that does not close.
+  const auto path = dir.write("survey.gpx", with_track(circle_walk_gpx(1000, 200), {{-500, 0}, {0, 100}, {500, 0}}));
+  TrackOptions opt;
+  opt.spacing = 100;
+  const auto loose = gps_to_input(read_gpx(path), path, opt);
+  ASSERT_EQ(loose.domain.rings.size(), 1u);
+  opt.open_lines = true;
+  const auto lines = gps_to_input(read_gpx(path), path, opt);
+  ASSERT_EQ(lines.domain.rings.size(), 2u);
+  EXPECT_EQ(lines.domain.rings[1].role, RingRole::Line);
+  // Cut to the spacing like a ring: 2 pieces of 510 m, 6 parts each, and the end.
+  EXPECT_EQ(lines.domain.rings[1].points.size(), 13u);
+  EXPECT_EQ(lines.size(), loose.size());
+  EXPECT_THAT(lines.notes, ::testing::Contains(HasSubstr("1 open walk(s) became constraint lines")));
+  // A line that leaves the lake is refused, naming the option.
+  const auto out = dir.write("out.gpx", with_track(circle_walk_gpx(1000, 200), {{-500, 0}, {0, 100}, {1500, 0}}));
+  const auto e = expect_input_error([&] { gps_to_input(read_gpx(out), out, opt); });
+  EXPECT_THAT(e.message(), HasSubstr("--gps-open-lines"));
+}

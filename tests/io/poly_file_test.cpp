@@ -1,9 +1,15 @@
 #include "shoremesh/io/poly_file.hpp"
 
+#include <algorithm>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "io_test_names.hpp"
+
+static bool has_duplicates(std::vector<Point2> points) {
+  std::sort(points.begin(), points.end());
+  return std::adjacent_find(points.begin(), points.end()) != points.end();
+}
 
 TEST(PolyFile, DoubleHexRingsAndHoles) {
   const auto p = read_poly_file(samples("pslg/double_hex.poly"));
@@ -32,8 +38,22 @@ TEST(PolyFile, FishAndRectangleSegmentsSampled) {
   opt.spacing = 0.05;
   const auto set = pslg_to_input(p, opt);
   EXPECT_GT(set.points.size(), 31u * 3);
-  std::printf("fish-and-rectangle: %zu rings, %zu points at spacing 0.05\n", set.domain.rings.size(), set.points.size());
-  for (const auto& note : set.notes) std::printf("  %s\n", note.c_str());
+  // The water's boundary, its lines (segments with water on both sides) and the pinch vertices where the
+  // three hole faces touch the outline are said; every vertex is one point, shared by its rings.
+  std::size_t lines = 0;
+  for (const auto& ring : set.domain.rings) lines += !ring.closed();
+  EXPECT_GT(lines, 0u);
+  EXPECT_EQ(set.ring_ids.size(), set.domain.rings.size());
+  EXPECT_FALSE(has_duplicates(set.points));
+  const std::string notes = [&] {
+    std::string all;
+    for (const auto& note : set.notes) all += note + "\n";
+    return all;
+  }();
+  EXPECT_THAT(notes, HasSubstr("30 segments bound the water"));
+  EXPECT_THAT(notes, HasSubstr("10 segments with water on both sides are " + std::to_string(lines) + " constraint lines"));
+  EXPECT_THAT(notes, HasSubstr("4 segments with land (a hole or the outside) on both sides"));
+  EXPECT_THAT(notes, HasSubstr("the input has 4 pinch vertices"));
 }
 
 TEST(PolyFile, SegmentsAreSampledAtTheSpacing) {
@@ -98,6 +118,6 @@ TEST(PolyFile, FewerThanThreePointsAndSelfIntersectingRing) {
   const std::string bowtie = "4 2 0 0\n1 0 0\n2 10 10\n3 10 0\n4 0 10\n4 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n";
   e = expect_input_error([&] { pslg_to_input(parse_poly_text(bowtie, "bow.poly")); });
   EXPECT_EQ(e.file(), "bow.poly");
-  EXPECT_EQ(e.line(), 2u);
-  EXPECT_THAT(e.message(), HasSubstr("self-intersecting rings"));
+  EXPECT_EQ(e.line(), 7u);
+  EXPECT_THAT(e.message(), HasSubstr("segment 1 (line 7) meets segment 3 (line 9) other than at a common end point"));
 }

@@ -125,8 +125,9 @@ TEST(ReadInput, ASpacingThatWouldCreateMoreThanTheCapIsRefusedWithTheCount) {
     std::size_t points;  // what the spacing gives
   };
   const std::vector<Case> cases = {
-      // A square of side 10 in pieces of 2.5 (16 points) and a loose segment of 10 (its ends and 3 inside).
-      {"sq.poly", "6 2 0 0\n1 0 0\n2 10 0\n3 10 10\n4 0 10\n5 20 0\n6 30 0\n5 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n5 5 6\n0\n",
+      // A square of side 10 in pieces of 2.5 (16 points) and a segment of 10 in it (a constraint line: its
+      // ends and 3 inside).
+      {"sq.poly", "6 2 0 0\n1 0 0\n2 10 0\n3 10 10\n4 0 10\n5 1 2\n6 9 8\n5 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n5 5 6\n0\n",
        3, 21},
       // About 1112 m of meridian in 12 pieces of at most 100 m (13 points), and a waypoint or a point.
       {"walk.gpx",

@@ -93,7 +93,7 @@ TEST(RingCheck, CheckRingsNamesFileAndLine) {
   InputSet set;
   set.sources.push_back({"lake.poly", Source::Location::Line});
   const std::vector<Point2> ring{{0, 0}, {10, 10}, {10, 0}, {0, 10}};
-  set.ring_offsets.push_back(0);
+  set.ring_ids.push_back({0, 1, 2, 3});
   for (std::size_t i = 0; i < ring.size(); ++i) {
     set.points.push_back(ring[i]);
     set.origins.push_back({0, 0, 20 + i});

@@ -12,6 +12,7 @@
 #include <map>
 #include <random>
 #include <set>
+#include <tuple>
 #include <utility>
 
 #include "mesh_test_util.hpp"
@@ -183,9 +184,12 @@ TEST(ConformingMesh, ShoreSegmentsAreChainsOfMeshEdgesAndTheAreaIsTheRings) {
 // A fresh run on a session's current input, as `shoremesh mesh` makes it and without the session's code:
 // the shore's splits, the engine on the input points and the splits, the constrained mesh.
 FreshRun fresh_run(const SessionInput<2>& in, const BoxTransform<2>& box) {
-  std::size_t on_rings = 0;
-  for (const Ring& r : in.rings.rings) on_rings += r.points.size();
-  const std::vector<Point2> loose(in.points.begin() + static_cast<std::ptrdiff_t>(on_rings), in.points.end());
+  std::vector<bool> on_ring(in.points.size(), false);
+  for (const auto& ids : in.ring_ids)
+    for (std::size_t id : ids) on_ring[id] = true;  // a line's end on a ring is one point
+  std::vector<Point2> loose;
+  for (std::size_t i = 0; i < in.points.size(); ++i)
+    if (!on_ring[i]) loose.push_back(in.points[i]);
   const ShoreRefinement refinement(in.rings, loose, RefinementRule::for_box(box.side));
   std::vector<Point2> input = in.points;
   for (const Point2& p : refinement.split_points()) input.push_back(p);
@@ -194,11 +198,35 @@ FreshRun fresh_run(const SessionInput<2>& in, const BoxTransform<2>& box) {
   return {Mesh2(ws.points, ws.input_count, refined), refined};
 }
 
+// After edit `made`: whether the session's mesh equals a fresh run on its current input, triangle for
+// triangle; with `full`, also valid and conforming (checked from its elements).
+bool equals_a_fresh_run(const ShoreSession<2>& session, int made, bool full) {
+  const SessionInput<2> now = session.current_input();
+  const FreshRun fresh = fresh_run(now, session.box());
+  const bool equal = mesh_test::corner_list(session.mesh()) == mesh_test::corner_list(fresh.mesh);
+  EXPECT_TRUE(equal) << "after edit " << made;
+  if (full) {
+    session.mesh().check_valid();
+    check_conforming(session.mesh(), now.rings, fresh.refined, "after edit " + std::to_string(made));
+    EXPECT_TRUE(session.shoreline().conforming());
+  }
+  return equal;
+}
+
+// A jetty from shore point a: three segments of about `step` toward angle t, a little zigzag.
+std::vector<Point2> jetty_from(const Point2& a, double t, double step) {
+  std::vector<Point2> jetty{a};
+  for (int i = 1; i < 4; ++i)
+    jetty.push_back({a[0] + step * i * std::cos(t) + (i % 2 ? 0.3 * step : 0), a[1] + step * i * std::sin(t)});
+  return jetty;
+}
+
 SessionInput<2> session_input(const Domain2& rings) {
   SessionInput<2> in;
   in.rings = rings;
   for (const Ring& r : rings.rings) {
-    in.ring_offsets.push_back(in.points.size());
+    in.ring_ids.emplace_back();
+    for (std::size_t k = 0; k < r.points.size(); ++k) in.ring_ids.back().push_back(in.points.size() + k);
     in.points.insert(in.points.end(), r.points.begin(), r.points.end());
   }
   return in;
@@ -206,8 +234,8 @@ SessionInput<2> session_input(const Domain2& rings) {
 
 // Random edits of Lake Superior's GSHHG rings through the library's ShoreSession, as `shoremesh edit`
 // makes them: shore points moved, added after a vertex and removed, loose points added and removed,
-// islands (small hexagons) and constraint lines (zigzags) added and removed, and the lines' points edited
-// like the shore's. After each edit the mesh equals a fresh run on the edited
+// islands (small hexagons) and constraint lines (zigzags, some of them jetties from a shore vertex, which
+// they share) added and removed, and the lines' points edited like the shore's. After each edit the mesh equals a fresh run on the edited
 // input, triangle for triangle, and conforms; an edit the session refuses changes nothing.
 TEST(ConformingMesh, RandomEditsThroughTheLibrarySessionOnSuperiorEqualAFreshRun) {
   const int edits = std::getenv("SHOREMESH_SANITIZER_BUILD") ? 30 : 300;
@@ -222,7 +250,7 @@ TEST(ConformingMesh, RandomEditsThroughTheLibrarySessionOnSuperiorEqualAFreshRun
     }
     return std::nullopt;
   };
-  int made = 0, refused = 0, island_adds = 0, island_removals = 0, loose_edits = 0, line_adds = 0;
+  int made = 0, refused = 0, island_adds = 0, island_removals = 0, loose_edits = 0, line_adds = 0, jetty_adds = 0;
   std::vector<std::size_t> loose_ids;
   for (int attempt = 0; made < edits && attempt < 20 * edits; ++attempt) {
     const double what = u(rng);
@@ -266,6 +294,13 @@ TEST(ConformingMesh, RandomEditsThroughTheLibrarySessionOnSuperiorEqualAFreshRun
           zigzag.push_back({a[0] + d * std::cos(t) + step * i, a[1] + d * std::sin(t) + (i % 2 ? step : 0)});
         session.add_ring(zigzag, /*line=*/true);
         ++line_adds;
+      } else if (what < 0.935) {  // a jetty: a line from a shore vertex out into the water, which it shares
+        const auto id = ring_vertex();
+        ASSERT_TRUE(id);
+        const Point2 a = session.input_point(*id);
+        const double t = 6.283185307179586 * u(rng), step = 300 + 600 * u(rng);
+        session.add_ring(jetty_from(a, t, step), /*line=*/true);
+        ++jetty_adds;
       } else if (what < 0.95) {  // an island: a small hexagon a little off a shore point
         const auto id = ring_vertex();
         ASSERT_TRUE(id);
@@ -292,14 +327,7 @@ TEST(ConformingMesh, RandomEditsThroughTheLibrarySessionOnSuperiorEqualAFreshRun
       continue;
     }
     ++made;
-    const SessionInput<2> now = session.current_input();
-    const FreshRun fresh = fresh_run(now, session.box());
-    ASSERT_EQ(mesh_test::corner_list(session.mesh()), mesh_test::corner_list(fresh.mesh)) << "after edit " << made;
-    if (made % 25 == 0 || made == edits) {
-      session.mesh().check_valid();
-      check_conforming(session.mesh(), now.rings, fresh.refined, "after edit " + std::to_string(made));
-      EXPECT_TRUE(session.shoreline().conforming());
-    }
+    ASSERT_TRUE(equals_a_fresh_run(session, made, made % 25 == 0 || made == edits));
   }
   EXPECT_EQ(made, edits);
   // The mix the test is for: every kind of edit happened.
@@ -307,9 +335,113 @@ TEST(ConformingMesh, RandomEditsThroughTheLibrarySessionOnSuperiorEqualAFreshRun
   EXPECT_GT(island_removals, 0);
   EXPECT_GT(loose_edits, 0);
   EXPECT_GT(line_adds, 0);
+  EXPECT_GT(jetty_adds, 0);
   RecordProperty("refused edits", std::to_string(refused));
-  std::printf("%d edits (%d islands added, %d lines added, %d rings or lines removed, %d loose points), %d refused\n",
-              made, island_adds, line_adds, island_removals, loose_edits, refused);
+  std::printf("%d edits (%d islands added, %d lines and %d jetties added, %d rings or lines removed, %d loose "
+              "points), %d refused\n",
+              made, island_adds, line_adds, jetty_adds, island_removals, loose_edits, refused);
+}
+
+// Jetties: lines that end on a shore vertex, which they share (docs/conforming.md, "Shared vertices"),
+// through random edits of a small wavy lake with an island: jetties added from ring vertices and removed,
+// vertices added after a jetty's root and beside it, the shore and the jetties' points moved and removed.
+// A jetty's root can be neither moved nor removed, nor its ring removed, while the jetty is there. After
+// each edit the mesh equals a fresh run on the edited input and conforms.
+TEST(ConformingMesh, JettiesThroughRandomEditsEqualAFreshRun) {
+  Domain2 lake;
+  for (const auto& [centre, radius, n, wave] :
+       {std::tuple{Point2{0, 0}, 1000.0, 40, 0.12}, std::tuple{Point2{250, 100}, 180.0, 9, 0.0}}) {
+    Ring ring{{}, lake.rings.empty() ? RingRole::Shore : RingRole::Island};
+    for (int i = 0; i < n; ++i) {
+      const double t = 6.283185307179586 * i / n, r = radius * (1 + wave * std::sin(5 * t));
+      ring.points.push_back({centre[0] + r * std::cos(t), centre[1] + r * std::sin(t)});
+    }
+    lake.rings.push_back(std::move(ring));
+  }
+  ShoreSession<2>::Options options;
+  options.box = BoxTransform<2>{{-1500, -1500}, 3000};
+  ShoreSession<2> session(session_input(lake), options);
+  std::mt19937 rng(33);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<bool> closed_ring{true, true};  // by ring number: the lake, the island, then added ones
+  std::optional<std::size_t> island = 1;      // the island's ring number while it is there
+  auto vertex_of = [&](bool closed) -> std::optional<std::size_t> {
+    for (int tries = 0; tries < 1000; ++tries) {
+      const std::size_t id = rng() % session.next_id();
+      if (!session.contains(id) || !session.ring_of(id)) continue;
+      if (closed_ring.at(session.ring_of(id)->first) == closed) return id;
+    }
+    return std::nullopt;
+  };
+  int made = 0, jetties = 0, root_refusals = 0, removed_lines = 0;
+  std::vector<std::size_t> roots;  // the first id of each jetty added (its root)
+  for (int attempt = 0; made < 120 && attempt < 2000; ++attempt) {
+    const double what = u(rng);
+    const std::size_t elements_before = session.mesh().element_count();
+    try {
+      if (what < 0.3) {  // a jetty of three segments from a ring vertex, in a random direction
+        const auto id = vertex_of(true);
+        ASSERT_TRUE(id);
+        const Point2 a = session.input_point(*id);
+        const double t = 6.283185307179586 * u(rng), step = 40 + 60 * u(rng);
+        session.add_ring(jetty_from(a, t, step), /*line=*/true);
+        closed_ring.push_back(false);
+        roots.push_back(*id);
+        ++jetties;
+      } else if (what < 0.45 && !roots.empty()) {  // beside a jetty's root: a vertex after it, or the root moved
+        const std::size_t root = roots[rng() % roots.size()];
+        if (!session.contains(root)) continue;
+        const auto [r, k] = *session.ring_of(root);
+        const auto& ring = session.ring(r);
+        const Point2 a = ring[k], b = ring[(k + 1) % ring.size()];
+        if (u(rng) < 0.7) {
+          session.add_after(root, {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])});
+        } else {
+          try {
+            session.move(root, {a[0] + 0.2 * (b[0] - a[0]), a[1] + 0.2 * (b[1] - a[1])});
+          } catch (const InputError&) {
+            ++root_refusals;  // the root of a live jetty
+            throw;
+          }
+        }
+      } else if (what < 0.75) {  // a vertex of a ring or a jetty moved, added after, or removed
+        const auto id = vertex_of(u(rng) < 0.7);
+        if (!id) continue;
+        const auto [r, k] = *session.ring_of(*id);
+        const auto& ring = session.ring(r);
+        const bool closed = closed_ring.at(r);
+        const Point2 a = ring[k], b = closed || k + 1 < ring.size() ? ring[(k + 1) % ring.size()] : ring[k - 1];
+        const double c = u(rng);
+        if (c < 0.45) session.move(*id, {a[0] + 0.3 * (b[0] - a[0]) + 0.05 * (b[1] - a[1]), a[1] + 0.3 * (b[1] - a[1])});
+        else if (c < 0.8 && (closed || k + 1 < ring.size())) session.add_after(*id, {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])});
+        else session.remove(*id);
+      } else if (what < 0.9) {  // a jetty removed
+        std::vector<std::size_t> live;
+        for (std::size_t r = 0; r < session.ring_count(); ++r)
+          if (!closed_ring[r] && !session.ring(r).empty()) live.push_back(r);
+        if (live.empty()) continue;
+        session.remove_ring(live[rng() % live.size()]);
+        ++removed_lines;
+      } else if (island) {  // the island removed (refused while a jetty ends on it)
+        session.remove_ring(*island);
+        island.reset();
+      } else {  // and put back (refused where a line lies now)
+        island = session.add_ring(lake.rings[1].points).ring;
+        closed_ring.push_back(true);
+      }
+    } catch (const InputError&) {
+      ASSERT_EQ(session.mesh().element_count(), elements_before);
+      continue;
+    }
+    ++made;
+    ASSERT_TRUE(equals_a_fresh_run(session, made, made % 10 == 0));
+  }
+  EXPECT_GE(made, 120);
+  EXPECT_GT(jetties, 10);
+  EXPECT_GT(root_refusals, 0);
+  EXPECT_GT(removed_lines, 0);
+  std::printf("%d edits, %d jetties added, %d removed, %d moves of a jetty's root refused\n", made, jetties, removed_lines,
+              root_refusals);
 }
 
 }  // namespace

@@ -47,7 +47,10 @@ struct RingDefect {
 // distinct points (a line two), no ring or line crosses or touches itself or another one, and every line
 // lies in the water (when there are closed rings: a line on land would be in no element). O(n log n + k) for n edges and k
 // pairs of edges whose boxes meet (a few per edge for shorelines), through RingEdgeIndex.
-std::optional<RingDefect> find_ring_defect(const Domain2& domain);
+// `shared_vertices`: rings and lines may share a vertex (where a .poly's segments meet, or a ring touches
+// itself): edges with a common end then meet only where they fold onto one another (the same edge twice
+// included). The mesh takes such rings as they are (a shared vertex is one point; docs/conforming.md).
+std::optional<RingDefect> find_ring_defect(const Domain2& domain, bool shared_vertices = false);
 
 // Sets each ring's role from its nesting depth (the number of other rings containing it): even -> Shore,
 // odd -> Island, as the even-odd rule implies; lines stay lines. For rings that neither cross nor touch

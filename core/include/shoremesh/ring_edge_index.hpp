@@ -6,8 +6,10 @@
 // tree it is O(log n) plus the edges the new ones come near.
 //
 // The rings must be valid (find_ring_defect finds nothing) when the index is built, and each edit checked
-// here before it is committed. Ring vertices are distinct points (the engine refuses duplicates), so an
-// edge is known by its ring and its two end points. Rings without points (removed ones) hold no edge; a
+// here before it is committed. Rings may share a vertex where the caller lets them (a .poly's, read with
+// find_ring_defect(domain, true); a line's end on a ring in an edit session, which refuses any other
+// vertex put on a vertex before asking here): the edit checks let edges with a common end meet there
+// unless they fold onto one another. An edge is known by its ring and its two end points. Rings without points (removed ones) hold no edge; a
 // line (RingRole::Line) holds its segments, not a closing one. One-vertex edits (defect_at, commit) are
 // for closed rings: a line changes as a whole (erase_ring, defect_of_new_ring, insert_ring).
 #include <cstddef>
@@ -39,7 +41,8 @@ class RingEdgeIndex {
 
   // The first crossing of the indexed rings (`domain`, as indexed) in (ring, edge) order, or nothing:
   // each edge against the edges its box meets. Local defects (folds, repeats) are find_ring_defect's.
-  std::optional<RingDefect> first_crossing(const Domain2& domain) const;
+  // `shared_vertices`: edges with a common end meet only where they fold onto one another.
+  std::optional<RingDefect> first_crossing(const Domain2& domain, bool shared_vertices = false) const;
 
   // The first defect of `after` (the indexed rings with `edit` made), as find_ring_defect would report
   // it for a defect the edit makes, or nothing: the edges at the changed vertex against the edges their
@@ -60,6 +63,13 @@ class RingEdgeIndex {
   // Whether p lies inside an odd number of the indexed rings (the even-odd rule; lines bound nothing): the
   // edges whose boxes meet the rightward ray from p, each decided exactly. p on an edge counts as inside.
   bool inside(const Point2& p) const;
+
+  // Whether p is an end of an indexed edge (of a closed ring's edge when `closed_only`).
+  bool has_vertex(const Point2& p, bool closed_only = false) const;
+  // A point of line `line` that tells on which side of the indexed rings it lies (where it meets none): its
+  // first vertex that is no closed ring's vertex, or, when every vertex is one (a chord between shore
+  // vertices), its first segment's midpoint, rounded once.
+  Point2 line_probe(const Ring& line) const;
 
   std::size_t size() const;  // edges indexed
 

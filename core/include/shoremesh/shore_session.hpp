@@ -29,10 +29,12 @@ namespace shoremesh {
 template <int D>
 struct SessionInput {
   std::vector<Point<D>> points;  // the input points: id i is points[i]
-  // 2D: the rings (valid: find_ring_defect finds nothing); ring r's vertices are the input points
-  // ring_offsets[r], ring_offsets[r] + 1, ... in ring order. The other points are loose.
+  // 2D: the rings (valid: find_ring_defect finds nothing); ring r's vertex k is input point
+  // ring_ids[r][k]. Rings may share a vertex (one input point on several rings: a .poly's segments meeting
+  // there) in a fresh run's input; an edit session takes that only where a line ends on a closed ring's
+  // vertex. The other points are loose.
   Domain2 rings;
-  std::vector<std::size_t> ring_offsets;
+  std::vector<std::vector<std::size_t>> ring_ids;
 };
 
 // The engine's parameters for rho, with a picking region that is never empty.
@@ -40,7 +42,7 @@ template <int D>
 Parameters<D> session_parameters(double rho);
 
 // The shore's canonical splits of a 2D input's rings (valid ones) for the engine's box: the given one, or
-// the one the engine fits to the input points; nullopt without rings. InputError when the ring offsets do
+// the one the engine fits to the input points; nullopt without rings. InputError when the ring ids do
 // not name the rings' points.
 std::optional<ShoreRefinement> refine_input(const SessionInput<2>& input, const std::optional<BoxTransform<2>>& box);
 
@@ -93,7 +95,10 @@ class ShoreSession {
   SessionEdit<D> remove(std::size_t id);
   // A new ring (an island, a breakwater, a lake) of new points, closed implicitly (2D, a session with
   // rings). Its role (shore or island) follows from its nesting among the rings. `line`: an open chain
-  // instead (RingRole::Line: constraints in the water that bound nothing), numbered like a ring.
+  // instead (RingRole::Line: constraints in the water that bound nothing), numbered like a ring; each of
+  // its ends may be a vertex of a closed ring (a jetty on the shore), which it then shares: that vertex
+  // can be neither moved nor removed, nor its ring removed, while the line ends there. No other point of
+  // a new ring or line, and no moved or added vertex, may be a vertex already.
   SessionEdit<D> add_ring(std::span<const Point2> points, bool line = false);
   // Ring (or line) `ring` and all of its points go; the last closed ring cannot (the water would be
   // undefined).

@@ -385,13 +385,16 @@ InputSet gps_to_input(const GpsData& data, const std::string& file, const TrackO
   for (const Walk& w : walks)
     count += w.waypoints ? static_cast<double>(w.r.xy.size()) : detail::subdivided_count(w.r.xy, w.closed, options.spacing);
   detail::check_sampled_count(count, options.spacing, options.max_points, file);
-  std::size_t closed_count = 0;
+  std::size_t closed_count = 0, line_count = 0;
   for (const Walk& w : walks) {
     if (w.waypoints) {
       for (std::size_t i = 0; i < w.r.xy.size(); ++i) loose.push_back({w.r.xy[i], w.r.lines[i]});
     } else if (w.closed) {
       builder.add_ring(w.r.xy, RingRole::Shore, w.r.lines, options.spacing, options.max_points);
       ++closed_count;
+    } else if (options.open_lines && w.r.xy.size() >= 2) {
+      builder.add_ring(w.r.xy, RingRole::Line, w.r.lines, options.spacing, options.max_points);
+      ++line_count;
     } else {
       const auto sub = detail::subdivide(w.r.xy, false, options.spacing, options.max_points);
       const auto from = detail::subdivided_from(w.r.xy, sub);
@@ -406,6 +409,7 @@ InputSet gps_to_input(const GpsData& data, const std::string& file, const TrackO
     std::ostringstream message;
     message << e.message() << " (a walk that ends within " << tolerance
             << " m of its start is closed into a shore ring; --track-close-distance 0 keeps every walk as loose points)";
+    if (line_count) message << " (open walks are constraint lines with --gps-open-lines; without it, loose points)";
     throw InputError(message.str(), e.file(), e.line());
   }
   // Loose points: drop exact repeats (of ring vertices or of each other); GPS logs repeat fixes.
@@ -419,6 +423,7 @@ InputSet gps_to_input(const GpsData& data, const std::string& file, const TrackO
     builder.add_point(l.p, l.line);
   }
   if (closed_count) set.notes.push_back(std::to_string(closed_count) + " closed walk(s) became rings");
+  if (line_count) set.notes.push_back(std::to_string(line_count) + " open walk(s) became constraint lines");
   if (repeats) set.notes.push_back("dropped " + std::to_string(repeats) + " repeated point(s)");
   if (set.points.empty()) throw InputError("no points", file);
   return set;

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "shoremesh/error.hpp"
@@ -23,23 +24,43 @@ class InputBuilder {
     set_.origins.push_back({source_, ring, location});
   }
   // Adds a ring; its vertices become points (in order), with the given locations (same size, or empty: 0).
-  void add_ring(std::vector<Point2> pts, RingRole role, const std::vector<std::size_t>& locations = {}) {
+  // With `share_vertices`, a vertex that an earlier ring of this builder shared with `share_vertices` has is
+  // that ring's point (rings that meet there: a .poly's segments), not a new one.
+  void add_ring(std::vector<Point2> pts, RingRole role, const std::vector<std::size_t>& locations = {},
+                bool share_vertices = false) {
     const auto r = static_cast<std::uint32_t>(set_.domain.rings.size());
-    set_.ring_offsets.push_back(set_.points.size());
-    for (std::size_t k = 0; k < pts.size(); ++k) add_point(pts[k], locations.empty() ? 0 : locations[k], r);
+    std::vector<std::size_t> ids;
+    ids.reserve(pts.size());
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      if (share_vertices)
+        if (const auto it = shared_.find(pts[k]); it != shared_.end()) {
+          ids.push_back(it->second);
+          continue;
+        }
+      ids.push_back(set_.points.size());
+      if (share_vertices) shared_.emplace(pts[k], ids.back());
+      add_point(pts[k], locations.empty() ? 0 : locations[k], r);
+    }
+    set_.ring_ids.push_back(std::move(ids));
     set_.domain.rings.push_back({std::move(pts), role});
   }
   // The same, with points inserted along every segment longer than `spacing` (0: none), evenly; each
   // inserted point takes the location of the vertex before it. The caller has checked the count
   // against `max` (check_sampled_count).
   void add_ring(const std::vector<Point2>& pts, RingRole role, const std::vector<std::size_t>& locations,
-                double spacing, std::size_t max = kMaxSampledPoints);
+                double spacing, std::size_t max = kMaxSampledPoints, bool share_vertices = false);
   std::size_t point_count() const { return set_.points.size(); }
   const std::string& file() const { return set_.sources[source_].file; }
 
  private:
+  struct ExactHash {
+    std::size_t operator()(const Point2& p) const {
+      return std::hash<double>{}(p[0] + 0.0) * 0x9E3779B97F4A7C15ull ^ std::hash<double>{}(p[1] + 0.0);
+    }
+  };
   InputSet& set_;
   std::uint32_t source_ = 0;
+  std::unordered_map<Point2, std::size_t, ExactHash> shared_;  // add_ring's shared vertices: their points
 };
 
 // How many points subdivide(pts, closed, spacing) gives, as a double: with a spacing far below the
@@ -105,11 +126,12 @@ inline std::vector<std::size_t> subdivided_from(const std::vector<Point2>& pts, 
 }
 
 inline void InputBuilder::add_ring(const std::vector<Point2>& pts, RingRole role,
-                                   const std::vector<std::size_t>& locations, double spacing, std::size_t max) {
+                                   const std::vector<std::size_t>& locations, double spacing, std::size_t max,
+                                   bool share_vertices) {
   std::vector<Point2> sub = subdivide(pts, role != RingRole::Line, spacing, max);
   std::vector<std::size_t> sub_locations;
   for (const std::size_t v : subdivided_from(pts, sub)) sub_locations.push_back(locations.empty() ? 0 : locations[v]);
-  add_ring(std::move(sub), role, sub_locations);
+  add_ring(std::move(sub), role, sub_locations, share_vertices);
 }
 
 }  // namespace shoremesh::io::detail

@@ -42,12 +42,17 @@ std::string describe_origin(const InputSet& set, std::size_t i) {
 }
 
 void check_rings(const InputSet& set) {
-  const auto defect = find_ring_defect(set.domain);
+  // Rings share a vertex where the reader made them share one point (a .poly's segments meeting there).
+  std::vector<std::size_t> ids;
+  for (const auto& ring : set.ring_ids) ids.insert(ids.end(), ring.begin(), ring.end());
+  std::sort(ids.begin(), ids.end());
+  const bool shared = std::adjacent_find(ids.begin(), ids.end()) != ids.end();
+  const auto defect = find_ring_defect(set.domain, shared);
   if (!defect) return;
   std::string file;
   std::optional<std::size_t> location;
-  if (defect->ring_a < set.ring_offsets.size()) {
-    const std::size_t p = set.ring_offsets[defect->ring_a] + defect->vertex_a;
+  if (defect->ring_a < set.ring_ids.size() && defect->vertex_a < set.ring_ids[defect->ring_a].size()) {
+    const std::size_t p = set.ring_ids[defect->ring_a][defect->vertex_a];
     if (p < set.origins.size()) {
       const PointOrigin& o = set.origins[p];
       file = set.sources.at(o.source).file;
@@ -55,8 +60,9 @@ void check_rings(const InputSet& set) {
     }
   }
   std::string msg = defect->describe();
-  if (defect->kind == RingDefect::Kind::Intersection && defect->ring_b < set.ring_offsets.size()) {
-    const std::size_t q = set.ring_offsets[defect->ring_b] + defect->vertex_b;
+  if (defect->kind == RingDefect::Kind::Intersection && defect->ring_b < set.ring_ids.size() &&
+      defect->vertex_b < set.ring_ids[defect->ring_b].size()) {
+    const std::size_t q = set.ring_ids[defect->ring_b][defect->vertex_b];
     if (q < set.origins.size()) msg += " (at " + describe_origin(set, q) + ")";
   }
   if (defect->kind == RingDefect::Kind::Intersection) msg = "self-intersecting rings: " + msg;
@@ -96,7 +102,10 @@ InputSet merge(const std::vector<InputSet>& sets) {
       out.origins.push_back(o);
     }
     out.domain.rings.insert(out.domain.rings.end(), s.domain.rings.begin(), s.domain.rings.end());
-    for (std::size_t off : s.ring_offsets) out.ring_offsets.push_back(off + point_offset);
+    for (auto ids : s.ring_ids) {
+      for (std::size_t& id : ids) id += point_offset;
+      out.ring_ids.push_back(std::move(ids));
+    }
     out.notes.insert(out.notes.end(), s.notes.begin(), s.notes.end());
     out.dropped_small_islands += s.dropped_small_islands;
     out.open_points.insert(out.open_points.end(), s.open_points.begin(), s.open_points.end());

@@ -8,6 +8,7 @@
 #include "input_builder.hpp"
 #include "shoremesh/error.hpp"
 #include "shoremesh/domain.hpp"
+#include "shoremesh/pslg.hpp"
 #include "text_util.hpp"
 
 namespace shoremesh::io {
@@ -184,89 +185,63 @@ InputSet pslg_to_input(const PslgFile& p, const PslgOptions& options) {
   InputSet set;
   set.units = Units::MapUnits;
   if (p.points.size() < 3) throw InputError("fewer than three points", p.vertex_file);
-  // Cycles: connected groups of segments in which every vertex has exactly two segments.
   const std::size_t n = p.points.size();
-  std::vector<std::vector<std::size_t>> adj(n);  // segment indices at each vertex
-  for (std::size_t s = 0; s < p.segments.size(); ++s)
-    for (std::size_t v : p.segments[s]) adj[v].push_back(s);
-  std::vector<bool> seg_done(p.segments.size(), false), vertex_in_ring(n, false);
-  std::vector<std::vector<std::size_t>> cycles;
-  for (std::size_t s0 = 0; s0 < p.segments.size(); ++s0) {
-    if (seg_done[s0]) continue;
-    // Collect the connected group and check degrees.
-    std::vector<std::size_t> stack{s0}, group_vertices, group_segments;
-    seg_done[s0] = true;
-    bool all_two = true;
-    while (!stack.empty()) {
-      const std::size_t s = stack.back();
-      stack.pop_back();
-      group_segments.push_back(s);
-      for (std::size_t v : p.segments[s]) {
-        if (adj[v].size() != 2) all_two = false;
-        for (std::size_t t : adj[v])
-          if (!seg_done[t]) seg_done[t] = true, stack.push_back(t);
-      }
-    }
-    if (!all_two || group_segments.size() < 3) continue;
-    // Walk the cycle.
-    std::vector<std::size_t> cycle;
-    std::size_t v = p.segments[s0][0], s = s0;
-    do {
-      cycle.push_back(v);
-      const std::size_t w = p.segments[s][0] == v ? p.segments[s][1] : p.segments[s][0];
-      s = adj[w][0] == s ? adj[w][1] : adj[w][0];
-      v = w;
-    } while (v != p.segments[s0][0] && cycle.size() <= group_segments.size());
-    if (cycle.size() == group_segments.size()) cycles.push_back(std::move(cycle));
-  }
-  std::vector<std::vector<Point2>> rings;
-  std::vector<std::vector<std::size_t>> ring_lines;
-  for (const auto& cycle : cycles) {
-    rings.emplace_back();
-    ring_lines.emplace_back();
-    for (const std::size_t v : cycle) {
-      vertex_in_ring[v] = true;
-      rings.back().push_back(p.points[v]);
-      ring_lines.back().push_back(p.point_lines[v]);
-    }
-  }
-  // A segment that is not part of a cycle gives the points inserted along it (its ends are points of
-  // their own).
-  auto loose_segment = [&](std::size_t s) { return !(vertex_in_ring[p.segments[s][0]] && vertex_in_ring[p.segments[s][1]]); };
+  auto segment_name = [&](std::size_t s) {
+    return "segment " + std::to_string(s + 1) + " (line " + std::to_string(p.segment_lines[s]) + ")";
+  };
+  if (const auto crossing = first_segment_crossing(p.points, p.segments))
+    throw InputError(segment_name((*crossing)[0]) + " meets " + segment_name((*crossing)[1]) +
+                         " other than at a common end point; the segments of a .poly may only meet at their ends",
+                     p.vertex_file, p.segment_lines[(*crossing)[0]]);
+  const PslgDomain pslg = pslg_domain(p.points, p.segments, p.holes);
+
+  std::vector<bool> vertex_kept(n, false);
+  for (const auto& vs : pslg.vertices)
+    for (std::size_t v : vs) vertex_kept[v] = true;
   double count = 0;  // the points the spacing gives, checked before sampling any
-  for (const auto& ring : rings) count += detail::subdivided_count(ring, true, options.spacing);
-  for (std::size_t v = 0; v < n; ++v) count += !vertex_in_ring[v];
-  for (std::size_t s = 0; s < p.segments.size(); ++s)
-    if (loose_segment(s))
-      count += detail::subdivided_count({p.points[p.segments[s][0]], p.points[p.segments[s][1]]}, false, options.spacing) - 2;
+  for (const Ring& ring : pslg.domain.rings) count += detail::subdivided_count(ring.points, ring.closed(), options.spacing);
+  for (std::size_t v = 0; v < n; ++v) count += !vertex_kept[v];
   detail::check_sampled_count(count, options.spacing, options.max_points, p.vertex_file);
 
   detail::InputBuilder vertices(set, p.vertex_file, Source::Location::Line);
-  for (std::size_t r = 0; r < rings.size(); ++r)
-    vertices.add_ring(rings[r], RingRole::Shore, ring_lines[r], options.spacing, options.max_points);
-  assign_roles_by_nesting(set.domain);
+  for (std::size_t r = 0; r < pslg.domain.rings.size(); ++r) {
+    std::vector<std::size_t> lines;
+    for (std::size_t v : pslg.vertices[r]) lines.push_back(p.point_lines[v]);
+    const Ring& ring = pslg.domain.rings[r];
+    vertices.add_ring(ring.points, ring.role, lines, options.spacing, options.max_points, true);
+  }
   check_rings(set);
   for (std::size_t v = 0; v < n; ++v)
-    if (!vertex_in_ring[v]) vertices.add_point(p.points[v], p.point_lines[v]);
-  std::size_t loose_segments = 0;
-  for (std::size_t s = 0; s < p.segments.size(); ++s) {
-    if (!loose_segment(s)) continue;
-    ++loose_segments;
-    const auto [a, b] = p.segments[s];
-    const auto sub = detail::subdivide({p.points[a], p.points[b]}, false, options.spacing, options.max_points);
-    for (std::size_t k = 1; k + 1 < sub.size(); ++k) vertices.add_point(sub[k], p.point_lines[a]);
+    if (!vertex_kept[v]) vertices.add_point(p.points[v], p.point_lines[v]);
+
+  std::size_t rings = 0, lines = 0;
+  for (const Ring& ring : pslg.domain.rings) ++(ring.closed() ? rings : lines);
+  auto plural = [](std::size_t k, const std::string& what) { return std::to_string(k) + " " + what + (k == 1 ? "" : "s"); };
+  if (pslg.bounded_faces) {
+    set.notes.push_back(plural(pslg.boundary_segments, "segment") + " bound the water (" + plural(rings, "ring") + ")" +
+                        (pslg.line_segments ? ", " + plural(pslg.line_segments, "segment") + " with water on both sides are " +
+                                                  plural(lines, "constraint line")
+                                            : std::string()));
+    if (pslg.dropped_segments)
+      set.notes.push_back(plural(pslg.dropped_segments, "segment") +
+                          " with land (a hole or the outside) on both sides bound nothing and are left out");
+  } else if (!p.segments.empty()) {
+    set.notes.push_back("the segments form no closed cycle: no water is bounded; they are " + plural(lines, "constraint line") +
+                        " in the box's mesh");
   }
-  if (!cycles.empty()) set.notes.push_back(std::to_string(cycles.size()) + " closed segment cycles became rings");
-  if (loose_segments)
-    set.notes.push_back(std::to_string(loose_segments) + " segments that do not form closed rings were kept as sampled points only");
-  // Holes: Triangle's hole seeds should lie on land by the even-odd rule; say so when they do not.
-  for (std::size_t h = 0; h < p.holes.size(); ++h) {
-    int depth = 0;
-    for (const auto& ring : set.domain.rings) depth += ring_contains(ring.points, p.holes[h]);
-    if (!set.domain.empty() && depth % 2 == 1)
-      set.notes.push_back("hole " + std::to_string(h + 1) + " (line " + std::to_string(p.hole_lines[h]) +
-                          ") lies inside water by the even-odd rule of the rings");
+  if (pslg.duplicate_segments) set.notes.push_back(plural(pslg.duplicate_segments, "segment") + " given twice counted once");
+  if (!pslg.pinch_vertices.empty()) {
+    std::string at;
+    for (std::size_t k = 0; k < std::min<std::size_t>(pslg.pinch_vertices.size(), 5); ++k)
+      at += (k ? ", line " : "line ") + std::to_string(p.point_lines[pslg.pinch_vertices[k]]);
+    const std::size_t k = pslg.pinch_vertices.size();
+    set.notes.push_back("the input has " + std::to_string(k) + (k == 1 ? " pinch vertex" : " pinch vertices") +
+                        " (water sectors that meet at a point; rings share the vertex): " + at +
+                        (pslg.pinch_vertices.size() > 5 ? ", ..." : ""));
   }
+  for (std::size_t h : pslg.holes_outside)
+    set.notes.push_back("hole " + std::to_string(h + 1) + " (line " + std::to_string(p.hole_lines[h]) +
+                        ") lies in no segment cycle; it removes nothing");
   if (const auto dup = detail::find_duplicate(set.points))
     throw InputError("duplicate point: " + describe_origin(set, dup->first) + " repeats " + describe_origin(set, dup->second),
                      p.vertex_file, set.origins[dup->first].location);

@@ -66,6 +66,10 @@ struct TrackOptions {
   // walk: it becomes a ring of the domain (roles from nesting: a walk around a lake encloses water). Negative:
   // max(2 * spacing, 25 m); 0: never close (every track stays loose points).
   double close_tolerance = -1;
+  // A track or route that does not close becomes a constraint line (RingRole::Line: a chain of mesh edges
+  // inside the water that bounds nothing) instead of loose points. It must lie in the water and cross no
+  // ring or line (check_rings says which one does).
+  bool open_lines = false;
   bool waypoints = true;  // include <wpt> points (as loose points)
 };
 

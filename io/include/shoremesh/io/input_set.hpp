@@ -52,7 +52,8 @@ struct InputSet {
   std::vector<PointOrigin> origins;   // parallel to points (or points3)
   std::vector<Source> sources;        // the files that origins refer to
   Domain2 domain;                     // rings (even-odd rule); empty when the input has none
-  std::vector<std::size_t> ring_offsets;  // ring r's vertices are points[ring_offsets[r] + k], k < ring size
+  // Ring r's vertex k is points[ring_ids[r][k]]; a vertex that rings share (a .poly's) is one point.
+  std::vector<std::vector<std::size_t>> ring_ids;
   Units units = Units::MapUnits;
   Projection projection;              // Kind::None unless lon/lat input was projected
   std::vector<std::string> notes;     // plain statements for the user ("pixel units: no georeference", ...)

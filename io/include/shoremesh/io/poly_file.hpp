@@ -7,8 +7,10 @@
 //           <#segments> <#markers>, <segment #> <endpoint> <endpoint> [marker], then <#holes>, <hole #> <x> <y>
 //           (regional attributes after the holes are ignored). '#' starts a comment.
 //
-// Segments become rings of the domain where they form closed cycles (every vertex of a connected group of
-// segments has exactly two segments); other segments are kept as sampled points only. Segments are sampled
+// The segments and holes become the water domain as Triangle's -p reads them (shoremesh/pslg.hpp): the
+// water's boundary as rings, segments with water on both sides (open chains, dangling segments, segments
+// between two water faces) as constraint lines, segments with land on both sides left out; rings and lines
+// share the vertices where they meet. Segments that meet other than at their ends are refused. Segments are sampled
 // like rings: with a spacing, points are inserted so that no piece is longer than the spacing. Errors
 // (shoremesh::InputError with file and line): bad header, dimension other than 2, wrong value count,
 // text in a number column, NaN/inf, vertex numbering that skips, a file that ends before the declared count,
