@@ -45,7 +45,8 @@ const triFragment = `
   out vec4 outColor;
   vec3 ramp(float t) { return mix(mix(vec3(0.93, 0.86, 0.55), vec3(0.45, 0.75, 0.85), clamp(t * 2.0, 0.0, 1.0)),
                                   vec3(0.16, 0.38, 0.72), clamp(t * 2.0 - 1.0, 0.0, 1.0)); }
-  // Depth, positive down, interpolated across the triangle: shallow pale to deep navy.
+  // Depth, positive down, interpolated across the triangle: shallow pale to deep navy, on a square-root
+  // scale (most water is shallow beside a few deep basins).
   vec3 depthRamp(float t) { t = clamp(t, 0.0, 1.0);
     return mix(mix(vec3(0.80, 0.93, 0.88), vec3(0.30, 0.62, 0.80), clamp(t * 2.0, 0.0, 1.0)),
                vec3(0.05, 0.13, 0.38), clamp(t * 2.0 - 1.0, 0.0, 1.0)); }
@@ -53,7 +54,7 @@ const triFragment = `
     vec3 fill = vec3(0.62, 0.80, 0.90);
     if (uColour == 0) fill = vQuality < uBound ? vec3(0.85, 0.2, 0.15) : ramp((vQuality - uBound) / max(60.0 - uBound, 1.0));
     if (uColour == 1) fill = ramp((vSize - uSizeRange.x) / max(uSizeRange.y - uSizeRange.x, 1e-6));
-    if (uColour == 3) fill = depthRamp((vDepth - uDepthRange.x) / max(uDepthRange.y - uDepthRange.x, 1e-6));
+    if (uColour == 3) fill = depthRamp(sqrt(max(vDepth - uDepthRange.x, 0.0) / max(uDepthRange.y - uDepthRange.x, 1e-6)));
     fill = mix(fill, vec3(1.0, 0.45, 0.0), vFlash * 0.85);
     vec3 d = fwidth(vBary);
     vec3 a = smoothstep(vec3(0.0), d * 1.3, vBary);
@@ -321,7 +322,7 @@ async function load() {
   allocate(head.slots);
   for (let s = 0; s < head.slots; ++s) {
     if (kinds[s * 3] === 255) continue;
-    writeSlot(s, xy.subarray(s * 6, s * 6 + 6), kinds.subarray(s * 3, s * 3 + 3), -1);
+    writeSlot(s, xy.subarray(s * 6, s * 6 + 6), kinds.subarray(s * 3, s * 3 + 3), -1e9)  // made before this page: not highlighted;
   }
   let lo = Infinity, hi = -Infinity;
   for (let s = 0; s < head.slots; ++s) if (kinds[s * 3] !== 255) { const v = buffers.size.array[s * 3]; lo = Math.min(lo, v); hi = Math.max(hi, v); }
@@ -751,7 +752,7 @@ function showLegend() {
   const [dlo, dhi] = uniforms.uDepthRange.value.toArray();
   $('legend-text').textContent = mode === 0 ? `red: min angle below the bound ${uniforms.uBound.value.toFixed(2)}°; then up to 60°`
     : mode === 1 ? `longest edge ${lo.toPrecision(3)} to ${hi.toPrecision(3)} ${state.units} (log scale)`
-    : mode === 3 ? `depth ${dlo.toPrecision(3)} to ${dhi.toPrecision(3)} m (positive down, at the nodes as exports give them)` : '';
+    : mode === 3 ? `depth ${dlo.toPrecision(3)} to ${dhi.toPrecision(3)} m (positive down, square-root scale; at the nodes as exports give them)` : '';
 }
 
 // For tests and scripts: a point's place on the screen, and a view centred on it.
