@@ -109,8 +109,8 @@ const raw = (vertexShader, fragmentShader) =>
 // skips the chunks outside the view (the server numbers the first slots along a Z-order curve, so a chunk
 // covers one patch of water; a slot an edit reuses lies where the edit freed it). Zoomed in on an edit at a
 // million triangles, a frame draws a few chunks instead of all of them.
-const kChunk = 16384;
-let chunks = [], buffers = null, capacity = 0;
+const kChunk = 4096;
+let chunks = [], buffers = null, capacity = 0, layerMask = { d: true, c: true, t: true };
 function allocate(slots) {
   capacity = Math.ceil(slots * 1.25) + 1024;
   const old = buffers;
@@ -201,26 +201,45 @@ function upload(slots) {  // only the slots written: one bufferSubData range per
 }
 
 // The shore points (draggable) and loose points, and the shoreline: rebuilt when points come or go,
-// written in place when one moves.
-let dots = null, lines = null, dotIndex = new Map();
+// written in place when one moves. Drawn in chunks of kChunk points (in ring order, so a chunk is a
+// stretch of shore) culled by the view like the triangles.
+let dots = null, lines = null, dotChunks = [], dotIndex = new Map();
 function rebuildRings() {
   const ids = [...state.verts.keys()];
   dotIndex = new Map(ids.map((id, i) => [id, i]));
   const pos = new Float32Array(ids.length * 2), colour = new Float32Array(ids.length * 3), big = new Float32Array(ids.length);
   const seg = new Float32Array(ids.length * 4);
   ids.forEach((id, i) => writeDot(pos, colour, big, seg, id, i));
-  if (dots) { scene.remove(dots, lines); dots.geometry.dispose(); lines.geometry.dispose(); }
-  const g = new THREE.BufferGeometry();
-  g.setAttribute('position', new THREE.BufferAttribute(pos, 2));
-  g.setAttribute('colour', new THREE.BufferAttribute(colour, 3));
-  g.setAttribute('big', new THREE.BufferAttribute(big, 1));
-  dots = new THREE.Points(g, raw(dotVertex, dotFragment));
-  const lg = new THREE.BufferGeometry();
-  lg.setAttribute('position', new THREE.BufferAttribute(seg, 2));
-  lines = new THREE.LineSegments(lg, raw(lineVertex, lineFragment));
-  dots.frustumCulled = lines.frustumCulled = false;
-  lines.renderOrder = 2; dots.renderOrder = 3;
-  scene.add(lines, dots);
+  for (const c of dotChunks) { scene.remove(c.points, c.segs); c.points.geometry.dispose(); c.segs.geometry.dispose(); }
+  dots = { attributes: { position: new THREE.BufferAttribute(pos, 2), colour: new THREE.BufferAttribute(colour, 3),
+                         big: new THREE.BufferAttribute(big, 1) } };
+  lines = { position: new THREE.BufferAttribute(seg, 2) };
+  dotChunks = [];
+  const dotMaterial = raw(dotVertex, dotFragment), lineMaterial = raw(lineVertex, lineFragment);
+  for (let start = 0; start < ids.length; start += kChunk) {
+    const n = Math.min(kChunk, ids.length - start), sphere = new THREE.Sphere();
+    const pg = new THREE.BufferGeometry(), lg = new THREE.BufferGeometry();
+    for (const k in dots.attributes) pg.setAttribute(k, dots.attributes[k]);
+    lg.setAttribute('position', lines.position);
+    pg.setDrawRange(start, n); lg.setDrawRange(start * 2, n * 2);
+    pg.boundingSphere = lg.boundingSphere = sphere;
+    const c = { points: new THREE.Points(pg, dotMaterial), segs: new THREE.LineSegments(lg, lineMaterial),
+                lo: [Infinity, Infinity], hi: [-Infinity, -Infinity], sphere };
+    c.segs.renderOrder = 2; c.points.renderOrder = 3;
+    dotChunks.push(c);
+    for (let i = start; i < start + n; ++i) growDot(i);
+    scene.add(c.segs, c.points);
+  }
+}
+function growDot(i) {  // a point's chunk's bounds take in its edge (both ends)
+  const c = dotChunks[Math.floor(i / kChunk)], seg = lines.position.array;
+  for (let k = 0; k < 4; k += 2) {
+    const x = seg[i * 4 + k], y = seg[i * 4 + k + 1];
+    if (x < c.lo[0]) c.lo[0] = x; if (y < c.lo[1]) c.lo[1] = y;
+    if (x > c.hi[0]) c.hi[0] = x; if (y > c.hi[1]) c.hi[1] = y;
+  }
+  c.sphere.center.set((c.lo[0] + c.hi[0]) / 2, (c.lo[1] + c.hi[1]) / 2, 0);
+  c.sphere.radius = Math.hypot(c.hi[0] - c.lo[0], c.hi[1] - c.lo[1]) / 2;
 }
 function writeDot(pos, colour, big, seg, id, i) {
   const v = state.verts.get(id);
@@ -233,19 +252,25 @@ function writeDot(pos, colour, big, seg, id, i) {
   seg.set([x, y, n.x - state.origin[0], n.y - state.origin[1]], i * 4);
 }
 function refreshDots(ids) {  // in place: points that moved or whose selection changed, and their edges
-  const g = dots.geometry, a = g.attributes;
+  const a = dots.attributes;
   const touched = new Set();
   for (const id of ids) {
     touched.add(id);
     const v = state.verts.get(id);
     if (v && v.prev !== undefined) touched.add(v.prev);
   }
+  const seg = lines.position;
+  for (const attr of [a.position, a.colour, a.big, seg]) attr.clearUpdateRanges();
   for (const id of touched) {
     if (!dotIndex.has(id) || !state.verts.has(id)) continue;
-    writeDot(a.position.array, a.colour.array, a.big.array, lines.geometry.attributes.position.array, id, dotIndex.get(id));
+    const i = dotIndex.get(id);
+    writeDot(a.position.array, a.colour.array, a.big.array, seg.array, id, i);
+    growDot(i);
+    // Only these points' entries go to the GPU (a drag rewrites one point 171k times over otherwise).
+    for (const attr of [a.position, a.colour, a.big]) attr.addUpdateRange(i * attr.itemSize, attr.itemSize);
+    seg.addUpdateRange(i * 4, 4);
   }
-  a.position.needsUpdate = a.colour.needsUpdate = a.big.needsUpdate = true;
-  lines.geometry.attributes.position.needsUpdate = true;
+  a.position.needsUpdate = a.colour.needsUpdate = a.big.needsUpdate = seg.needsUpdate = true;
 }
 
 // ---- the view --------------------------------------------------------------------------------------------
@@ -262,7 +287,10 @@ function updateCamera() {
   uniforms.uPointSize.value = Math.min(3, Math.max(0, 2.5 - Math.log10(cam.scale / (state.side / 2e5) + 1e-12)));
   // Split and Steiner points are drawn only once they are big enough to see (their pass costs a vertex
   // per triangle corner).
-  for (const c of chunks) c.corners.visible = c.mesh.visible && uniforms.uPointSize.value > 0.5;
+  for (const c of chunks) c.corners.visible = c.mesh.visible && layerMask.c && uniforms.uPointSize.value > 0.5;
+  // Shore points too dense to pick one out (zoomed out on a large shore) are left to the shoreline.
+  const showDots = layerMask.d && (uniforms.uPointSize.value > 0.5 || state.verts.size < 20000);
+  for (const c of dotChunks) { c.points.visible = showDots; c.segs.visible = layerMask.d; }
   // The scale bar: a round length near 120 pixels.
   const target = 120 * cam.scale, p = Math.pow(10, Math.floor(Math.log10(target)));
   const len = [5, 2, 1].map((m) => m * p).find((l) => l <= target) || p;
@@ -765,6 +793,23 @@ state.zoomTo = (id, unitsPerPixel) => {
 state.nextFrame = nextFrame;
 state.pan = (dx, dy) => { cam.cx += dx * cam.scale; cam.cy -= dy * cam.scale; return nextFrame(); };  // CSS pixels
 state.fit = () => { fit(); return nextFrame(); };
+// Profiling (bench/): one frame drawn and read back (a pixel: the draw must have run), in ms; and layers
+// switched off.
+const probe = new Uint8Array(4);
+state.profileFrame = () => {
+  updateCamera();
+  const t = performance.now();
+  renderer.render(scene, camera);
+  const gl = renderer.getContext();
+  gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, probe);
+  const ms = performance.now() - t;
+  state.drawn = { ...renderer.info.render };
+  return ms;
+};
+state.layers = ({ dots: d = true, corners: c = true, triangles: t = true }) => {
+  for (const k of chunks) { k.mesh.visible = t && isFinite(k.lo[0]); k.corners.visible = c && k.mesh.visible; }
+  layerMask = { d, c, t };
+};
 // What the page draws, for tests: each triangle's corners (float32, relative to the origin) as sorted
 // text, the triangles sorted; and each drawn node's depth (by its float32 place).
 state.drawnTriangles = () => {
