@@ -447,7 +447,9 @@ async function send(line, opts = {}) {
     reply = opts.applied.reply;
     t1 = t0 + opts.applied.roundTripMs;
   } else {
-    const res = await fetch('edit', { method: 'POST', body: line, headers: { 'Content-Type': 'text/plain' } });
+    ++posting;
+    const res = await fetch('edit', { method: 'POST', body: line, headers: { 'Content-Type': 'text/plain' } })
+      .finally(() => { --posting; });
     const out = await res.json();
     if (!res.ok) { setStatus(`${line}: ${out.error}`, true); return { ok: false, error: out.error }; }
     t1 = performance.now();
@@ -757,8 +759,14 @@ function showCounts(reply) {
     $('steiner-count').textContent = reply.steiner_points?.toLocaleString('en') ?? '';
   }
 }
-let statsTimer = null;
-function scheduleStats() { clearTimeout(statsTimer); statsTimer = setTimeout(loadStats, 400); }
+// The summary (GET /stats) measures the whole mesh on the server under the edit lock (a few hundred ms at
+// a million triangles on a loaded machine): asked for only once the edits have paused for a second and no
+// drag or edit is under way, so that it never holds up a move.
+let statsTimer = null, posting = 0;
+function scheduleStats() {
+  clearTimeout(statsTimer);
+  statsTimer = setTimeout(() => (state.dragging || posting > 0 ? scheduleStats() : loadStats()), 1000);
+}
 async function loadStats() {
   const s = await (await fetch('stats')).json();
   showCounts(s);
