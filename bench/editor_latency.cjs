@@ -1,6 +1,8 @@
 // The browser editor's edit latency as the page sees it: N mouse drags of shore points in headless
-// Chromium, each timed by the page from the POST to its answer (round trip) and to the frame drawn after
-// it; the server's own time (the edit's `ms`) beside them. Medians and 95th percentiles.
+// Chromium (the mesh moving while dragging), each timed by the page from the mouse release to the frame
+// drawn after the final move's answer; the final POST's round trip and the server's own time (the edit's
+// `ms`) beside them. Then the frame time while panning (60 frames, each a few pixels on): zoomed in as the
+// drags are, and with the whole mesh in view. Medians and 95th percentiles.
 //
 //   SHOREMESH_BINARY=build/tool/shoremesh SHOREMESH_NODE_MODULES=build/web/node_modules \
 //   SHOREMESH_CHROMIUM=/usr/bin/chromium node bench/editor_latency.cjs N INPUT [serve options...]
@@ -37,7 +39,23 @@ async function main() {
     console.log(`${rows.length} drags accepted, ${refused} refused`);
     show('server (edit ms)', rows.map((r) => r.serverMs));
     show('POST round trip', rows.map((r) => r.roundTripMs));
-    show('to the updated frame', rows.map((r) => r.frameMs));
+    show('release to the updated frame', rows.map((r) => r.frameMs));
+    console.log(`moves sent while dragging: ${await page.evaluate(() => window.shoremesh.liveMoves)}`);
+    // Panning: frames drawn back to back, each after the view moved 7 pixels (the time between them is what
+    // the page can draw: Chromium paces requestAnimationFrame to the compositor).
+    const pan = (n) => page.evaluate(async (n) => {
+      const s = window.shoremesh, times = [];
+      let t = performance.now();
+      for (let i = 0; i < n; ++i) {
+        const t1 = await s.pan(i % 40 < 20 ? 7 : -7, 0);
+        times.push(t1 - t);
+        t = t1;
+      }
+      return times;
+    }, n);
+    show('frame while panning, zoomed in as the drags', await pan(60));
+    await page.evaluate(() => window.shoremesh.fit());
+    show(`frame while panning, all ${info.triangles} triangles in view`, await pan(60));
     // The same kind of edit posted from here with the browser closed (no page rendering on the same CPUs):
     // the last drag undone and redone.
     const op = await page.evaluate(() => window.shoremesh.undo[window.shoremesh.undo.length - 1].op);

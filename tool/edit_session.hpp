@@ -42,6 +42,8 @@ class EditSession {
   // sends a page so that it redraws only the change.
   const ShoreSession<D>& session() const { return session_; }
   const SessionEdit<D>& last_edit() const { return last_edit_; }
+  // The user's units, projection and depth source (what exports add to the mesh).
+  const UserFrame& frame() const { return frame_; }
   // The files the session read (its inputs, the edit lines' file): export and preview replace none of them.
   void set_inputs(std::vector<std::filesystem::path> inputs) { inputs_ = std::move(inputs); }
 

@@ -26,8 +26,10 @@
 #include "commands.hpp"
 #include "edit_session.hpp"
 #include "input_args.hpp"
+#include "pipeline.hpp"
 #include "progress.hpp"
 #include "shoremesh/error.hpp"
+#include "shoremesh/io/export.hpp"
 
 namespace shoremesh::tool {
 
@@ -75,6 +77,9 @@ enum DrawKind : std::uint8_t { kSteiner = 0, kSplit = 1, kShore = 2, kLoose = 3 
 // the input points by id with their ring neighbours. Updated from each edit's delta in O(change).
 class DrawState {
  public:
+  // `frame`: where depths come from (--dem, --depth-from, soundings); without a depth source none are drawn.
+  explicit DrawState(const UserFrame& frame) : frame_(frame) {}
+
   void reset(const ShoreSession<2>& s) {
     slot_of_.clear();
     free_.clear();
@@ -84,13 +89,31 @@ class DrawState {
     for (std::size_t id = 0; id < s.next_id(); ++id)
       if (s.contains(id)) set_id(id, s.input_point(id));
     reset_steiner(s.mesh());
+    // Slots numbered along a Z-order curve of the triangles' centroids: consecutive slots are near each
+    // other, so the page can skip whole runs of slots outside its view (ties: by corners).
     const auto& points = s.mesh().points();
+    const BoxTransform<2>& box = s.box();
+    std::vector<std::pair<std::uint64_t, ElementCorners<2>>> order;
     for (const auto& e : s.mesh().elements()) {
       ElementCorners<2> c{points[e[0]], points[e[1]], points[e[2]]};
       std::sort(c.begin(), c.end());
-      slot_of_.emplace(c, slot_count_++);
+      std::uint64_t code = 0;
+      for (int axis = 0; axis < 2; ++axis) {
+        const double t = ((c[0][axis] + c[1][axis] + c[2][axis]) / 3 - box.origin[axis]) / box.side;
+        const auto cell = static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * 65535.0);
+        for (int bit = 0; bit < 16; ++bit) code |= ((cell >> bit) & 1u) << (2 * bit + axis);
+      }
+      order.emplace_back(code, c);
+    }
+    std::sort(order.begin(), order.end());
+    for (const auto& [code, c] : order) slot_of_.emplace(c, slot_count_++);
+    if (has_depths()) {
+      depth_.assign(std::size_t(slot_count_) * 3, 0.0f);
+      update_depths(s, {});
     }
   }
+
+  bool has_depths() const { return frame_.depth != nullptr; }
 
   // The change of one accepted edit that touched the input points `ids`, as the page applies it.
   json apply(const ShoreSession<2>& s, const SessionEdit<2>& edit, const std::vector<std::size_t>& ids) {
@@ -115,17 +138,24 @@ class DrawState {
       slot_of_.erase(it);
     }
     const Point2 o = s.box().origin;
+    std::unordered_set<std::uint32_t> added_slots;
     for (const auto& c : edit.mesh.added) {
       std::uint32_t slot = slot_count_;
       if (free_.empty()) ++slot_count_;
       else slot = free_.back(), free_.pop_back();
       slot_of_.emplace(c, slot);
+      added_slots.insert(slot);
       added.push_back({slot, c[0][0] - o[0], c[0][1] - o[1], c[1][0] - o[0], c[1][1] - o[1], c[2][0] - o[0],
                        c[2][1] - o[1], kind(s, c[0]), kind(s, c[1]), kind(s, c[2])});
     }
     for (std::size_t id : ids) inputs.push_back(input_json(s, id));
-    return {{"cleared", cleared}, {"added", added}, {"inputs", inputs}, {"slots", slot_count_},
-            {"triangles", s.mesh().element_count()}};
+    json change = {{"cleared", cleared}, {"added", added}, {"inputs", inputs}, {"slots", slot_count_},
+                   {"triangles", s.mesh().element_count()}};
+    if (has_depths()) {
+      depth_.resize(std::size_t(slot_count_) * 3, 0.0f);
+      change["depths"] = update_depths(s, added_slots);
+    }
+    return change;
   }
 
   // The whole view: "SMSH", a little-endian u32 length, that much JSON (rings, loose points, counts),
@@ -138,15 +168,17 @@ class DrawState {
     head["side"] = s.box().side;
     head["slots"] = slot_count_;
     head["triangles"] = s.mesh().element_count();
+    head["depths"] = has_depths();
     json rings = json::array();
     for (std::size_t r = 0; r < s.ring_count(); ++r) {
+      if (s.ring(r).empty()) continue;  // removed
       json ids = json::array(), xy = json::array();
       for (const Point2& p : s.ring(r)) {
         ids.push_back(id_of_.at(p));
         xy.push_back(p[0]);
         xy.push_back(p[1]);
       }
-      rings.push_back({{"ring", r}, {"ids", ids}, {"xy", xy}});
+      rings.push_back({{"ring", r}, {"role", role_name(s, r)}, {"ids", ids}, {"xy", xy}});
     }
     head["rings"] = rings;
     json loose_ids = json::array(), loose_xy = json::array();
@@ -173,6 +205,10 @@ class DrawState {
       }
     out.append(reinterpret_cast<const char*>(xy.data()), xy.size() * sizeof(float));
     out.append(reinterpret_cast<const char*>(kinds.data()), kinds.size());
+    if (has_depths()) {  // then float32 depths per corner (positive down), from the next multiple of 4
+      out.append((4 - out.size() % 4) % 4, '\0');
+      out.append(reinterpret_cast<const char*>(depth_.data()), depth_.size() * sizeof(float));
+    }
     return out;
   }
 
@@ -181,6 +217,38 @@ class DrawState {
     point_of_id_[id] = p;
     id_of_[p] = id;
   }
+  static std::string role_name(const ShoreSession<2>& s, std::size_t r) {
+    const RingRole role = s.refined_rings().rings.at(r).role;
+    return role == RingRole::Island ? "island" : role == RingRole::Line ? "line" : "shore";
+  }
+
+  // The corners' depths as an export gives them (the same nodes, numbered the same: Lemma 7.2 makes them
+  // a fresh run's). A node's depth depends on its neighbours (the DEM cells nearest to it), so an edit
+  // changes depths beyond its triangles: every slot is compared, and those whose depths changed (besides
+  // the `added` ones, whose depths are new) are sent as [slot, d0, d1, d2]. O(mesh) per edit, like the
+  // depths themselves, and only for sessions with depths.
+  json update_depths(const ShoreSession<2>& s, const std::unordered_set<std::uint32_t>& added) {
+    const auto order = s.canonical_points();
+    const io::MeshSnapshot<2> snapshot(s.mesh(), order);
+    const io::MeshView<2> view = snapshot.view();
+    const std::vector<double> depths = mesh_depths(view, frame_);
+    std::unordered_map<Point2, float, PointHash> depth_at;
+    depth_at.reserve(depths.size());
+    for (std::size_t i = 0; i < depths.size(); ++i) depth_at.emplace(view.points[i], static_cast<float>(depths[i]));
+    json changed = json::array();
+    for (const auto& [c, slot] : slot_of_) {
+      bool differs = added.contains(slot);
+      std::array<float, 3> d;
+      for (int k = 0; k < 3; ++k) {
+        d[k] = depth_at.at(c[k]);
+        differs = differs || d[k] != depth_[slot * 3 + k];
+        depth_[slot * 3 + k] = d[k];
+      }
+      if (differs) changed.push_back({slot, d[0], d[1], d[2]});
+    }
+    return changed;
+  }
+
   void reset_steiner(const Mesh<2>& mesh) {
     steiner_.clear();
     for (std::size_t i = 0; i < mesh.points().size(); ++i)
@@ -199,9 +267,11 @@ class DrawState {
     json j = {{"id", id}, {"x", p[0]}, {"y", p[1]}};
     if (const auto at = s.ring_of(id)) {
       const auto& ring = s.ring(at->first);
+      const bool open = s.refined_rings().rings.at(at->first).role == RingRole::Line;
       j["ring"] = at->first;
-      j["prev"] = id_of_.at(ring[(at->second + ring.size() - 1) % ring.size()]);
-      j["next"] = id_of_.at(ring[(at->second + 1) % ring.size()]);
+      j["role"] = role_name(s, at->first);
+      if (!open || at->second > 0) j["prev"] = id_of_.at(ring[(at->second + ring.size() - 1) % ring.size()]);
+      if (!open || at->second + 1 < ring.size()) j["next"] = id_of_.at(ring[(at->second + 1) % ring.size()]);
     }
     return j;
   }
@@ -212,6 +282,8 @@ class DrawState {
   std::vector<std::optional<Point2>> point_of_id_;
   std::unordered_map<Point2, std::size_t, PointHash> id_of_;
   std::unordered_set<Point2, PointHash> steiner_;
+  const UserFrame& frame_;
+  std::vector<float> depth_;  // per slot corner, when the session has depths
 };
 
 // Server-sent events: each accepted edit's change goes to every open /events stream. A stream that
@@ -291,13 +363,13 @@ std::string bad_export_name(const std::string& name) {
 }
 
 bool is_edit_op(const std::string& op) {
-  return op == "add" || op == "remove" || op == "move" || op == "add-ring" || op == "remove-ring";
+  return op == "add" || op == "remove" || op == "move" || op == "add-ring" || op == "add-line" || op == "remove-ring";
 }
 
 class EditServer {
  public:
   EditServer(EditSession<2>& session, std::filesystem::path export_dir, std::ofstream* log)
-      : session_(session), export_dir_(std::move(export_dir)), log_(log) {
+      : session_(session), draw_(session.frame()), export_dir_(std::move(export_dir)), log_(log) {
     draw_.reset(session_.session());
   }
 
@@ -321,7 +393,7 @@ class EditServer {
       if (reply->value("ok", false) && is_edit_op(reply->value("op", ""))) {
         std::vector<std::size_t> ids;
         if (reply->contains("ids")) ids = (*reply)["ids"].get<std::vector<std::size_t>>();
-        if (reply->contains("id") && (*reply)["op"] != "add-ring") ids.push_back((*reply)["id"].get<std::size_t>());
+        if (reply->contains("id") && !reply->contains("ids")) ids.push_back((*reply)["id"].get<std::size_t>());
         if (log_) *log_ << line << std::endl;  // flushed: a killed server resumes from it
         json change = draw_.apply(session_.session(), session_.last_edit(), ids);
         change["version"] = ++version_;
@@ -394,7 +466,7 @@ void replay(EditSession<2>& session, const std::string& path) {
     const auto words = words_of(line);
     if (!words.empty() && words[0][0] != '#' && !is_edit_op(words[0]))
       throw InputError("line " + std::to_string(line_no) + " of the edit log is not an edit (" + words[0] +
-                           "): a log holds add, remove, move, add-ring and remove-ring lines", path);
+                           "): a log holds add, remove, move, add-ring, add-line and remove-ring lines", path);
     const auto reply = session.run(line_no, line);
     if (!reply) continue;
     if (!reply->value("ok", false))

@@ -62,9 +62,10 @@ async function openEditor(browser, url) {
 }
 
 // Drags shore point number `k` of ring 0 (in ring order) a tenth of the way to its neighbours' chord's
-// normal, with the mouse, and waits for the page to show the edit's answer. Resolves to the page's record
-// of the edit (line, ok, serverMs, roundTripMs, frameMs, reply).
-async function dragShorePoint(page, k, sign = 1) {
+// normal, with the mouse (in `steps` pointer moves, `pause` ms apart: the page moves the point on the
+// server while the mouse moves), and waits for the page to show the edit's answer. Resolves to the page's
+// record of the edit (line, ok, serverMs, roundTripMs, frameMs: from the release, reply).
+async function dragShorePoint(page, k, sign = 1, { steps = 6, pause = 0 } = {}) {
   const plan = await page.evaluate(async (k, sign) => {
     const s = window.shoremesh;
     const ring = [...s.verts.entries()].filter(([, v]) => v.ring === 0);
@@ -79,11 +80,14 @@ async function dragShorePoint(page, k, sign = 1) {
   }, k, sign);
   await page.mouse.move(plan.sx, plan.sy);
   await page.mouse.down();
-  await page.mouse.move(plan.sx + plan.dx / 2, plan.sy + plan.dy / 2, { steps: 3 });
-  await page.mouse.move(plan.sx + plan.dx, plan.sy + plan.dy, { steps: 3 });
+  for (let i = 1; i <= steps; ++i) {
+    await page.mouse.move(plan.sx + (plan.dx * i) / steps, plan.sy + (plan.dy * i) / steps);
+    if (pause) await new Promise((r) => setTimeout(r, pause));
+  }
   await page.mouse.up();
-  await page.waitForFunction((n) => window.shoremesh.last && window.shoremesh.last.line.startsWith('move') &&
-                             (window.shoremesh.edits > n || !window.shoremesh.last.ok), { timeout: 60000 }, plan.edits);
+  await page.waitForFunction((n) => !window.shoremesh.dragging && window.shoremesh.last &&
+                             window.shoremesh.last.line.startsWith('move') &&
+                             (window.shoremesh.edits > n || !window.shoremesh.last.ok), { timeout: 120000 }, plan.edits);
   return { id: plan.id, ...(await page.evaluate(() => window.shoremesh.last)) };
 }
 

@@ -1,7 +1,8 @@
 // The browser editor in a real headless Chromium: load the Superior demo, drag a shore point with the
-// mouse; the server applied the move, the page redrew only the change and counts the server's triangles,
-// the session's export equals a fresh run on the edited shoreline, undo (Ctrl+Z) returns to the original
-// export byte for byte, and the canvas shows a drawn mesh.
+// mouse (the mesh follows while dragging); the page's drawn triangles and the session's export equal a
+// fresh run on the edited shoreline, undo (Ctrl+Z) returns to the original export byte for byte, and the
+// canvas shows a drawn mesh. Then points, islands and breakwater lines added, removed, undone and redone,
+// refused edits changing nothing, and depth colouring on the Salish Sea DEM.
 'use strict';
 const assert = require('assert');
 const fs = require('fs');
@@ -23,6 +24,24 @@ function offTriangles(file) {
   for (let f = 0; f < faces; ++f, at += 4) tris.push([1, 2, 3].map((k) => corner[Number(words[at + k])]).sort().join('|'));
   return tris.sort();
 }
+// The same triangles as the page draws them: float32 corners relative to the session's origin.
+function asDrawn(triangles, origin) {
+  return triangles.map((t) => t.split('|').map((c) => {
+    const [x, y] = c.split(' ').map(Number);
+    return `${Math.fround(x - origin[0])} ${Math.fround(y - origin[1])}`;
+  }).sort().join('|')).sort();
+}
+// fort.14's depth column, sorted.
+function fort14Depths(file) {
+  const lines = fs.readFileSync(file, 'utf8').split('\n');
+  const nodes = Number(lines[1].trim().split(/\s+/)[1]);
+  return lines.slice(2, 2 + nodes).map((l) => Number(l.trim().split(/\s+/)[3])).sort((a, b) => a - b);
+}
+const ctrl = async (page, key) => {
+  await page.keyboard.down('Control');
+  await page.keyboard.press(key);
+  await page.keyboard.up('Control');
+};
 
 async function main() {
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'shoremesh_browser_'));
@@ -37,16 +56,21 @@ async function main() {
     const [start] = await h.post(server.url, 'export before.off');
     assert.ok(start.ok, JSON.stringify(start));
 
-    const edit = await h.dragShorePoint(page, 700);
+    // Pauses between the pointer moves, so that moves go to the server while the mouse moves.
+    const edit = await h.dragShorePoint(page, 700, 1, { steps: 8, pause: 40 });
     check('the drag was accepted', () => assert.ok(edit.ok, `refused: ${JSON.stringify(edit.reply)}`));
     check('the drag moved that point', () => assert.ok(edit.line.startsWith(`move ${edit.id} `), edit.line));
 
     const [stats] = await h.post(server.url, 'stats');
     const page1 = await page.evaluate(() => ({ triangles: window.shoremesh.triangles, redraws: window.shoremesh.redraws,
-                                                version: window.shoremesh.version,
+                                                version: window.shoremesh.version, live: window.shoremesh.liveMoves,
+                                                origin: window.shoremesh.origin, drawn: window.shoremesh.drawnTriangles(),
                                                 shown: document.getElementById('tri-count').textContent }));
-    check('the server applied one edit and the page has its version', () => assert.strictEqual(page1.version, 1));
-    check('the page redrew the change once', () => assert.strictEqual(page1.redraws, 1));
+    check('the mesh moved while dragging (moves sent before the release)', () => assert.ok(page1.live >= 1, `${page1.live}`));
+    check("the page has the server's version: each move while dragging and the final one applied once", () => {
+      assert.ok(page1.version === page1.live || page1.version === page1.live + 1, `version ${page1.version}, ${page1.live} live`);
+      assert.strictEqual(page1.redraws, page1.version);
+    });
     check("the page's triangle count is the server's", () => {
       assert.strictEqual(page1.triangles, stats.elements);
       assert.strictEqual(page1.shown.replace(/,/g, ''), String(stats.elements));
@@ -63,6 +87,8 @@ async function main() {
     check('the session equals a fresh run on the edited shoreline',
           () => assert.deepStrictEqual(offTriangles(path.join(dir, 'out', 'after.off')), fresh));
     check("the page's triangle count is the fresh run's", () => assert.strictEqual(page1.triangles, fresh.length));
+    check("the page's drawn triangles after the drag are the fresh run's, corner for corner",
+          () => assert.deepStrictEqual(page1.drawn, asDrawn(fresh, page1.origin)));
 
     // The canvas: a drawn mesh, not a blank one (many pixels away from the background colour).
     await page.screenshot({ path: path.join(dir, 'editor.png') });
@@ -87,9 +113,7 @@ async function main() {
     });
 
     // Undo with the keyboard: the inverse move, and the original export byte for byte.
-    await page.keyboard.down('Control');
-    await page.keyboard.press('z');
-    await page.keyboard.up('Control');
+    await ctrl(page, 'z');
     await page.waitForFunction(() => window.shoremesh.edits === 2, { timeout: 60000 });
     const undone = await page.evaluate(() => window.shoremesh.last);
     check('undo is the inverse move', () => assert.ok(undone.ok && undone.line.startsWith(`move ${edit.id} `), undone.line));
@@ -123,9 +147,7 @@ async function main() {
     await page.keyboard.press('Delete');
     await waitEdit(4);
     for (const n of [5, 6]) {
-      await page.keyboard.down('Control');
-      await page.keyboard.press('z');
-      await page.keyboard.up('Control');
+      await ctrl(page, 'z');
       await waitEdit(n);
     }
     check('a click on a shore edge adds a point after its first vertex',
@@ -138,50 +160,165 @@ async function main() {
       assert.ok(fs.readFileSync(path.join(dir, 'out', 'before.off')).equals(fs.readFileSync(path.join(dir, 'out', 'undone2.off')))));
     check('the page raised no error', () => assert.deepStrictEqual(problems, []));
 
-    // An island drawn with I, three clicks and Enter; undone, redone (a new ring number) and undone again.
+    // A square lake: islands and breakwater lines drawn with the mouse, removed, undone and redone, and
+    // refused edits that change nothing.
     fs.writeFileSync(path.join(dir, 'square.txt'), '0,0\n100,0\n100,100\n0,100\n0,0\n');
-    const square = await h.startServer(['square.txt'], dir);
+    const square = await h.startServer(['square.txt', '--export-dir', 'out'], dir);
     try {
       const second = await h.openEditor(browser, square.url);
       const p2 = second.page;
-      const corners = await p2.evaluate(() => [[40, 40], [60, 40], [50, 60]].map(([x, y]) => {
+      const screen = (pts) => p2.evaluate((pts) => pts.map(([x, y]) => {
         const s = window.shoremesh;
         s.verts.set(-1, { x, y });
         const at = s.screenOf(-1);
         s.verts.delete(-1);
         return at;
-      }));
+      }), pts);
+      const clicks = async (pts) => { for (const [x, y] of await screen(pts)) await p2.mouse.click(x, y); };
       const before = await p2.evaluate(() => window.shoremesh.triangles);
-      await p2.keyboard.press('i');
-      for (const [x, y] of corners) await p2.mouse.click(x, y);
-      await p2.keyboard.press('Enter');
+      const [sq0] = await h.post(square.url, 'export sq0.off');
+      assert.ok(sq0.ok, JSON.stringify(sq0));
       const seen = [];
       const wait = async (n) => {
         await p2.waitForFunction((k) => window.shoremesh.edits === k || (window.shoremesh.last && !window.shoremesh.last.ok),
                                  { timeout: 60000 }, n);
         const last = await p2.evaluate(() => ({ ...window.shoremesh.last, triangles: window.shoremesh.triangles }));
-        assert.ok(last.ok, `refused: ${last.line}`);
+        assert.ok(last.ok, `refused: ${last.line}: ${JSON.stringify(last.reply)}`);
         seen.push(last);
+        return last;
       };
+      const island = [[40, 40], [60, 40], [50, 60]];
+      await p2.keyboard.press('i');
+      await clicks(island);
+      await p2.keyboard.press('Enter');
       await wait(1);
       for (const [key, n] of [['z', 2], ['y', 3], ['z', 4]]) {
-        await p2.keyboard.down('Control');
-        await p2.keyboard.press(key);
-        await p2.keyboard.up('Control');
+        await ctrl(p2, key);
         await wait(n);
       }
-      const [islandStats] = await h.post(square.url, 'stats');
       check('an island is drawn, undone, redone under a new ring number and undone again', () => {
         assert.deepStrictEqual(seen.map((e) => e.line.split(' ')[0]), ['add-ring', 'remove-ring', 'add-ring', 'remove-ring']);
         assert.strictEqual(seen[2].line, seen[0].line);
         assert.deepStrictEqual([seen[1].line, seen[3].line], ['remove-ring 2', 'remove-ring 3']);
         assert.ok(seen[0].triangles > before, `${seen[0].triangles} triangles with the island, ${before} without`);
         assert.strictEqual(seen[3].triangles, before);
-        assert.strictEqual(islandStats.elements, before);
+      });
+
+      // A breakwater: L, two clicks and Enter; undone, redone, undone.
+      seen.length = 0;
+      await p2.keyboard.press('l');
+      await clicks([[15, 20], [15, 80], [30, 88]]);
+      await p2.keyboard.press('Enter');
+      const line = await wait(5);
+      for (const [key, n] of [['z', 6], ['y', 7], ['z', 8]]) {
+        await ctrl(p2, key);
+        await wait(n);
+      }
+      check('a breakwater line is drawn (add-line), undone (remove-ring), redone and undone', () => {
+        assert.deepStrictEqual(seen.map((e) => e.line.split(' ')[0]), ['add-line', 'remove-ring', 'add-line', 'remove-ring']);
+        assert.strictEqual(line.reply.role, 'line');
+        assert.strictEqual(line.reply.points, 3);
+        assert.deepStrictEqual([seen[1].line, seen[3].line], ['remove-ring 4', 'remove-ring 5']);
+        assert.ok(seen[0].triangles > before && seen[2].triangles === seen[0].triangles);
+        assert.strictEqual(seen[3].triangles, before);
+      });
+
+      // An island selected by a click inside it and removed with R; undo brings it back, undo again
+      // removes the drawn one: the original export, byte for byte.
+      seen.length = 0;
+      await p2.keyboard.press('i');
+      await clicks(island);
+      await p2.keyboard.press('Enter');
+      await wait(9);
+      await clicks([[50, 46]]);
+      const picked = await p2.evaluate(() => document.getElementById('selected').textContent);
+      await p2.keyboard.press('r');
+      await wait(10);
+      for (const n of [11, 12]) {
+        await ctrl(p2, 'z');
+        await wait(n);
+      }
+      await h.post(square.url, 'export sq1.off');
+      check('a click inside an island selects it, R removes it, undo restores it; the export is the original', () => {
+        assert.ok(picked.includes('island 6'), picked);
+        assert.deepStrictEqual(seen.map((e) => e.line.split(' ')[0]), ['add-ring', 'remove-ring', 'add-ring', 'remove-ring']);
+        assert.strictEqual(seen[1].line, 'remove-ring 6');
+        assert.strictEqual(seen[2].triangles, seen[0].triangles);
+        assert.ok(fs.readFileSync(path.join(dir, 'out', 'sq0.off')).equals(fs.readFileSync(path.join(dir, 'out', 'sq1.off'))));
+      });
+
+      // Refused: a crossed island (a bow tie), and a drag of a corner across the far side of the lake.
+      const v0 = await p2.evaluate(() => window.shoremesh.version);
+      await p2.keyboard.press('i');
+      await clicks([[40, 40], [60, 60], [60, 40], [40, 60]]);
+      await p2.keyboard.press('Enter');
+      await p2.waitForFunction(() => window.shoremesh.last && !window.shoremesh.last.ok, { timeout: 60000 });
+      const bowTie = await p2.evaluate(() => ({ last: window.shoremesh.last, version: window.shoremesh.version,
+                                                 status: document.getElementById('status').className }));
+      const corner = await p2.evaluate(() => [...window.shoremesh.verts.entries()].find(([, v]) => v.x === 0 && v.y === 100)[0]);
+      const [[fx, fy]] = await screen([[0, 100]]);
+      const [[tx, ty]] = await screen([[100.5, 50]]);  // beyond the edge x = 100: the shore would cross itself
+      await p2.mouse.move(fx, fy);
+      await p2.mouse.down();
+      for (let i = 1; i <= 6; ++i) {
+        await p2.mouse.move(fx + ((tx - fx) * i) / 6, fy + ((ty - fy) * i) / 6);
+        await new Promise((r) => setTimeout(r, 40));
+      }
+      await p2.mouse.up();
+      await p2.waitForFunction(() => !window.shoremesh.dragging && window.shoremesh.last.line.startsWith('move'), { timeout: 60000 });
+      const drag = await p2.evaluate((id) => ({ last: window.shoremesh.last, edits: window.shoremesh.edits,
+                                                at: [window.shoremesh.verts.get(id).x, window.shoremesh.verts.get(id).y],
+                                                status: document.getElementById('status').className }), corner);
+      await h.post(square.url, 'export sq2.off');
+      const [squareStats] = await h.post(square.url, 'stats');
+      check('a crossed island is refused, shown as refused, and changes nothing', () => {
+        assert.ok(!bowTie.last.ok && bowTie.last.line.startsWith('add-ring'), JSON.stringify(bowTie.last));
+        assert.strictEqual(bowTie.version, v0);
+        assert.strictEqual(bowTie.status, 'refused');
+      });
+      check('a drag that would make the shore cross itself is refused and the point is back where it was', () => {
+        assert.ok(!drag.last.ok, JSON.stringify(drag.last));
+        assert.strictEqual(drag.status, 'refused');
+        assert.strictEqual(drag.edits, 12);
+        assert.deepStrictEqual(drag.at, [0, 100]);
+        assert.strictEqual(squareStats.elements, before);
+        assert.ok(fs.readFileSync(path.join(dir, 'out', 'sq0.off')).equals(fs.readFileSync(path.join(dir, 'out', 'sq2.off'))));
         assert.deepStrictEqual(second.problems, []);
       });
     } finally {
       square.child.kill('SIGTERM');
+    }
+
+    // Depths: the Salish Sea DEM (serve --dem); the page's depth colouring has a legend, and the depths it
+    // draws at the nodes are the export's (fort.14), before and after a drag.
+    const salish = await h.startServer(['--dem', path.join(h.env.samples, 'salish', 'salish_sea_topobathy.tif'), '--min-area', '1',
+                                        '--export-dir', 'out'], dir);
+    try {
+      const third = await h.openEditor(browser, salish.url);
+      const p3 = third.page;
+      await p3.evaluate(() => window.shoremesh.setColour(3));
+      const shown = await p3.evaluate(() => ({ depths: window.shoremesh.hasDepths, legend: document.getElementById('legend-text').textContent,
+                                               enabled: !document.getElementById('colour-depth').disabled,
+                                               scale: document.getElementById('scale-text').textContent,
+                                               drawn: window.shoremesh.drawnDepths() }));
+      await h.post(salish.url, 'export salish0.14');
+      const moved = await h.dragShorePoint(p3, 40, 1, { steps: 4, pause: 40 });
+      const after = await p3.evaluate(() => window.shoremesh.drawnDepths());
+      await h.post(salish.url, 'export salish1.14');
+      const near = (a, b) => a.length === b.length && a.every((x, i) => Math.abs(x - b[i]) <= 1e-4 * Math.max(1, Math.abs(b[i])));
+      check('with --dem the page colours by depth, with a legend and a scale bar', () => {
+        assert.ok(shown.depths && shown.enabled, JSON.stringify(shown));
+        assert.ok(/^depth .* m/.test(shown.legend), shown.legend);
+        assert.ok(/\d/.test(shown.scale), shown.scale);
+      });
+      check("the page's node depths are the export's, before and after a drag", () => {
+        assert.ok(moved.ok, JSON.stringify(moved.reply));
+        assert.ok(near(shown.drawn, fort14Depths(path.join(dir, 'out', 'salish0.14'))), 'before the drag');
+        assert.ok(near(after, fort14Depths(path.join(dir, 'out', 'salish1.14'))), 'after the drag');
+        assert.deepStrictEqual(third.problems, []);
+      });
+    } finally {
+      salish.child.kill('SIGTERM');
     }
     console.log(`drag of shore point ${edit.id}: ${edit.serverMs.toFixed(2)} ms on the server, ` +
                 `${edit.roundTripMs.toFixed(1)} ms round trip, ${edit.frameMs.toFixed(1)} ms to the frame (headless, SwiftShader)`);

@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "cli_test_util.hpp"
+#include "dem_test_util.hpp"
 #include "shoremesh/io/point_set_csv.hpp"
 
 namespace shoremesh::cli_test {
@@ -90,11 +91,13 @@ json untimed(json r) {
   return r;
 }
 
-// GET /mesh: the JSON head and each slot's corners (float x y, 3 corners) and kinds; empty slots as empty.
+// GET /mesh: the JSON head and each slot's corners (float x y, 3 corners), kinds and (with depths) the
+// corners' depths; empty slots as empty.
 struct Slots {
   json head;
   std::vector<std::array<float, 6>> xy;
   std::vector<std::array<int, 3>> kinds;
+  std::vector<std::array<float, 3>> depth;
 };
 Slots get_mesh(httplib::Client& c) {
   const auto res = c.Get("/mesh");
@@ -106,13 +109,30 @@ Slots get_mesh(httplib::Client& c) {
   Slots s;
   s.head = json::parse(b.substr(8, length));
   const std::size_t n = s.head["slots"].get<std::size_t>();
-  EXPECT_EQ(b.size(), 8 + length + n * 24 + n * 3);
+  const std::size_t depths_at = (8 + length + n * 27 + 3) / 4 * 4;
+  EXPECT_EQ(b.size(), s.head.value("depths", false) ? depths_at + n * 12 : 8 + length + n * 27);
   s.xy.resize(n);
   s.kinds.resize(n);
   std::memcpy(s.xy.data(), b.data() + 8 + length, n * 24);
   for (std::size_t i = 0; i < n; ++i)
     for (int k = 0; k < 3; ++k) s.kinds[i][k] = static_cast<unsigned char>(b[8 + length + n * 24 + i * 3 + k]);
+  if (s.head.value("depths", false) && b.size() == depths_at + n * 12) {
+    s.depth.resize(n);
+    std::memcpy(s.depth.data(), b.data() + depths_at, n * 12);
+  }
   return s;
+}
+
+// The drawn nodes' depths (one per place), sorted.
+std::vector<float> drawn_depths(const Slots& s) {
+  std::map<std::pair<float, float>, float> at;
+  for (std::size_t i = 0; i < s.xy.size(); ++i)
+    if (s.kinds[i][0] != 255)
+      for (int k = 0; k < 3; ++k) at[{s.xy[i][2 * k], s.xy[i][2 * k + 1]}] = s.depth.at(i)[k];
+  std::vector<float> out;
+  for (const auto& [p, d] : at) out.push_back(d);
+  std::sort(out.begin(), out.end());
+  return out;
 }
 
 // The non-empty slots' triangles as sorted corner triples (what is drawn, whatever the slots).
@@ -385,6 +405,79 @@ TEST(ServeCommand, AKilledServerResumesFromItsEditLogToTheSameState) {
   EXPECT_EQ(not_edit.code, 1);
   EXPECT_THAT(not_edit.err, HasSubstr("line 2 of the edit log is not an edit"));
   EXPECT_FALSE(fs::exists(dir / "elsewhere.off"));
+}
+
+TEST(ServeCommand, ChangesCarryTheNodesDepthsAsExportsGiveThemAndLinesKeepTheirEnds) {
+  TempDir dir;
+  fs::create_directories(dir / "out");
+  // A round basin, 24 x 24 cells of 1 km: -60 m at the centre, rising 8 m a cell (water within ~7 km).
+  std::vector<float> z(24 * 24);
+  for (int r = 0; r < 24; ++r)
+    for (int c = 0; c < 24; ++c) z[r * 24 + c] = static_cast<float>(std::hypot(r - 11.5, c - 11.5) * 8 - 60);
+  write_dem(dir / "basin.tif", 24, 24, z);
+  ServeProcess server(dir, "--dem basin.tif --export-dir out");
+  auto c = server.client();
+  const Slots before = get_mesh(c);
+  ASSERT_TRUE(before.head.value("depths", false));
+  ASSERT_EQ(before.depth.size(), before.xy.size());
+  auto export_depths = [&](const std::string& name) {
+    const auto r = c.Post("/edit?replies=lines", "export " + name, "text/plain");
+    EXPECT_TRUE(r && r->status == 200);
+    std::vector<float> out;
+    for (const auto& [id, n] : parse_fort14(read_file(dir / "out" / name)).nodes) out.push_back(static_cast<float>(n.depth));
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  EXPECT_EQ(drawn_depths(before), export_depths("before.14"));
+
+  // A shore point moved along its edge, and a breakwater line across the basin's middle.
+  const json& ring = before.head["rings"][0];
+  const double x0 = ring["xy"][6].get<double>(), y0 = ring["xy"][7].get<double>();
+  const double x1 = ring["xy"][8].get<double>(), y1 = ring["xy"][9].get<double>();
+  const std::string edits = "move " + ring["ids"][3].dump() + " " + io::format_double(x0 + 0.3 * (x1 - x0)) + " " +
+                            io::format_double(y0 + 0.3 * (y1 - y0)) + "\nadd-line 410000 5388500 413000 5388000 414500 5387000\n";
+  const auto res = c.Post("/edit", edits, "text/plain");
+  ASSERT_TRUE(res && res->status == 200);
+  const json out = json::parse(res->body);
+  ASSERT_EQ(out["changes"].size(), 2u) << out["replies"];
+
+  Slots page = before;
+  for (const auto& change : out["changes"]) {
+    const std::size_t slots = change["slots"].get<std::size_t>();
+    page.xy.resize(slots, {0, 0, 0, 0, 0, 0});
+    page.kinds.resize(slots, {255, 255, 255});
+    page.depth.resize(slots, {0, 0, 0});
+    for (const auto& s : change["cleared"]) page.kinds[s.get<std::size_t>()] = {255, 255, 255};
+    for (const auto& a : change["added"]) {
+      const std::size_t s = a[0].get<std::size_t>();
+      for (int k = 0; k < 6; ++k) page.xy[s][k] = static_cast<float>(a[1 + k].get<double>());
+      for (int k = 0; k < 3; ++k) page.kinds[s][k] = a[7 + k].get<int>();
+    }
+    for (const auto& d : change["depths"])
+      for (int k = 0; k < 3; ++k) page.depth[d[0].get<std::size_t>()][k] = d[1 + k].get<float>();
+  }
+  const Slots after = get_mesh(c);
+  EXPECT_EQ(drawn(page), drawn(after));
+  for (std::size_t i = 0; i < after.kinds.size(); ++i)
+    if (after.kinds[i][0] != 255) {
+      EXPECT_EQ(page.depth[i], after.depth[i]) << "slot " << i;
+    }
+  EXPECT_EQ(drawn_depths(after), export_depths("after.14"));
+  EXPECT_NE(drawn_depths(after), drawn_depths(before));
+
+  // The line's points: in order, the first without a previous point and the last without a next one.
+  const json& line = out["changes"][1];
+  EXPECT_EQ(out["replies"][1]["role"], "line");
+  const json& inputs = line["inputs"];
+  ASSERT_EQ(inputs.size(), 3u) << line["inputs"];
+  EXPECT_FALSE(inputs[0].contains("prev"));
+  EXPECT_EQ(inputs[0]["next"], inputs[1]["id"]);
+  EXPECT_EQ(inputs[1]["prev"], inputs[0]["id"]);
+  EXPECT_FALSE(inputs[2].contains("next"));
+  EXPECT_EQ(inputs[2]["role"], "line");
+  const json& head_line = after.head["rings"].back();
+  EXPECT_EQ(head_line["role"], "line");
+  EXPECT_EQ(head_line["ids"].size(), 3u);
 }
 
 }  // namespace

@@ -8,8 +8,8 @@ const $ = (id) => document.getElementById(id);
 
 // What tests and people can read: window.shoremesh.
 const state = {
-  ready: false, version: 0, triangles: 0, slots: 0, edits: 0, frames: 0, redraws: 0,
-  origin: [0, 0], side: 1, units: '',
+  ready: false, version: 0, triangles: 0, slots: 0, edits: 0, frames: 0, redraws: 0, liveMoves: 0,
+  origin: [0, 0], side: 1, units: '', hasDepths: false, liveDrag: true,
   verts: new Map(),  // input point id -> {x, y, ring, prev, next} (x, y exact, in the mesh's units)
   selected: null, last: null, undo: [], redo: [],
   alias: new Map(), firstId: new Map(), ringAlias: new Map(), ringOrigin: new Map(),
@@ -28,27 +28,33 @@ const cam = { cx: 0, cy: 0, scale: 1 };  // centre (relative to origin) and unit
 const triVertex = `
   precision highp float;
   uniform mat4 projectionMatrix; uniform mat4 modelViewMatrix; uniform float uVersion;
-  in vec2 position; in float kind; in float quality; in float size; in float changed;
-  out vec3 vBary; out float vQuality; out float vSize; out float vFlash;
+  in vec2 position; in float kind; in float quality; in float size; in float changed; in float depth;
+  out vec3 vBary; out float vQuality; out float vSize; out float vFlash; out float vDepth;
   void main() {
     int c = gl_VertexID % 3;
     vBary = vec3(c == 0, c == 1, c == 2);
-    vQuality = quality; vSize = size;
+    vQuality = quality; vSize = size; vDepth = depth;
     vFlash = abs(changed - uVersion) < 0.5 ? 1.0 : 0.0;  // made by the last edit
     gl_Position = projectionMatrix * modelViewMatrix * vec4(position, 0.0, 1.0);
     if (kind > 254.5) gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // an empty slot
   }`;
 const triFragment = `
   precision highp float;
-  uniform int uColour; uniform float uBound; uniform vec2 uSizeRange;
-  in vec3 vBary; in float vQuality; in float vSize; in float vFlash;
+  uniform int uColour; uniform float uBound; uniform vec2 uSizeRange; uniform vec2 uDepthRange;
+  in vec3 vBary; in float vQuality; in float vSize; in float vFlash; in float vDepth;
   out vec4 outColor;
   vec3 ramp(float t) { return mix(mix(vec3(0.93, 0.86, 0.55), vec3(0.45, 0.75, 0.85), clamp(t * 2.0, 0.0, 1.0)),
                                   vec3(0.16, 0.38, 0.72), clamp(t * 2.0 - 1.0, 0.0, 1.0)); }
+  // Depth, positive down, interpolated across the triangle: shallow pale to deep navy, on a square-root
+  // scale (most water is shallow beside a few deep basins).
+  vec3 depthRamp(float t) { t = clamp(t, 0.0, 1.0);
+    return mix(mix(vec3(0.80, 0.93, 0.88), vec3(0.30, 0.62, 0.80), clamp(t * 2.0, 0.0, 1.0)),
+               vec3(0.05, 0.13, 0.38), clamp(t * 2.0 - 1.0, 0.0, 1.0)); }
   void main() {
     vec3 fill = vec3(0.62, 0.80, 0.90);
     if (uColour == 0) fill = vQuality < uBound ? vec3(0.85, 0.2, 0.15) : ramp((vQuality - uBound) / max(60.0 - uBound, 1.0));
     if (uColour == 1) fill = ramp((vSize - uSizeRange.x) / max(uSizeRange.y - uSizeRange.x, 1e-6));
+    if (uColour == 3) fill = depthRamp(sqrt(max(vDepth - uDepthRange.x, 0.0) / max(uDepthRange.y - uDepthRange.x, 1e-6)));
     fill = mix(fill, vec3(1.0, 0.45, 0.0), vFlash * 0.85);
     vec3 d = fwidth(vBary);
     vec3 a = smoothstep(vec3(0.0), d * 1.3, vBary);
@@ -89,6 +95,7 @@ const lineFragment = `precision highp float; out vec4 outColor; void main() { ou
 
 const uniforms = {
   uVersion: { value: -1 }, uColour: { value: 0 }, uBound: { value: 30 }, uSizeRange: { value: new THREE.Vector2(0, 1) },
+  uDepthRange: { value: new THREE.Vector2(0, 1) },
   uPointSize: { value: 2 },
 };
 // Double-sided: a slot's corners come sorted, not counter-clockwise.
@@ -98,7 +105,12 @@ const raw = (vertexShader, fragmentShader) =>
 // The triangles: 3 corners per slot, each with its position, kind, the triangle's min angle and size, and
 // the version of the edit that made it (the last edit's triangles are highlighted, as preview-change does;
 // a static highlight: no frames drawn between edits).
-let mesh = null, corners = null, buffers = null, capacity = 0;
+// The slots are drawn in chunks of kChunk, each a draw of its own with a bounding sphere, so that three.js
+// skips the chunks outside the view (the server numbers the first slots along a Z-order curve, so a chunk
+// covers one patch of water; a slot an edit reuses lies where the edit freed it). Zoomed in on an edit at a
+// million triangles, a frame draws a few chunks instead of all of them.
+const kChunk = 4096;
+let chunks = [], buffers = null, capacity = 0, layerMask = { d: true, c: true, t: true };
 function allocate(slots) {
   capacity = Math.ceil(slots * 1.25) + 1024;
   const old = buffers;
@@ -108,16 +120,45 @@ function allocate(slots) {
     quality: new THREE.BufferAttribute(new Float32Array(capacity * 3), 1),
     size: new THREE.BufferAttribute(new Float32Array(capacity * 3), 1),
     changed: new THREE.BufferAttribute(new Float32Array(capacity * 3).fill(-1e9), 1),
+    depth: new THREE.BufferAttribute(new Float32Array(capacity * 3), 1),
   };
   if (old) for (const k in old) buffers[k].array.set(old[k].array);
-  const geometry = new THREE.BufferGeometry();
-  for (const k in buffers) geometry.setAttribute(k, buffers[k]);
-  if (mesh) { scene.remove(mesh, corners); mesh.geometry.dispose(); }
-  mesh = new THREE.Mesh(geometry, raw(triVertex, triFragment));
-  corners = new THREE.Points(geometry, raw(cornerVertex, dotFragment));
-  mesh.frustumCulled = corners.frustumCulled = false;
-  mesh.renderOrder = 0; corners.renderOrder = 1;
-  scene.add(mesh, corners);
+  for (const c of chunks) { scene.remove(c.mesh, c.corners); c.mesh.geometry.dispose(); }
+  chunks = [];
+  const triangles = raw(triVertex, triFragment), points = raw(cornerVertex, dotFragment);
+  for (let start = 0; start < capacity; start += kChunk) {
+    const geometry = new THREE.BufferGeometry();
+    for (const k in buffers) geometry.setAttribute(k, buffers[k]);  // shared: one GPU buffer per attribute
+    geometry.setDrawRange(start * 3, Math.min(kChunk, capacity - start) * 3);
+    geometry.boundingSphere = new THREE.Sphere();
+    const c = { mesh: new THREE.Mesh(geometry, triangles), corners: new THREE.Points(geometry, points),
+                lo: [Infinity, Infinity], hi: [-Infinity, -Infinity], moved: false };
+    c.mesh.renderOrder = 0; c.corners.renderOrder = 1;
+    c.mesh.visible = c.corners.visible = false;
+    chunks.push(c);
+    scene.add(c.mesh, c.corners);
+  }
+  if (old) for (let s = 0; s < state.slots; ++s) if (buffers.kind.array[s * 3] !== 255) grow(s);
+  updateChunks();
+}
+function grow(s) {  // chunk bounds only grow: a slot cleared leaves its chunk's bounds as they were
+  const c = chunks[Math.floor(s / kChunk)], p = buffers.position.array;
+  for (let k = 0; k < 3; ++k) {
+    const x = p[s * 6 + 2 * k], y = p[s * 6 + 2 * k + 1];
+    if (x < c.lo[0]) c.lo[0] = x; if (y < c.lo[1]) c.lo[1] = y;
+    if (x > c.hi[0]) c.hi[0] = x; if (y > c.hi[1]) c.hi[1] = y;
+  }
+  c.moved = true;
+}
+function updateChunks() {
+  for (const c of chunks) {
+    if (!c.moved) continue;
+    c.moved = false;
+    const sphere = c.mesh.geometry.boundingSphere;
+    sphere.center.set((c.lo[0] + c.hi[0]) / 2, (c.lo[1] + c.hi[1]) / 2, 0);
+    sphere.radius = Math.hypot(c.hi[0] - c.lo[0], c.hi[1] - c.lo[1]) / 2;
+    c.mesh.visible = true;
+  }
 }
 
 function angleAt(ax, ay, bx, by, cx, cy) {
@@ -138,6 +179,7 @@ function writeSlot(s, xy, kinds, v) {
     buffers.size.array[s * 3 + k] = size;
     buffers.changed.array[s * 3 + k] = v;
   }
+  grow(s);
 }
 function clearSlot(s) {
   buffers.position.array.fill(0, s * 6, s * 6 + 6);
@@ -159,26 +201,45 @@ function upload(slots) {  // only the slots written: one bufferSubData range per
 }
 
 // The shore points (draggable) and loose points, and the shoreline: rebuilt when points come or go,
-// written in place when one moves.
-let dots = null, lines = null, dotIndex = new Map();
+// written in place when one moves. Drawn in chunks of kChunk points (in ring order, so a chunk is a
+// stretch of shore) culled by the view like the triangles.
+let dots = null, lines = null, dotChunks = [], dotIndex = new Map();
 function rebuildRings() {
   const ids = [...state.verts.keys()];
   dotIndex = new Map(ids.map((id, i) => [id, i]));
   const pos = new Float32Array(ids.length * 2), colour = new Float32Array(ids.length * 3), big = new Float32Array(ids.length);
   const seg = new Float32Array(ids.length * 4);
   ids.forEach((id, i) => writeDot(pos, colour, big, seg, id, i));
-  if (dots) { scene.remove(dots, lines); dots.geometry.dispose(); lines.geometry.dispose(); }
-  const g = new THREE.BufferGeometry();
-  g.setAttribute('position', new THREE.BufferAttribute(pos, 2));
-  g.setAttribute('colour', new THREE.BufferAttribute(colour, 3));
-  g.setAttribute('big', new THREE.BufferAttribute(big, 1));
-  dots = new THREE.Points(g, raw(dotVertex, dotFragment));
-  const lg = new THREE.BufferGeometry();
-  lg.setAttribute('position', new THREE.BufferAttribute(seg, 2));
-  lines = new THREE.LineSegments(lg, raw(lineVertex, lineFragment));
-  dots.frustumCulled = lines.frustumCulled = false;
-  lines.renderOrder = 2; dots.renderOrder = 3;
-  scene.add(lines, dots);
+  for (const c of dotChunks) { scene.remove(c.points, c.segs); c.points.geometry.dispose(); c.segs.geometry.dispose(); }
+  dots = { attributes: { position: new THREE.BufferAttribute(pos, 2), colour: new THREE.BufferAttribute(colour, 3),
+                         big: new THREE.BufferAttribute(big, 1) } };
+  lines = { position: new THREE.BufferAttribute(seg, 2) };
+  dotChunks = [];
+  const dotMaterial = raw(dotVertex, dotFragment), lineMaterial = raw(lineVertex, lineFragment);
+  for (let start = 0; start < ids.length; start += kChunk) {
+    const n = Math.min(kChunk, ids.length - start), sphere = new THREE.Sphere();
+    const pg = new THREE.BufferGeometry(), lg = new THREE.BufferGeometry();
+    for (const k in dots.attributes) pg.setAttribute(k, dots.attributes[k]);
+    lg.setAttribute('position', lines.position);
+    pg.setDrawRange(start, n); lg.setDrawRange(start * 2, n * 2);
+    pg.boundingSphere = lg.boundingSphere = sphere;
+    const c = { points: new THREE.Points(pg, dotMaterial), segs: new THREE.LineSegments(lg, lineMaterial),
+                lo: [Infinity, Infinity], hi: [-Infinity, -Infinity], sphere };
+    c.segs.renderOrder = 2; c.points.renderOrder = 3;
+    dotChunks.push(c);
+    for (let i = start; i < start + n; ++i) growDot(i);
+    scene.add(c.segs, c.points);
+  }
+}
+function growDot(i) {  // a point's chunk's bounds take in its edge (both ends)
+  const c = dotChunks[Math.floor(i / kChunk)], seg = lines.position.array;
+  for (let k = 0; k < 4; k += 2) {
+    const x = seg[i * 4 + k], y = seg[i * 4 + k + 1];
+    if (x < c.lo[0]) c.lo[0] = x; if (y < c.lo[1]) c.lo[1] = y;
+    if (x > c.hi[0]) c.hi[0] = x; if (y > c.hi[1]) c.hi[1] = y;
+  }
+  c.sphere.center.set((c.lo[0] + c.hi[0]) / 2, (c.lo[1] + c.hi[1]) / 2, 0);
+  c.sphere.radius = Math.hypot(c.hi[0] - c.lo[0], c.hi[1] - c.lo[1]) / 2;
 }
 function writeDot(pos, colour, big, seg, id, i) {
   const v = state.verts.get(id);
@@ -191,19 +252,25 @@ function writeDot(pos, colour, big, seg, id, i) {
   seg.set([x, y, n.x - state.origin[0], n.y - state.origin[1]], i * 4);
 }
 function refreshDots(ids) {  // in place: points that moved or whose selection changed, and their edges
-  const g = dots.geometry, a = g.attributes;
+  const a = dots.attributes;
   const touched = new Set();
   for (const id of ids) {
     touched.add(id);
     const v = state.verts.get(id);
     if (v && v.prev !== undefined) touched.add(v.prev);
   }
+  const seg = lines.position;
+  for (const attr of [a.position, a.colour, a.big, seg]) attr.clearUpdateRanges();
   for (const id of touched) {
     if (!dotIndex.has(id) || !state.verts.has(id)) continue;
-    writeDot(a.position.array, a.colour.array, a.big.array, lines.geometry.attributes.position.array, id, dotIndex.get(id));
+    const i = dotIndex.get(id);
+    writeDot(a.position.array, a.colour.array, a.big.array, seg.array, id, i);
+    growDot(i);
+    // Only these points' entries go to the GPU (a drag rewrites one point 171k times over otherwise).
+    for (const attr of [a.position, a.colour, a.big]) attr.addUpdateRange(i * attr.itemSize, attr.itemSize);
+    seg.addUpdateRange(i * 4, 4);
   }
-  a.position.needsUpdate = a.colour.needsUpdate = a.big.needsUpdate = true;
-  lines.geometry.attributes.position.needsUpdate = true;
+  a.position.needsUpdate = a.colour.needsUpdate = a.big.needsUpdate = seg.needsUpdate = true;
 }
 
 // ---- the view --------------------------------------------------------------------------------------------
@@ -218,6 +285,12 @@ function updateCamera() {
   camera.left = cam.cx - w; camera.right = cam.cx + w; camera.top = cam.cy + h; camera.bottom = cam.cy - h;
   camera.updateProjectionMatrix();
   uniforms.uPointSize.value = Math.min(3, Math.max(0, 2.5 - Math.log10(cam.scale / (state.side / 2e5) + 1e-12)));
+  // Split and Steiner points are drawn only once they are big enough to see (their pass costs a vertex
+  // per triangle corner).
+  for (const c of chunks) c.corners.visible = c.mesh.visible && layerMask.c && uniforms.uPointSize.value > 0.5;
+  // Shore points too dense to pick one out (zoomed out on a large shore) are left to the shoreline.
+  const showDots = layerMask.d && (uniforms.uPointSize.value > 0.5 || state.verts.size < 20000);
+  for (const c of dotChunks) { c.points.visible = showDots; c.segs.visible = layerMask.d; }
   // The scale bar: a round length near 120 pixels.
   const target = 120 * cam.scale, p = Math.pow(10, Math.floor(Math.log10(target)));
   const len = [5, 2, 1].map((m) => m * p).find((l) => l <= target) || p;
@@ -269,22 +342,34 @@ async function load() {
   const head = JSON.parse(new TextDecoder().decode(new Uint8Array(buf, 8, length)));
   const xy = new Float32Array(buf, 8 + length, head.slots * 6);
   const kinds = new Uint8Array(buf, 8 + length + head.slots * 24, head.slots * 3);
+  const depthsAt = Math.ceil((8 + length + head.slots * 27) / 4) * 4;
+  const depths = head.depths ? new Float32Array(buf, depthsAt, head.slots * 3) : null;
   Object.assign(state, { version: head.version, triangles: head.triangles, slots: head.slots, origin: head.origin,
-                         side: head.side, units: head.units || '' });
+                         side: head.side, units: head.units || '', hasDepths: !!head.depths });
   buffers = null;
   allocate(head.slots);
   for (let s = 0; s < head.slots; ++s) {
     if (kinds[s * 3] === 255) continue;
-    writeSlot(s, xy.subarray(s * 6, s * 6 + 6), kinds.subarray(s * 3, s * 3 + 3), -1);
+    writeSlot(s, xy.subarray(s * 6, s * 6 + 6), kinds.subarray(s * 3, s * 3 + 3), -1e9)  // made before this page: not highlighted;
   }
   let lo = Infinity, hi = -Infinity;
   for (let s = 0; s < head.slots; ++s) if (kinds[s * 3] !== 255) { const v = buffers.size.array[s * 3]; lo = Math.min(lo, v); hi = Math.max(hi, v); }
   uniforms.uSizeRange.value.set(lo, hi);
+  updateChunks();
+  if (depths) {
+    buffers.depth.array.set(depths);
+    let dlo = Infinity, dhi = -Infinity;
+    for (let i = 0; i < depths.length; ++i) if (kinds[i] !== 255) { dlo = Math.min(dlo, depths[i]); dhi = Math.max(dhi, depths[i]); }
+    uniforms.uDepthRange.value.set(isFinite(dlo) ? dlo : 0, isFinite(dhi) ? dhi : 1);
+  }
+  $('colour-depth').disabled = !depths;
+  if (!depths && uniforms.uColour.value === 3) { uniforms.uColour.value = 0; $('colour').value = '0'; }
   state.verts = new Map();
   for (const r of head.rings) {
-    const n = r.ids.length;
-    r.ids.forEach((id, i) => state.verts.set(id, { x: r.xy[2 * i], y: r.xy[2 * i + 1], ring: r.ring,
-                                                  prev: r.ids[(i + n - 1) % n], next: r.ids[(i + 1) % n] }));
+    const n = r.ids.length, open = r.role === 'line';
+    r.ids.forEach((id, i) => state.verts.set(id, { x: r.xy[2 * i], y: r.xy[2 * i + 1], ring: r.ring, role: r.role,
+                                                  prev: open && i === 0 ? undefined : r.ids[(i + n - 1) % n],
+                                                  next: open && i === n - 1 ? undefined : r.ids[(i + 1) % n] }));
   }
   head.loose.ids.forEach((id, i) => state.verts.set(id, { x: head.loose.xy[2 * i], y: head.loose.xy[2 * i + 1] }));
   rebuildRings();
@@ -301,12 +386,17 @@ function applyChange(change) {
   const written = [];
   for (const s of change.cleared) { clearSlot(s); written.push(s); }
   for (const a of change.added) { writeSlot(a[0], a.slice(1, 7), a.slice(7, 10), change.version); written.push(a[0]); }
-  upload(written);
+  for (const d of change.depths || []) {  // the added slots' depths, and slots whose nodes' depths changed
+    buffers.depth.array.set([d[1], d[2], d[3]], d[0] * 3);
+    written.push(d[0]);
+  }
+  upload([...new Set(written)]);
+  updateChunks();
   let structural = false;
   for (const p of change.inputs) {
     const old = state.verts.get(p.id);
     if (p.gone) {
-      if (old && old.prev !== undefined) {
+      if (old && old.ring !== undefined) {
         const a = state.verts.get(old.prev), b = state.verts.get(old.next);
         if (a && a.next === p.id) a.next = old.next;
         if (b && b.prev === p.id) b.prev = old.prev;
@@ -316,12 +406,12 @@ function applyChange(change) {
       structural = true;
     } else {
       if (!old) structural = true;
-      state.verts.set(p.id, { x: p.x, y: p.y, ring: p.ring, prev: p.prev, next: p.next });
-      if (p.prev !== undefined) {  // neighbours not seen yet (a new ring's) come later in this change
-        const a = state.verts.get(p.prev), b = state.verts.get(p.next);
-        if (a && a.next !== p.id) { a.next = p.id; structural = true; }
-        if (b && b.prev !== p.id) { b.prev = p.id; structural = true; }
-      }
+      state.verts.set(p.id, { x: p.x, y: p.y, ring: p.ring, role: p.role, prev: p.prev, next: p.next });
+      // Neighbours not seen yet (a new ring's) come later in this change; a line's ends have one.
+      const a = p.prev === undefined ? null : state.verts.get(p.prev);
+      const b = p.next === undefined ? null : state.verts.get(p.next);
+      if (a && a.next !== p.id) { a.next = p.id; structural = true; }
+      if (b && b.prev !== p.id) { b.prev = p.id; structural = true; }
     }
   }
   if (structural) rebuildRings(); else refreshDots(change.inputs.map((p) => p.id));
@@ -346,17 +436,37 @@ function setStatus(text, refused) {
   $('status').textContent = text;
   $('status').className = refused ? 'refused' : '';
 }
-// POSTs one edit line; applies its change; resolves to the reply (ok or refused).
-async function send(line) {
+// POSTs one edit line; applies its change; resolves to the reply (ok or refused). `opts.live`: a move
+// while dragging (not a history entry, not `last`); `opts.since`: when the user asked for it (the mouse
+// release of a drag), for the time to the frame.
+// `opts.applied`: the edit was already sent and applied (the last move of a drag): {reply, roundTripMs}.
+async function send(line, opts = {}) {
   const t0 = performance.now();
-  const res = await fetch('edit', { method: 'POST', body: line, headers: { 'Content-Type': 'text/plain' } });
-  const out = await res.json();
-  if (!res.ok) { setStatus(`${line}: ${out.error}`, true); return { ok: false, error: out.error }; }
-  const t1 = performance.now();
-  for (const c of out.changes) applyChange(c);
-  const reply = out.replies[0];
+  let reply, t1;
+  if (opts.applied) {
+    reply = opts.applied.reply;
+    t1 = t0 + opts.applied.roundTripMs;
+  } else {
+    ++posting;
+    const res = await fetch('edit', { method: 'POST', body: line, headers: { 'Content-Type': 'text/plain' } })
+      .finally(() => { --posting; });
+    const out = await res.json();
+    if (!res.ok) { setStatus(`${line}: ${out.error}`, true); return { ok: false, error: out.error }; }
+    t1 = performance.now();
+    for (const c of out.changes) applyChange(c);
+    reply = out.replies[0];
+  }
+  if (opts.live) {
+    if (reply.ok) ++state.liveMoves;
+    followCursor();
+    $('live-count').textContent = state.liveMoves;
+    $('ms-server').textContent = reply.ok ? fmt(reply.ms) : '';
+    $('ms-round').textContent = fmt(t1 - t0);
+    return reply;
+  }
   const t2 = await nextFrame();
-  state.last = { line, ok: reply.ok, serverMs: reply.ms, roundTripMs: t1 - t0, frameMs: t2 - t0, reply };
+  const since = opts.since ?? t0;
+  state.last = { line, ok: reply.ok, serverMs: reply.ms, roundTripMs: t1 - t0, frameMs: t2 - since, reply };
   if (reply.ok) {
     ++state.edits;
     $('edit-count').textContent = state.edits;
@@ -367,7 +477,7 @@ async function send(line) {
     $('ms-server').textContent = '';
   }
   $('ms-round').textContent = fmt(t1 - t0);
-  $('ms-frame').textContent = fmt(t2 - t0);
+  $('ms-frame').textContent = fmt(t2 - since);
   return reply;
 }
 
@@ -385,7 +495,7 @@ function lineOf(op) {
     case 'add': return op.after === undefined ? `add ${num(op.at[0])} ${num(op.at[1])}`
                                               : `add ${num(op.at[0])} ${num(op.at[1])} after ${resolve(op.after)}`;
     case 'remove': return `remove ${resolve(op.id)}`;
-    case 'add-ring': return `add-ring ${op.xy.map(num).join(' ')}`;
+    case 'add-ring': return `${op.open ? 'add-line' : 'add-ring'} ${op.xy.map(num).join(' ')}`;
     case 'remove-ring': return `remove-ring ${resolveRing(op.ring) + 1}`;
   }
 }
@@ -395,13 +505,19 @@ function inverseOf(op, reply) {
     case 'move': return { type: 'move', id: op.id, to: op.from, from: op.to };
     case 'add': return { type: 'remove', id: orig(reply.id), at: op.at, after: op.after };
     case 'remove': return { type: 'add', at: op.at, after: op.after, replaces: op.id };
-    case 'add-ring': return { type: 'remove-ring', ring: origRing(reply.ring - 1), ids: reply.ids.map(orig), xy: op.xy };
-    case 'remove-ring': return { type: 'add-ring', xy: op.xy, replaces: op.ids, replacesRing: op.ring };
+    case 'add-ring': {
+      const at = new Map(reply.ids.map((id, i) => [orig(id), [op.xy[2 * i], op.xy[2 * i + 1]]]));
+      return { type: 'remove-ring', ring: origRing(reply.ring - 1), at, open: op.open };
+    }
+    case 'remove-ring': {  // the ring again in the server's order (the reply's ids), so that a fresh run is the same
+      const ids = reply.ids.map(orig);
+      return { type: 'add-ring', xy: ids.flatMap((id) => op.at.get(id)), open: op.open, replaces: ids, replacesRing: op.ring };
+    }
   }
 }
 function link(first, now, alias, origin) { alias.set(first, now); origin.set(now, first); }
-async function perform(op, history = 'new') {
-  const reply = await send(lineOf(op));
+async function perform(op, history = 'new', opts = {}) {
+  const reply = await send(lineOf(op), opts);
   if (!reply.ok) return reply;
   if (op.replaces !== undefined) {  // the point (or ring) came back under a new id
     if (Array.isArray(op.replaces)) op.replaces.forEach((id, i) => link(id, reply.ids[i], state.alias, state.firstId));
@@ -430,15 +546,24 @@ function removeSelected() {
   const id = state.selected;
   const v = id !== null && state.verts.get(id);
   if (!v) return setStatus('select a point first (click it)', true);
+  if (v.ring !== undefined && v.prev === undefined)  // `add X Y after ID` cannot put it back (undo)
+    return setStatus("a line's first point: remove the whole line (R), or move it", true);
   return perform({ type: 'remove', id: orig(id), at: [v.x, v.y], after: v.prev === undefined ? undefined : orig(v.prev) });
+}
+// A ring's (or line's) ids, in order from `id` (a line's from its first point).
+function ringIds(id) {
+  let start = id;
+  while (state.verts.get(start).prev !== undefined && state.verts.get(start).role === 'line') start = state.verts.get(start).prev;
+  const ids = [];
+  let at = start;
+  do { ids.push(at); at = state.verts.get(at).next; } while (at !== undefined && at !== start);
+  return ids;
 }
 function removeRingOfSelected() {
   const v = state.selected !== null && state.verts.get(state.selected);
-  if (!v || v.ring === undefined) return setStatus('select a shore point of the ring first', true);
-  const ids = [], xy = [];
-  let id = state.selected;
-  do { const p = state.verts.get(id); ids.push(orig(id)); xy.push(p.x, p.y); id = p.next; } while (id !== state.selected);
-  return perform({ type: 'remove-ring', ring: origRing(v.ring), ids, xy });
+  if (!v || v.ring === undefined) return setStatus('select an island (click inside it) or a point of the ring or line first', true);
+  const at = new Map(ringIds(state.selected).map((id) => [orig(id), [state.verts.get(id).x, state.verts.get(id).y]]));
+  return perform({ type: 'remove-ring', ring: origRing(v.ring), at, open: v.role === 'line' });
 }
 
 // ---- the mouse and keys ----------------------------------------------------------------------------------
@@ -455,7 +580,7 @@ function nearestEdge(px, py, radius) {  // a shore edge near the cursor: the id 
   const [wx, wy] = toWorld(px, py);
   let best = null, bestD = (radius * cam.scale) ** 2;
   for (const [id, a] of state.verts) {
-    if (a.ring === undefined) continue;
+    if (a.ring === undefined || a.next === undefined) continue;
     const b = state.verts.get(a.next);
     const dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
     const t = l2 > 0 ? Math.min(0.9, Math.max(0.1, ((wx - a.x) * dx + (wy - a.y) * dy) / l2)) : 0.5;
@@ -464,20 +589,60 @@ function nearestEdge(px, py, radius) {  // a shore edge near the cursor: the id 
   }
   return best;
 }
+// The island under a click (land inside an island ring): one of its points, or null. Crossing count over
+// the islands' edges (a picking aid: the edit itself is decided by the server).
+function islandAt(px, py) {
+  const [wx, wy] = toWorld(px, py);
+  const inside = new Map();  // ring -> [crossings odd, a point]
+  for (const [id, a] of state.verts) {
+    if (a.role !== 'island') continue;
+    const b = state.verts.get(a.next);
+    if (!inside.has(a.ring)) inside.set(a.ring, [false, id]);
+    if ((a.y > wy) !== (b.y > wy) && wx < a.x + ((wy - a.y) * (b.x - a.x)) / (b.y - a.y)) inside.get(a.ring)[0] ^= true;
+  }
+  for (const [in_, id] of inside.values()) if (in_) return id;
+  return null;
+}
 function select(id) {
   const old = state.selected;
   state.selected = id;
-  $('selected').textContent = id === null ? 'none' : `id ${id}${state.verts.get(id)?.ring !== undefined ? `, ring ${state.verts.get(id).ring + 1}` : ''}`;
+  const v = id === null ? null : state.verts.get(id);
+  $('selected').textContent = !v ? 'none' : v.ring === undefined ? `point ${id}`
+    : `point ${id} of ${v.role || 'ring'} ${v.ring + 1}`;
   refreshDots([old, id].filter((x) => x !== null));
   requestDraw();
 }
 
-let press = null, island = null;
+// A drag moves the point on the server while the mouse moves, one move in flight at a time (the next
+// goes when the previous one's answer is in, to where the cursor is then); on release the final move is
+// the drag's edit (one undo entry, from where the point was). Each move is an edit like any other, so the
+// end state is the fresh run's on the final input (Lemma 7.2). A refused final move puts the point back
+// where it was before the drag: a refused edit changes nothing.
+let press = null, drawing = null;  // drawing: an island or line being clicked in ({kind, xy})
+function followCursor() {  // the server's answer to a live move put the dragged point where it was sent
+  if (!press || press.hit === null || !press.to || !state.verts.has(press.hit)) return;
+  const v = state.verts.get(press.hit);
+  [v.x, v.y] = press.to;
+  refreshDots([press.hit]);
+}
+function liveMove(p) {
+  if (!state.liveDrag || p.inflight || p.released || !p.to) return;
+  const to = p.to;
+  if (p.sent && p.sent[0] === to[0] && p.sent[1] === to[1]) return;
+  p.sent = to;
+  const t0 = performance.now();
+  p.inflight = send(`move ${p.hit} ${num(to[0])} ${num(to[1])}`, { live: true }).then((reply) => {
+    if (reply.ok) { p.applied = to; p.appliedReply = { reply, roundTripMs: performance.now() - t0 }; }
+    p.inflight = null;
+    liveMove(p);
+  });
+}
 view.addEventListener('pointerdown', (e) => {
-  if (e.button !== 0 || !state.ready) return;
+  if (e.button !== 0 || !state.ready || state.dragging) return;
   const r = view.getBoundingClientRect(), px = e.clientX - r.left, py = e.clientY - r.top;
-  const hit = island ? null : nearestPoint(px, py, 8);
+  const hit = drawing ? null : nearestPoint(px, py, 8);
   press = { px, py, hit, moved: false, cx: cam.cx, cy: cam.cy };
+  if (hit !== null) state.dragging = true;
   view.setPointerCapture(e.pointerId);
 });
 view.addEventListener('pointermove', (e) => {
@@ -485,38 +650,54 @@ view.addEventListener('pointermove', (e) => {
   const r = view.getBoundingClientRect(), px = e.clientX - r.left, py = e.clientY - r.top;
   if (Math.hypot(px - press.px, py - press.py) > 3) press.moved = true;
   if (!press.moved) return;
-  if (press.hit !== null) {  // the point follows the cursor; the mesh follows on release
+  if (press.hit !== null) {  // the point follows the cursor, the mesh follows the point
     const v = state.verts.get(press.hit);
     if (!press.from) press.from = [v.x, v.y];
-    [v.x, v.y] = toWorld(px, py);
-    refreshDots([press.hit]);
+    press.to = toWorld(px, py);
+    followCursor();
+    liveMove(press);
   } else {
     cam.cx = press.cx - (px - press.px) * cam.scale;
     cam.cy = press.cy + (py - press.py) * cam.scale;
   }
   requestDraw();
 });
+async function release(p, px, py) {
+  const since = performance.now();
+  p.released = true;
+  const to = toWorld(px, py);
+  if (p.inflight) await p.inflight;
+  const v = state.verts.get(p.hit);
+  [v.x, v.y] = p.applied ?? p.from;  // the server says where it is
+  refreshDots([p.hit]);
+  const op = { type: 'move', id: orig(p.hit), from: p.from, to };
+  const same = p.applied && p.applied[0] === to[0] && p.applied[1] === to[1];
+  const reply = await perform(op, 'new', { since, applied: same ? p.appliedReply : undefined });
+  if (!reply.ok && p.applied) {  // the moves made while dragging go too
+    await send(`move ${p.hit} ${num(p.from[0])} ${num(p.from[1])}`, { live: true });
+    setStatus(`refused: ${lineOf(op)}: ${reply.error} (the point is back where the drag began)`, true);
+  }
+}
 view.addEventListener('pointerup', async (e) => {
   if (!press) return;
   const p = press;
   press = null;
   const r = view.getBoundingClientRect(), px = e.clientX - r.left, py = e.clientY - r.top;
-  if (island && !p.moved) {
-    island.push(...toWorld(px, py));
-    setStatus(`island: ${island.length / 2} corner(s); Enter closes it, Escape drops it`, false);
-    return;
-  }
-  if (p.hit !== null && p.moved) {
-    const v = state.verts.get(p.hit), to = toWorld(px, py);
-    [v.x, v.y] = p.from;  // the server says where it is
-    refreshDots([p.hit]);
-    await perform({ type: 'move', id: orig(p.hit), from: p.from, to });
-  } else if (p.hit !== null) {
-    select(p.hit);
-  } else if (!p.moved) {
-    const edge = nearestEdge(px, py, 6);
-    if (edge) await perform({ type: 'add', at: edge.at, after: orig(edge.after) });
-    else select(null);
+  try {
+    if (drawing && !p.moved) {
+      drawing.xy.push(...toWorld(px, py));
+      setStatus(`${drawing.kind}: ${drawing.xy.length / 2} point(s); Enter ends it, Escape drops it`, false);
+    } else if (p.hit !== null && p.moved) {
+      await release(p, px, py);
+    } else if (p.hit !== null) {
+      select(p.hit);
+    } else if (!p.moved) {
+      const edge = nearestEdge(px, py, 6);
+      if (edge) await perform({ type: 'add', at: edge.at, after: orig(edge.after) });
+      else select(islandAt(px, py));
+    }
+  } finally {
+    state.dragging = false;
   }
 });
 view.addEventListener('wheel', (e) => {
@@ -528,12 +709,17 @@ view.addEventListener('wheel', (e) => {
   cam.cx += wx - nx; cam.cy += wy - ny;
   requestDraw();
 }, { passive: false });
-function startIsland() { island = []; setStatus('island: click its corners, Enter closes it, Escape drops it', false); }
-async function finishIsland() {
-  const xy = island;
-  island = null;
-  if (xy.length < 6) return setStatus('an island needs three corners', true);
-  await perform({ type: 'add-ring', xy });
+function startDrawing(kind) {
+  drawing = { kind, xy: [] };
+  setStatus(kind === 'island' ? 'island: click its corners, Enter closes it, Escape drops it'
+                              : 'line (a breakwater): click its points, Enter ends it, Escape drops it', false);
+}
+async function finishDrawing() {
+  const { kind, xy } = drawing;
+  drawing = null;
+  if (kind === 'island' && xy.length < 6) return setStatus('an island needs three corners', true);
+  if (kind === 'line' && xy.length < 4) return setStatus('a line needs two points', true);
+  await perform({ type: 'add-ring', xy, open: kind === 'line' });
 }
 window.addEventListener('keydown', (e) => {
   if (e.target.tagName === 'INPUT') return;
@@ -541,16 +727,20 @@ window.addEventListener('keydown', (e) => {
   if ((e.ctrlKey || e.metaKey) && k === 'z') { e.preventDefault(); e.shiftKey ? redo() : undo(); }
   else if ((e.ctrlKey || e.metaKey) && k === 'y') { e.preventDefault(); redo(); }
   else if (k === 'delete' || k === 'backspace') removeSelected();
-  else if (k === 'i') startIsland();
-  else if (k === 'enter' && island) finishIsland();
-  else if (k === 'escape') { island = null; setStatus('', false); }
+  else if (k === 'i') startDrawing('island');
+  else if (k === 'l') startDrawing('line');
+  else if (k === 'r') removeRingOfSelected();
+  else if (k === 'enter' && drawing) finishDrawing();
+  else if (k === 'escape') { drawing = null; setStatus('', false); }
   else if (k === 'f') fit();
 });
 $('remove').onclick = () => removeSelected();
 $('undo').onclick = () => undo();
 $('redo').onclick = () => redo();
-$('island').onclick = () => startIsland();
+$('island').onclick = () => startDrawing('island');
+$('line').onclick = () => startDrawing('line');
 $('remove-ring').onclick = () => removeRingOfSelected();
+$('live').onchange = (e) => { state.liveDrag = e.target.checked; };
 $('colour').onchange = (e) => { uniforms.uColour.value = Number(e.target.value); showLegend(); requestDraw(); };
 $('export').onclick = async () => {
   const name = $('export-name').value.trim();
@@ -569,8 +759,14 @@ function showCounts(reply) {
     $('steiner-count').textContent = reply.steiner_points?.toLocaleString('en') ?? '';
   }
 }
-let statsTimer = null;
-function scheduleStats() { clearTimeout(statsTimer); statsTimer = setTimeout(loadStats, 400); }
+// The summary (GET /stats) measures the whole mesh on the server under the edit lock (a few hundred ms at
+// a million triangles on a loaded machine): asked for only once the edits have paused for a second and no
+// drag or edit is under way, so that it never holds up a move.
+let statsTimer = null, posting = 0;
+function scheduleStats() {
+  clearTimeout(statsTimer);
+  statsTimer = setTimeout(() => (state.dragging || posting > 0 ? scheduleStats() : loadStats()), 1000);
+}
 async function loadStats() {
   const s = await (await fetch('stats')).json();
   showCounts(s);
@@ -585,11 +781,14 @@ async function loadStats() {
 function showLegend() {
   const mode = uniforms.uColour.value;
   const ramp = 'linear-gradient(to right, rgb(237,219,140), rgb(115,191,217), rgb(41,97,184))';
+  const depthRamp = 'linear-gradient(to right, rgb(204,237,224), rgb(77,158,204), rgb(13,33,97))';
   $('legend').style.background = mode === 0 ? `linear-gradient(to right, rgb(217,51,38) 12%, rgb(237,219,140) 12%, rgb(115,191,217), rgb(41,97,184))`
-    : mode === 1 ? ramp : 'rgb(158,204,230)';
+    : mode === 1 ? ramp : mode === 3 ? depthRamp : 'rgb(158,204,230)';
   const [lo, hi] = uniforms.uSizeRange.value.toArray().map((v) => 2 ** v);
+  const [dlo, dhi] = uniforms.uDepthRange.value.toArray();
   $('legend-text').textContent = mode === 0 ? `red: min angle below the bound ${uniforms.uBound.value.toFixed(2)}°; then up to 60°`
-    : mode === 1 ? `longest edge ${lo.toPrecision(3)} to ${hi.toPrecision(3)} ${state.units} (log scale)` : '';
+    : mode === 1 ? `longest edge ${lo.toPrecision(3)} to ${hi.toPrecision(3)} ${state.units} (log scale)`
+    : mode === 3 ? `depth ${dlo.toPrecision(3)} to ${dhi.toPrecision(3)} m (positive down, square-root scale; at the nodes as exports give them)` : '';
 }
 
 // For tests and scripts: a point's place on the screen, and a view centred on it.
@@ -600,7 +799,42 @@ state.zoomTo = (id, unitsPerPixel) => {
   return nextFrame();
 };
 state.nextFrame = nextFrame;
+state.pan = (dx, dy) => { cam.cx += dx * cam.scale; cam.cy -= dy * cam.scale; return nextFrame(); };  // CSS pixels
+state.fit = () => { fit(); return nextFrame(); };
+// Profiling (bench/): one frame drawn and read back (a pixel: the draw must have run), in ms; and layers
+// switched off.
+const probe = new Uint8Array(4);
+state.profileFrame = () => {
+  updateCamera();
+  const t = performance.now();
+  renderer.render(scene, camera);
+  const gl = renderer.getContext();
+  gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, probe);
+  const ms = performance.now() - t;
+  state.drawn = { ...renderer.info.render };
+  return ms;
+};
+state.layers = ({ dots: d = true, corners: c = true, triangles: t = true }) => {
+  for (const k of chunks) { k.mesh.visible = t && isFinite(k.lo[0]); k.corners.visible = c && k.mesh.visible; }
+  layerMask = { d, c, t };
+};
+// What the page draws, for tests: each triangle's corners (float32, relative to the origin) as sorted
+// text, the triangles sorted; and each drawn node's depth (by its float32 place).
+state.drawnTriangles = () => {
+  const p = buffers.position.array, out = [];
+  for (let s = 0; s < state.slots; ++s) {
+    if (buffers.kind.array[s * 3] === 255) continue;
+    out.push([0, 1, 2].map((k) => `${p[s * 6 + 2 * k]} ${p[s * 6 + 2 * k + 1]}`).sort().join('|'));
+  }
+  return out.sort();
+};
+state.drawnDepths = () => {
+  const p = buffers.position.array, d = buffers.depth.array, at = new Map();
+  for (let c = 0; c < state.slots * 3; ++c) if (buffers.kind.array[c] !== 255) at.set(`${p[2 * c]} ${p[2 * c + 1]}`, d[c]);
+  return [...at.values()].sort((a, b) => a - b);
+};
 state.undoLast = undo;
+state.setColour = (mode) => { uniforms.uColour.value = mode; $('colour').value = String(mode); showLegend(); return nextFrame(); };
 state.redoLast = redo;
 
 window.addEventListener('resize', resize);
