@@ -1,7 +1,9 @@
 // Static benchmark: ONE algorithm on one generated input, run in this process, printed as one line of
 // key=value pairs (bench/run.sh starts one process per configuration, so peak memory is per algorithm).
 //
-//   bench_static --algo stablews|cgal --dim 2|3 --n N --family uniform --repeats K --seed S [--verify]
+//   bench_static --algo stablews|cgal --dim 2|3 --n N --family uniform --repeats K --seed S [--threads T] [--verify]
+//
+// --threads: the engine's thread count (default every core; the output is the same for any count).
 //
 // stablews: shoremesh::stable_well_spaced on the points in the unit box.
 // cgal:     the 2D reference: a constrained Delaunay triangulation of the unit square's corners and edges
@@ -31,6 +33,7 @@
 #include <string_view>
 #include <vector>
 
+#include "shoremesh/engine/engine.hpp"
 #include "shoremesh/error.hpp"
 #include "shoremesh/families.hpp"
 #include "shoremesh/verify.hpp"
@@ -47,6 +50,7 @@ struct Options {
   families::FamilyName family = families::FamilyName::Uniform;
   int repeats = 3;
   std::uint64_t seed = 1;
+  unsigned threads = 0;  // 0: every core
   bool verify = false;
 };
 
@@ -75,6 +79,7 @@ Options parse_options(int argc, char** argv) {
     else if (arg == "--family") o.family = families::parse_family(value);
     else if (arg == "--repeats") o.repeats = parse_number<int>(value, arg);
     else if (arg == "--seed") o.seed = parse_number<std::uint64_t>(value, arg);
+    else if (arg == "--threads") o.threads = parse_number<unsigned>(value, arg);
     else throw InputError("unknown option " + std::string(arg));
   }
   if (o.algo != "stablews" && o.algo != "cgal") throw InputError("--algo must be stablews or cgal");
@@ -189,6 +194,7 @@ std::size_t peak_rss_bytes() {
 template <int D>
 int run(const Options& o) {
   const std::vector<Point<D>> input = families::generate<D>(o.family, o.n, o.seed);
+  if (o.threads > 0) engine::set_thread_count(o.threads);
   std::pair<RunResult, Timings> measured;
   if constexpr (D == 2)
     measured = o.algo == "cgal" ? bench_cgal(input, o) : bench_stablews<2>(input, o);
@@ -205,6 +211,7 @@ int run(const Options& o) {
               median(timings.cpu),
               result.operations < 0 ? NAN : result.operations / out, rss, static_cast<double>(rss) / out,
               result.engine_memory_bytes < 0 ? NAN : result.engine_memory_bytes);
+  if (o.algo == "stablews") std::printf(" threads=%u", engine::thread_count());
   if (o.verify) std::printf(" verify=%s", result.verdict.c_str());
   std::printf("\n");
   return 0;

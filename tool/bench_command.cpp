@@ -121,6 +121,7 @@ Command add_bench_command(CLI::App& app) {
   cmd->add_option("--family", opt->family, "Input family: " + families::family_names());
   cmd->add_option("--repeats", opt->repeats, "Runs per configuration (median time reported)")->check(CLI::Range(1, 100));
   cmd->add_option("--seed", opt->seed, "Random seed of the family (default 1)");
+  add_threads_option(cmd);
   cmd->add_flag("--verify", opt->verify, "Check each output with the independent verifier (slow)");
   add_quiet_option(cmd, opt->quiet);
   cmd->footer(

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "progress.hpp"
+#include "shoremesh/engine/engine.hpp"
 #include "shoremesh/error.hpp"
 #include "shoremesh/io/dem.hpp"
 #include "shoremesh/io/open_boundary.hpp"
@@ -48,6 +49,13 @@ void add_quiet_option(CLI::App* cmd, bool& quiet) {
   cmd->add_flag("-q,--quiet", quiet, "No progress bar (it is drawn only when stderr is a terminal anyway)");
 }
 
+void add_threads_option(CLI::App* cmd) {
+  cmd->add_option_function<unsigned>(
+         "--threads", [](const unsigned& n) { engine::set_thread_count(n); },
+         "Threads the engine computes on (default: every core; the output is the same for any count)")
+      ->check(CLI::Range(1u, 1024u));
+}
+
 void add_engine_options(CLI::App* cmd, EngineArgs& args) {
   cmd->add_option("--rho", args.rho, "Quality bound rho > 1 (default sqrt 2: angles >= 20.7 degrees in 2D)")
       ->check(finite_number());
@@ -55,6 +63,7 @@ void add_engine_options(CLI::App* cmd, EngineArgs& args) {
       ->expected(3, 4)
       ->check(finite_number());
   cmd->add_option("--dim", args.dim, "Dimension: 2 or 3 (default: the input's; 2 drops z)")->check(CLI::IsMember({2, 3}));
+  add_threads_option(cmd);
   cmd->add_flag("--keep-hull", args.keep_hull,
                 "Keep the mesh elements whose circumcentre lies outside the box (slivers along its edge, which the "
                 "quality bound does not cover; dropped by default)");

@@ -49,7 +49,9 @@ struct EngineArgs {
   int dim = 0;             // 0: the input's
   bool keep_hull = false;  // the mesh keeps the slivers along the box's edge (well_spaced_mesh)
 };
-void add_engine_options(CLI::App* cmd, EngineArgs& args);
+void add_engine_options(CLI::App* cmd, EngineArgs& args);  // --threads too
+// Registers --threads (the engine's thread count, process-wide).
+void add_threads_option(CLI::App* cmd);
 
 // Registers --preview-colour and --preview-width.
 void add_preview_options(CLI::App* cmd, PreviewArgs& args);

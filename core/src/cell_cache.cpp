@@ -62,10 +62,10 @@ template <int D>
 bool WellSpacedEngine<D>::reuse_cell(OpId o, const CachedCell& c, std::uint64_t now) {
   if (now >= c.valid_until) return false;
   ++counters_.cells_reused;
-  cell_.assign_geometry(c.cell);
-  hood_.nearest = c.nearest;
-  hood_.candidates = c.candidates;
-  register_reads(o, c.covering);
+  serial_.cell.assign_geometry(c.cell);
+  serial_.hood.nearest = c.nearest;
+  serial_.hood.candidates = c.candidates;
+  serial_.covering = c.covering;  // registered by its commit
   ops_[o].depends2 = ops_[o].inserted_depends2 = c.depends2;
   ops_[o].reach = c.reach;
   return true;
@@ -83,7 +83,7 @@ template <int D>
 void WellSpacedEngine<D>::store_cell(OpId o, VertexId v, const Point<D>& p, double searched) {
   const float depends2 = ops_[o].depends2;
   // The search must have seen every vertex within the dependency ball, born or not.
-  if (cell_.had_vertex_on_plane() || !(double(depends2) <= searched * searched)) {
+  if (serial_.cell.had_vertex_on_plane() || !(double(depends2) <= searched * searched)) {
     forget_cell(v);
     return;
   }
@@ -97,18 +97,18 @@ void WellSpacedEngine<D>::store_cell(OpId o, VertexId v, const Point<D>& p, doub
   CachedCell& c = cell_cache_[slot.entry];
   c.position = p;
   c.valid_until = std::numeric_limits<std::uint64_t>::max();
-  for (const TimedVertex& u : unborn_)
+  for (const TimedVertex& u : serial_.unborn)
     if (engine::squared_distance<double, D>(u.position, p) <= double(depends2))
       c.valid_until = std::min(c.valid_until, u.birth);
   c.depends2 = depends2;
   c.reach = ops_[o].reach;
-  c.covering = covering_;  // record_reads(o, p, searched) just left them there
-  c.nearest = hood_.nearest;
+  c.covering = serial_.covering;  // record_reads(o, p, searched) just left them there
+  c.nearest = serial_.hood.nearest;
   c.searched = searched;
-  c.candidates = hood_.candidates;
-  c.unborn = unborn_;
+  c.candidates = serial_.hood.candidates;
+  c.unborn = serial_.unborn;
   c.arrived.clear();
-  c.cell.assign_geometry(cell_);
+  c.cell.assign_geometry(serial_.cell);
 }
 
 template <int D>

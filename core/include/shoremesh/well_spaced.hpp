@@ -44,8 +44,9 @@ struct Edit {
 // What a build is for. Updates: the engine then lays its vertices and operations out by place, so that
 // an update finds those it reads together in memory (a few per cent of the build; updates at a million
 // points about a tenth faster). OutputOnly: the output is read and the set thrown away
-// (stable_well_spaced), so that layout would be wasted. The output is the same; updates still work after
-// an OutputOnly build, only slower.
+// (stable_well_spaced): the build records nothing that only updates read and forgets each operation once
+// it has run (less time and memory). The output is the same; updates after an OutputOnly build throw
+// std::logic_error.
 enum class BuildFor { Updates, OutputOnly };
 
 // The live result of StableWS on points in the unit box, kept up to date under input edits by

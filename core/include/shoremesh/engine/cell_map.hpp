@@ -3,6 +3,7 @@
 // its node. It lets a query jump straight to the cells around a point at any level, which keeps every
 // neighbour search O(1) under the algorithm's invariants instead of O(depth) from the root.
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -26,10 +27,25 @@ inline CellKey make_cell_key(int level, const std::array<std::uint64_t, D>& coor
 class CellMap {
  public:
   CellMap() { rehash(64); }
+  // A copy shares the recent answers of its original until either changes; a moved-from map has none.
+  CellMap(const CellMap&) = default;
+  CellMap& operator=(const CellMap&) = default;
+  CellMap(CellMap&& other) noexcept
+      : slots_(std::move(other.slots_)), mask_(other.mask_), size_(other.size_), generation_(other.generation_) {
+    other.generation_ = next_generation();
+  }
+  CellMap& operator=(CellMap&& other) noexcept {
+    slots_ = std::move(other.slots_);
+    mask_ = other.mask_;
+    size_ = other.size_;
+    generation_ = other.generation_;
+    other.generation_ = next_generation();
+    return *this;
+  }
 
   NodeId find(CellKey key) const {
     const std::uint64_t h = hash(key);
-    RecentEntry& recent = recent_[h >> (64 - kRecentBits)];
+    RecentEntry& recent = recent_table()[h >> (64 - kRecentBits)];
     if (recent.key == key && recent.generation == generation_) return recent.node;
     NodeId node = kNoNode;
     for (std::size_t i = std::size_t(h) & mask_;; i = (i + 1) & mask_) {
@@ -93,12 +109,13 @@ class CellMap {
     return h;
   }
   std::size_t slot_of(CellKey key) const { return std::size_t(hash(key)) & mask_; }
-  // Every recent answer becomes stale (after 2^32 changes the generation wraps: forget them outright).
-  void changed() {
-    if (++generation_ == 0) {
-      recent_.fill(RecentEntry{});
-      generation_ = 1;
-    }
+  // Every recent answer becomes stale.
+  void changed() { generation_ = next_generation(); }
+  // Unique among all maps of the process (64 bits never wrap): an answer about one map never
+  // passes for another's.
+  static std::uint64_t next_generation() {
+    static std::atomic<std::uint64_t> last{0};
+    return last.fetch_add(1, std::memory_order_relaxed) + 1;
   }
   void place(CellKey key, NodeId node) {
     std::size_t i = slot_of(key);
@@ -122,15 +139,20 @@ class CellMap {
   // search looks up the same few cells several times as its box grows, and the operations of one
   // update lie close together. With millions of cells the table is far larger than the caches, and a
   // look-up there costs a cache and TLB miss. Direct-mapped by the top bits of the hash (the slot index
-  // uses the low ones). Mutable: find() stays const; the engine is single-threaded.
+  // uses the low ones). One table per thread, shared by all maps (entries name their map's generation):
+  // the operations of a batch look up one map on several threads at once.
   static constexpr int kRecentBits = 8;
   struct RecentEntry {
     CellKey key = 0;
     NodeId node = kNoNode;
-    std::uint32_t generation = 0;
+    std::uint64_t generation = 0;
   };
-  mutable std::array<RecentEntry, std::size_t(1) << kRecentBits> recent_{};
-  std::uint32_t generation_ = 1;  // bumped by every change; entries of older generations are stale
+  using RecentTable = std::array<RecentEntry, std::size_t(1) << kRecentBits>;
+  static RecentTable& recent_table() {
+    static thread_local RecentTable table{};
+    return table;
+  }
+  std::uint64_t generation_ = next_generation();  // new at every change; entries of older ones are stale
 };
 
 }  // namespace shoremesh::engine

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <deque>
 #include <limits>
+#include <memory>
 #include <span>
 #include <tuple>
 #include <vector>
@@ -22,6 +23,13 @@
 #include "shoremesh/point.hpp"
 
 namespace shoremesh {
+
+namespace engine {
+// How many threads a build computes the operations of one (rank, colour) batch on: 0 (the default) for
+// every core. The output does not depend on it (the commit is serial, in batch order). Process-wide.
+void set_thread_count(unsigned threads);
+unsigned thread_count();
+}  // namespace engine
 
 template <int D>
 class WellSpacedEngine {
@@ -96,15 +104,19 @@ class WellSpacedEngine {
   };
 
   explicit WellSpacedEngine(const Parameters<D>& parameters);
+  ~WellSpacedEngine();
 
   // StableWS on points of the unit box. Throws PointInputError (non-finite, outside, duplicate).
   // Returns the vertex of each point. With lay_out_for_updates, all vertices, inputs and Steiner, are
   // then numbered along a space-filling curve (spatial_order.hpp), inputs among the others, and the
   // operations after their vertices, and reader lists get room to grow: what updates read together lies
   // together, and stays so. Without it (the output is read once) the numbering stays as built: inputs
-  // along the curve, then Steiner vertices and operations in time order. The output and every later
-  // update are the same either way.
-  std::vector<VertexId> build(std::span<const Point<D>> unit_points, bool lay_out_for_updates = true);
+  // along the curve, then Steiner vertices and operations in time order. The output is the same either
+  // way. Without `for_updates` (a one-shot run: the output is read once) the build records nothing that
+  // only updates read (reads, reader lists, children, facets, reach) and frees each operation once it
+  // has run: apply() then throws std::logic_error.
+  std::vector<VertexId> build(std::span<const Point<D>> unit_points, bool for_updates = true);
+  bool updatable() const { return recording_; }
 
   // PropagateWS: input edits applied to the live computation, which then equals build() on the new
   // input. The caller checks the edits first (inside the box, no duplicate input, live ids).
@@ -152,6 +164,29 @@ class WellSpacedEngine {
     // Every vertex of the leaves searched: all vertices that can cut v's cell, and more.
     std::vector<Candidate> candidates;
   };
+  // A vertex of the tree with its birth (the tag its leaf keeps).
+  struct TimedVertex {
+    Point<D> position;
+    std::uint64_t birth;
+    VertexId id;
+  };
+  // The scratch of one thread computing operations (reused: no allocation per operation).
+  struct Worker {
+    engine::ConvexCell<D> cell;
+    Neighbourhood hood;
+    std::vector<TimedVertex> unborn;      // vertices a search skipped as born at or after now
+    std::vector<VertexId> neighbours;
+    std::vector<NodeId> covering;         // the nodes the operation read (when recording)
+    Counters counters;
+  };
+  // What computing an operation decided, for its commit: computing reads the engine only (and writes
+  // its own Op's hints and dependency radii), so the operations of one time can be computed at once
+  // (Lemma 6.1: each sees only the vertices born before their time) and committed one after the other.
+  struct Outcome {
+    std::vector<std::pair<VertexId, int>> requests;  // a dispatch's fills to ask for: (vertex, rank)
+    std::vector<std::pair<Point<D>, int>> steiner;   // a fill's Steiner points and their dispatches' ranks
+    std::vector<NodeId> covering;                    // the nodes to register it as a reader of
+  };
 
   // A time (rank, colour) as one integer in the same order. A vertex's tag in its leaf is its birth
   // time: its creator's time, 0 for inputs (before everything). An operation at time t sees only the
@@ -177,27 +212,37 @@ class WellSpacedEngine {
   // whose bisectors bound v's cell: removing any other vertex leaves the cell and the decision as they
   // were. That set is kept as a Bloom filter of vertex ids (facet_filter.hpp): a false "maybe" only
   // costs a rerun.
-  void record_facets(OpId o);
+  void record_facets(OpId o, const Worker& w);
   void mark_all_readers(NodeId n);
   void propagate(PropagationStats* stats);
   void undo(OpId o);
   void execute(OpId o);
   void kill(OpId o);
-  void dispatch(OpId o);
-  void fill(OpId o);
+  // An operation in two steps: compute (reads the engine, writes only its own Op's hints and radii, and
+  // the cell cache when caching_, which is serial) and commit (changes the engine).
+  void compute(OpId o, Worker& w, Outcome& out);
+  void commit(OpId o, Outcome& out);
+  void compute_dispatch(OpId o, Worker& w, Outcome& out);
+  void compute_fill(OpId o, Worker& w, Outcome& out);
+  void commit_dispatch(OpId o, Outcome& out);
+  void commit_fill(OpId o, Outcome& out);
+  // A batch of fresh operations computed on every thread, then committed in batch order.
+  void execute_batch_in_parallel();
+  void release_executed(OpId o);
   void request_fill(VertexId w, int rank, bool crowded);
-  // Whether a neighbour of the dispatched vertex other than w (in neighbours_) lies nearer w than
+  // Whether a neighbour of the dispatched vertex other than w (in w.neighbours) lies nearer w than
   // rho^rank: then a fill of w at that rank would do nothing (see engine.cpp).
-  bool already_below_rank(VertexId w, int rank, engine::PredicateCounters& pc) const;
+  bool already_below_rank(const Worker& wk, VertexId w, int rank, engine::PredicateCounters& pc) const;
   void redispatch_input(VertexId v);
   void apply_tree_change(const typename engine::Quadtree<D>::Change& change);
   // Finds v's nearest neighbour and the vertices that can cut its cell, registers op o's reads, and
   // computes v's cell clipped to the box and to the cube of half-side beta NN(v). For a fill, returns
   // false without a cell when v's nearest neighbour makes the fill idle (record_idle_fill).
-  bool compute_cell(OpId o, VertexId v, bool fill);
-  void record_idle_fill(OpId o, VertexId v);
-  // Registers op o as a reader of the nodes covering the box of half-side h around p (left in covering_).
-  void record_reads(OpId o, const Point<D>& p, double h);
+  bool compute_cell(OpId o, VertexId v, bool fill, Worker& w);
+  void record_idle_fill(OpId o, VertexId v, Worker& w);
+  // The nodes covering the box of half-side h around p, left in w.covering (when recording): what op
+  // o's commit registers it as a reader of.
+  void record_reads(Worker& w, const Point<D>& p, double h) const;
   void register_reads(OpId o, std::span<const NodeId> nodes);
   // The cell cache of one propagation (cell_cache.cpp has the argument why reuse equals recomputing).
   struct CachedCell;
@@ -211,7 +256,7 @@ class WellSpacedEngine {
   // it entered list it.
   void vertex_arrived(VertexId w, const Point<D>& q, std::uint64_t birth);
   void clear_cell_cache();
-  Point<D> pick_steiner(VertexId v);
+  Point<D> pick_steiner(VertexId v, Worker& w) const;
   VertexId new_vertex(const Point<D>& p);
   void kill_vertex(VertexId v);
   void lay_out_pools();
@@ -222,6 +267,8 @@ class WellSpacedEngine {
   void release_reads(Op& op);
   void release_children(Op& op);
   void store_children(OpId o);
+  void add_counters(Worker& w);
+  void collect_counters();  // every worker's counts into counters_
   // After the build: vertices, then operations, renumbered along the curve (engine.cpp says why).
   // Returns the new id of each old vertex id.
   std::vector<VertexId> renumber_vertices_by_place();
@@ -242,32 +289,36 @@ class WellSpacedEngine {
   // Per quadtree node: the operations that read it. A deque, so that growing with the tree never moves
   // the lists: a vector of them reallocating took ~13 ms of one update at n = 1e5.
   std::deque<std::vector<OpId>> readers_;
-  struct AgendaEntry {
-    std::int32_t rank;
-    std::uint32_t color;
-    OpId op;
-    bool operator>(const AgendaEntry& o) const { return rank != o.rank ? rank > o.rank : color > o.color; }
-  };
-  std::vector<AgendaEntry> agenda_;       // a min-heap by time
+  // The agenda: one bucket of operations per time (rank, colour) from agenda_base_rank_ on, the
+  // buckets before agenda_next_ empty. Ranks span O(log spread) and colours kappa^D + 1.
+  std::vector<std::vector<OpId>> agenda_;
+  int agenda_base_rank_ = 0;
+  std::size_t agenda_next_ = 0;
+  std::size_t agenda_size_ = 0;
+  std::size_t agenda_slot(int rank, std::uint32_t color);
   std::vector<OpId> batch_;               // the operations of the time being processed
-  std::vector<std::pair<std::uint64_t, OpId>> batch_keys_;  // a large batch's ops by place (propagate)
+  std::vector<std::pair<std::uint64_t, OpId>> batch_keys_, batch_keys_scratch_;  // a large batch's ops by place
+  void sort_batch_by_place();
   static constexpr std::size_t kSortedBatch = 256;
+  // Batches at least this large are computed on several threads (smaller ones cost more to hand out).
+  static constexpr std::size_t kParallelBatch = 64;
+  std::vector<Outcome> outcomes_;         // one per operation of a batch computed in parallel
+  struct Workers;                         // per-thread Workers (TBB), engine_operations.cpp
+  struct WorkersDeleter {
+    void operator()(Workers* w) const;
+  };
+  std::unique_ptr<Workers, WorkersDeleter> workers_;
+  bool recording_ = true;                 // false: a one-shot build (build without for_updates)
   std::vector<OpId> free_ops_, dead_ops_;
   std::vector<VertexId> free_vertices_, dead_vertices_;
   bool dynamic_ = false;                  // marking readers is needed only once a computation exists
   PropagationStats* stats_ = nullptr;
-  // Scratch of the operation being executed (reused: no allocation per operation).
-  engine::ConvexCell<D> cell_;
-  Neighbourhood hood_;
+  // Scratch of the operation being executed serially (reused: no allocation per operation).
+  Worker serial_;
+  Outcome serial_outcome_;
   // A vertex's cell is computed about three times per update (its dispatch and its fills at several
   // times), and half of the time nothing that can change it was born in between: the cache keeps, for
   // the length of one propagation, each vertex's last cell with what decides whether it still holds.
-  // A vertex of the tree with its birth (the tag its leaf keeps).
-  struct TimedVertex {
-    Point<D> position;
-    std::uint64_t birth;
-    VertexId id;
-  };
   struct CachedCell {
     Point<D> position{};
     // It holds at a later time t while t < valid_until: the birth of the first vertex already in the
@@ -304,9 +355,6 @@ class WellSpacedEngine {
   static constexpr int kCacheTableBits = 11;  // 2048 slots: at most half full (kMaxCachedCells)
   std::vector<CacheSlot> cache_table_;
   CacheSlot& cache_slot(VertexId v);
-  std::vector<TimedVertex> unborn_;       // scratch: vertices a search skipped as born at or after now
-  std::vector<VertexId> neighbours_;
-  std::vector<NodeId> covering_;
   std::vector<OpId> stash_;
   Counters counters_;
 };

@@ -240,7 +240,6 @@ class Quadtree {
   };
   std::vector<SearchEntry> search_;
   std::vector<NodeId> free_blocks_;      // first ids of freed blocks of 2^D children
-  mutable std::vector<NodeId> found_;    // scratch of for_each_occupied_leaf
   CellMap map_;
   std::size_t leaf_count_ = 0;
 };
@@ -288,10 +287,13 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
       if (c[i] < r.in_lo[i] || c[i] > r.in_hi[i]) return false;
     return true;
   };
+  // The leaves found, reported once the descent is over. Per thread: the operations of one batch
+  // search the tree on several threads at once (f must not search again from inside).
+  static thread_local std::vector<NodeId> found;
   std::size_t count = 0;
   auto report = [&](NodeId n) {
-    if (count == found_.size()) found_.resize(2 * count + 16);
-    found_[count++] = n;
+    if (count == found.size()) found.resize(2 * count + 16);
+    found[count++] = n;
     __builtin_prefetch(search_[n].vertices);
   };
   Item stack[kMaxLevel * kChildren + 8];
@@ -308,7 +310,7 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
     const NodeId top_node = deepest_containing(level, cell, top_level);
     for (int i = 0; i < D; ++i) ci[i] >>= (level - top_level);
     // A coarse leaf can contain several of the box's cells: report it once.
-    if (top_level < level && std::find(found_.begin(), found_.begin() + long(count), top_node) != found_.begin() + long(count))
+    if (top_level < level && std::find(found.begin(), found.begin() + long(count), top_node) != found.begin() + long(count))
       return;
     int top = 0;
     stack[top++] = Item{top_node, top_level, ci};
@@ -349,8 +351,8 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
     }
   });
   for (std::size_t k = 0; k < count; ++k) {
-    const SearchEntry& e = search_[found_[k]];
-    f(found_[k], std::span<const LeafVertex<D>>(e.vertices, e.occupied_or_size));
+    const SearchEntry& e = search_[found[k]];
+    f(found[k], std::span<const LeafVertex<D>>(e.vertices, e.occupied_or_size));
   }
   return count;
 }

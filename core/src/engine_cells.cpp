@@ -1,0 +1,309 @@
+// The neighbourhood of an operation's vertex: its nearest neighbour and the vertices that can cut its
+// cell, found in the quadtree (or the propagation's cell cache), and the cell clipped from them. Reads
+// the engine only (and writes the operation's own dependency radii and hints): safe on several threads
+// for the operations of one time when the cell cache is off (engine.hpp: compute).
+#include "shoremesh/engine/engine.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine_internal.hpp"
+
+namespace shoremesh {
+
+using namespace engine;
+using namespace engine_detail;
+
+template <int D>
+bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill, Worker& w) {
+  if (recording_) {
+    ops_[o].facets = engine::FacetFilter<D>::everything();
+    ops_[o].reach = engine::CellReach<D>::unbounded();
+  }
+  const Point<D> p = positions_[v];
+  // Only vertices born before this operation's time exist for it (M_t).
+  const std::uint64_t now = time_key(ops_[o].rank, ops_[o].color);
+  const bool may_idle = fill && !params_.literal_stable_ws;
+  // v's cell computed earlier in this propagation, if any: taken as it is when it still holds, else
+  // the vertices its entry lists spare the search (below).
+  const CachedCell* earlier = caching_ ? cached_neighbourhood(v, p) : nullptr;
+  if (earlier && may_idle && now < earlier->valid_until &&
+      ranks_.rank_below(p, positions_[earlier->nearest], ops_[o].rank, w.cell.counters())) {
+    w.hood.nearest = earlier->nearest;  // still v's nearest neighbour: nothing came within its reach
+    record_idle_fill(o, v, w);
+    return false;
+  }
+  if (earlier && reuse_cell(o, *earlier, now)) return true;
+  ++w.counters.clipped_voronoi_calls;
+  w.unborn.clear();
+  PredicateCounters& pc = w.cell.counters();
+  auto& pool = w.hood.candidates;
+  w.hood.nearest = kNoVertex;
+  pool.clear();
+  double best_d2 = 0;
+  // Takes vertex u at q (squared distance d2 from v) as a candidate, tracking the nearest.
+  auto offer = [&](VertexId u, const Point<D>& q, double d2) {
+    pool.push_back({d2, u, q});
+    ++w.counters.candidates;
+    if (w.hood.nearest != kNoVertex && d2 > best_d2 * (1 + kNearestTie)) return;
+    if (w.hood.nearest != kNoVertex && d2 >= best_d2 * (1 - kNearestTie)) {
+      // Nearly tied: decide exactly, then by coordinates, so the nearest neighbour is canonical.
+      const int c = compare_squared_distances<D>(pc, p, q, p, positions_[w.hood.nearest]);
+      if (c > 0 || (c == 0 && !(q < positions_[w.hood.nearest]))) return;
+    }
+    w.hood.nearest = u;
+    best_d2 = d2;
+  };
+  // Once the cell exists among many candidates (or the operation is crowded, see Op::crowded),
+  // searches skip what cannot cut it (ConvexCell::surely_uncut_by_box): the cell only shrinks, so such
+  // a vertex never cuts it, now or at a later time that reuses the cell (cell_cache.cpp), and it is not
+  // nearer than NN (a vertex nearer cuts the ball of radius NN / 2 about v, which the cell holds).
+  // Along a dense shore seen from far out on the water, nearly all of a large cell's box is such
+  // vertices. Among few (uniform inputs) the tests would cost more than they save.
+  bool has_cell = false, pruning = false;
+  auto cannot_cut = [&](const Point<D>& lo, const Point<D>& hi) {
+    Point<D> a, b;
+    for (int i = 0; i < D; ++i) {
+      a[i] = lo[i] - p[i];
+      b[i] = hi[i] - p[i];
+    }
+    return w.cell.surely_uncut_by_box(a, b);
+  };
+  // A vertex of the tree other than v: a candidate if born before now, else remembered for the cache.
+  auto consider = [&](VertexId u, const Point<D>& q, std::uint64_t birth) {
+    if (pruning && cannot_cut(q, q)) return;
+    if (birth >= now) {
+      if (caching_) w.unborn.push_back({q, birth, u});
+      return;
+    }
+    double d2 = 0;
+    for (int i = 0; i < D; ++i) d2 += (q[i] - p[i]) * (q[i] - p[i]);
+    // A vertex exactly at v's place can only be a Steiner point about to be removed by the
+    // propagation (an input was just added there): it is not a neighbour.
+    if (d2 == 0 && q == p) return;
+    offer(u, q, d2);
+  };
+  // Adds the vertices of the leaves of box [p - half, p + half] not searched yet. The boxes only grow,
+  // so the leaves searched so far are those that meet the previous box.
+  using Box = typename Quadtree<D>::Box;
+  Box seen = Box::empty();
+  auto box_of = [&](double half) {
+    Box box;
+    for (int i = 0; i < D; ++i) {
+      box.lo[i] = p[i] - half;
+      box.hi[i] = p[i] + half;
+    }
+    return box;
+  };
+  auto search = [&](double half) {
+    const Box box = box_of(half);
+    pruning = has_cell && (ops_[o].crowded || pool.size() > kCrowdedPool);
+    ++w.counters.neighbour_searches;
+    const auto visit = [&](NodeId, std::span<const LeafVertex<D>> leaf) {
+      for (const LeafVertex<D>& e : leaf)
+        if (e.id != v) consider(e.id, e.position, e.tag);
+    };
+    if (pruning) {
+      w.counters.leaves_visited += tree_.for_each_occupied_leaf(box, seen, visit, [&](int level, const auto& cell) {
+        const Box node = Quadtree<D>::cell_box(level, cell);
+        return !cannot_cut(node.lo, node.hi);
+      });
+    } else {
+      w.counters.leaves_visited += tree_.for_each_occupied_leaf(box, seen, visit);
+    }
+    seen = box;
+  };
+  // Grow the box until it holds a vertex no farther than its half-side: no vertex outside is nearer.
+  // The first box spans v's leaf and a leaf-side margin (NN(v) is about 1.15 leaf sides in uniform 2D
+  // inputs): a box of one leaf side mostly had to grow again, which cost 5 % more instructions per
+  // update in 2D and 3 % in 3D. The result does not depend on the first box, only the work does. A
+  // crowded operation's starts at half a side: the tree is refined for the input points only, so a
+  // large leaf out on the water can hold many Steiner vertices near a shore, and a box of two of its
+  // sides thousands.
+  double half = (ops_[o].crowded ? 0.5 : 2.0) * tree_.side(vertices_[v].leaf);
+  // An operation run again (inconsistent) mostly needs the box it needed last time: starting from its
+  // previous dependency radius saves most of the searches that grow the box step by step (2.4 -> 1.5
+  // per 2D cell). Bounded, so that a vertex alone before does not search the whole domain. Not for a
+  // crowded operation: a search before the cell exists cannot skip what the cell will not need, and
+  // such a radius can hold a whole dense shore. Its box grows step by step, and each step skips what
+  // the cell, cut by all that the steps before found, cannot need (jumping straight to the previous
+  // radius once the cell existed skipped less: 130 candidates per cell against 40 at 171k Superior
+  // shore points). (A fresh fill starting from the radius of its vertex's cell computed earlier in the
+  // propagation searched more leaves than it saved: that cell is stale because a vertex came near, so
+  // it shrank.)
+  const double previous2 = ops_[o].depends2;
+  if (!ops_[o].crowded && previous2 > half * half && previous2 < 16 * half * half) half = std::sqrt(previous2) * (1 + kRadiusMargin);
+  // With a stale entry (its cell computed earlier in this propagation): it lists what the leaves of
+  // its box held then and what arrived there since, which is what they hold now, as a search would
+  // find it (cell_cache.cpp). Only growing that box searches.
+  std::size_t known = 0;  // pool[0, known): the candidates earlier->cell was computed from
+  if (earlier) {
+    for (const Candidate& c : earlier->candidates) offer(c.id, c.position, c.d2);
+    known = pool.size();
+    for (const auto* list : {&earlier->unborn, &earlier->arrived})
+      for (const TimedVertex& u : *list)
+        if (vertices_[u.id].alive) consider(u.id, u.position, u.birth);
+    half = earlier->searched;
+    seen = box_of(half);
+    ++w.counters.neighbourhoods_reused;
+  } else {
+    search(half);
+  }
+  while (!(w.hood.nearest != kNoVertex && best_d2 <= half * half * (1 - kReachMargin)) && half < 2.0) {
+    half *= 2;  // until the box covers [0,1]^D
+    search(half);
+  }
+  if (w.hood.nearest == kNoVertex) {
+    if (caching_) forget_cell(v);
+    record_reads(w, p, half);
+    ops_[o].depends2 = ops_[o].inserted_depends2 = at_least(4.0 * D);  // anything in the box gives it a neighbour
+    return true;
+  }
+  if (may_idle && ranks_.rank_below(p, positions_[w.hood.nearest], ops_[o].rank, pc)) {
+    record_idle_fill(o, v, w);
+    return false;
+  }
+
+  // The box around v of half-side beta NN(v) (a little more, so it surely holds the beta-ball), cut to
+  // [0,1]^D: inside the ball the cut cell equals the true Voronoi cell, which is all any decision uses.
+  const double nn = std::sqrt(best_d2);
+  const double s = params_.beta * nn * (1 + 0x1p-20);
+  Point<D> cube_lo, cube_hi;
+  for (int i = 0; i < D; ++i) {
+    cube_lo[i] = std::max(0.0, p[i] - s);
+    cube_hi[i] = std::min(1.0, p[i] + s);
+  }
+  // Clip by the vertices in order of distance (ties by coordinates: a canonical order, so the rounded
+  // cell does not depend on insertion history). A vertex farther than twice the cell's reach cannot cut
+  // it, nor can one beyond 2 beta NN cut the beta-ball: the search grows only while a cut is possible.
+  auto by_distance = [&](const Candidate& a, const Candidate& b) {
+    if (a.d2 != b.d2) return a.d2 < b.d2;
+    return a.position < b.position;
+  };
+  const double cap2 = 4 * params_.beta_squared * best_d2 * (1 + kReachMargin);
+  double searched = half;
+  std::size_t next = 0;
+  // With the same nearest neighbour (so the same clipping box) the earlier cell only has to be cut by
+  // the vertices born since: none of the earlier candidates left, and the cut cell is the same polygon.
+  // Without a vertex on D + 1 planes at once (checked, as for caching) each vertex of it is solved from
+  // the same D planes in the same order as from scratch (ConvexCell::begin_out_of_order_cuts), so it
+  // is the same cell bit for bit (cell_cache.cpp).
+  bool incremental = earlier != nullptr && w.hood.nearest == earlier->nearest;
+  auto start_afresh = [&] {
+    incremental = false;
+    w.cell.reset(p, cube_lo, cube_hi);
+    next = 0;
+    has_cell = true;
+  };
+  if (incremental) {
+    w.cell.assign_geometry(earlier->cell);
+    w.cell.begin_out_of_order_cuts();
+    next = known;
+    has_cell = true;
+    ++w.counters.cells_updated;
+  } else {
+    start_afresh();
+  }
+  for (;;) {
+    double reach2 = std::min(4 * w.cell.max_vertex_distance2() * (1 + kReachMargin), cap2);
+    // Only the vertices within the reach and the box searched can cut the cell, and the cell only
+    // shrinks: sort just those (in 3D about a third of the candidates); the others wait unsorted.
+    // Among many, in bands of distance each twice as far out as the last: a band's candidates that
+    // surely cannot cut the cell as the nearer ones left it count as done, unsorted and unclipped. Seen
+    // from far out on the water, most of a large box is a dense shore that nearer vertices hide.
+    for (double band2 = 4 * best_d2;; band2 *= 4) {
+      const bool crowded = pool.size() - next > kCrowdedPool;
+      const double bound2 = std::min(reach2, searched * searched);
+      const double limit2 = crowded ? std::min(bound2, band2) : bound2;
+      const auto band_end = std::partition(pool.begin() + long(next), pool.end(), [&](const Candidate& c) { return c.d2 <= limit2; });
+      if (crowded)
+        next = std::size_t(std::partition(pool.begin() + long(next), band_end, [&](const Candidate& c) {
+                 return cannot_cut(c.position, c.position);
+               }) - pool.begin());
+      std::sort(pool.begin() + long(next), band_end, by_distance);
+      const std::size_t sorted_end = std::size_t(band_end - pool.begin());
+      while (next < sorted_end && pool[next].d2 <= std::min(reach2, searched * searched)) {
+        if (!crowded || !cannot_cut(pool[next].position, pool[next].position)) {
+          ++w.counters.clips;
+          if (w.cell.clip(pool[next].id, pool[next].position, pool[next].d2))
+            reach2 = std::min(4 * w.cell.max_vertex_distance2() * (1 + kReachMargin), cap2);
+        }
+        ++next;
+      }
+      if (limit2 >= std::min(reach2, searched * searched)) break;
+    }
+    // The box searched ends up holding the whole dependency ball (depends2 below, with its margin),
+    // which the cell cache needs: it then knows every vertex, born or not, that could change the cell.
+    const double need2 = reach2 * (1 + 2 * kRadiusMargin);
+    if (incremental && (need2 > searched * searched || w.cell.had_vertex_on_plane())) {
+      // A cell that only shrank never needs a larger box (unless by rounding); a vertex on D + 1
+      // planes may have met them in another order than from scratch. Either way: compute it afresh.
+      --w.counters.cells_updated;
+      start_afresh();
+      continue;
+    }
+    if (need2 <= searched * searched) {
+      if (incremental) w.cell.end_out_of_order_cuts();
+      break;
+    }
+    // Grow gently: the vertices found next usually shrink the cell, and with it the reach.
+    searched = std::min(std::sqrt(need2) * (1 + kReachMargin), 1.5 * searched);
+    search(searched);
+  }
+  // Many candidates (a large cell among dense ones): the operation is crowded from now on, and keeps
+  // only the candidates that may cut its cell. The cell cache lists them, and a fill checks its Steiner
+  // point against each (pick_steiner: a point inside the cell is nearer v than any of the others).
+  if (pool.size() > kCrowdedPool) {
+    ops_[o].crowded = true;
+    const double reach_final2 = 4 * w.cell.max_vertex_distance2() * (1 + kRadiusMargin);
+    pool.erase(std::remove_if(pool.begin(), pool.end(), [&](const Candidate& c) {
+                 return c.d2 > reach_final2 || cannot_cut(c.position, c.position);
+               }), pool.end());
+  }
+  record_reads(w, p, searched);
+  // Only a vertex that could cut the cell or be nearer than NN can change what this operation decides:
+  // one within 2 x the cell's reach (capped at 2 beta NN), or within NN. A little margin on the rounding.
+  const double reach2 = std::min(4 * w.cell.max_vertex_distance2(), cap2);
+  ops_[o].depends2 = ops_[o].inserted_depends2 = at_least(std::max(reach2, best_d2) * (1 + kRadiusMargin));
+  if (recording_) ops_[o].reach = engine::CellReach<D>::of([&](auto&& f) { w.cell.for_each_vertex_box(f); });
+  if (caching_) store_cell(o, v, p, searched);
+  return true;
+}
+
+// A fill at rank r whose vertex v has a nearest neighbour u nearer than rho^r does nothing: u cannot
+// have been inserted during rank r (Fact 2 keeps the Steiner vertices of rank r farther than rho^(r+1)
+// from everything), so NN(v) < rho^r at the beginning of rank r, where Lemma 4.2 (progress) makes v
+// well-spaced, and Fact 2 keeps it so. No cell is needed, and the decision depends on u alone: a vertex
+// inserted only brings NN(v) down, and removing another vertex leaves NN(v) as it is.
+template <int D>
+void WellSpacedEngine<D>::record_idle_fill(OpId o, VertexId v, Worker& w) {
+  const double nn2 = squared_distance(v, w.hood.nearest);
+  record_reads(w, positions_[v], std::sqrt(nn2) * (1 + kRadiusMargin));
+  ops_[o].depends2 = at_least(nn2 * (1 + kRadiusMargin));
+  ops_[o].inserted_depends2 = 0;  // only a vertex exactly at v's place, which reruns it
+  if (recording_) {
+    ops_[o].facets = facet_bits(w.hood.nearest);
+    ops_[o].reach = engine::CellReach<D>::unbounded();
+  }
+  ++w.counters.fills_idle_by_rank;
+}
+
+template <int D>
+void WellSpacedEngine<D>::record_reads(Worker& w, const Point<D>& p, double h) const {
+  if (!recording_) return;  // a one-shot build: nobody will ask who read what
+  Point<D> lo, hi;
+  for (int i = 0; i < D; ++i) {
+    lo[i] = p[i] - h;
+    hi[i] = p[i] + h;
+  }
+  tree_.covering_nodes(lo, hi, w.covering);
+}
+
+template bool WellSpacedEngine<2>::compute_cell(OpId, VertexId, bool, Worker&);
+template bool WellSpacedEngine<3>::compute_cell(OpId, VertexId, bool, Worker&);
+template void WellSpacedEngine<2>::record_idle_fill(OpId, VertexId, Worker&);
+template void WellSpacedEngine<3>::record_idle_fill(OpId, VertexId, Worker&);
+template void WellSpacedEngine<2>::record_reads(Worker&, const Point<2>&, double) const;
+template void WellSpacedEngine<3>::record_reads(Worker&, const Point<3>&, double) const;
+
+}  // namespace shoremesh

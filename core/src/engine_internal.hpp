@@ -1,0 +1,23 @@
+#pragma once
+// What the engine's source files (engine*.cpp, cell_cache.cpp) share privately.
+#include <cmath>
+#include <limits>
+
+namespace shoremesh::engine_detail {
+
+inline constexpr int kBeforeEverything = std::numeric_limits<int>::min();
+
+// The float nearest above x: a dependency radius stored in half the space, never smaller.
+inline float at_least(double x) {
+  float f = float(x);
+  if (double(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+
+// Relative margins on computed squared distances, so that rounding only ever errs on the side of
+// more work (a larger box, a rerun), never of a wrong answer.
+inline constexpr double kRadiusMargin = 1e-6;    // dependency radii (depends2) and their boxes
+inline constexpr double kReachMargin = 1e-9;     // what can still cut a cell, and the boxes searched
+inline constexpr double kNearestTie = 1e-12;     // nearest-neighbour distances this close are decided exactly
+
+}  // namespace shoremesh::engine_detail

@@ -1,0 +1,142 @@
+// The engine's layout by place after a build for updates (engine.hpp: build): vertices along the curve,
+// each vertex's operations after it, and the children and reads pools in that order.
+#include "shoremesh/engine/engine.hpp"
+#include "shoremesh/engine/spatial_order.hpp"
+
+#include <algorithm>
+#include <vector>
+
+namespace shoremesh {
+
+using namespace engine;
+
+namespace {
+// Moves item o of items to new_id[o], cycle by cycle (a copy would double the memory of the largest
+// arrays of the engine).
+template <class T>
+void permute_in_place(std::vector<T>& items, const std::vector<std::uint32_t>& new_id) {
+  std::vector<bool> placed(items.size(), false);
+  for (std::uint32_t start = 0; start < items.size(); ++start) {
+    if (placed[start]) continue;
+    T carried = items[start];
+    for (std::uint32_t from = start;;) {
+      const std::uint32_t to = new_id[from];
+      placed[to] = true;
+      std::swap(carried, items[to]);
+      if (to == start) break;
+      from = to;
+    }
+  }
+}
+}  // namespace
+
+// The build numbers Steiner vertices and operations in time order (each time's batch along the curve),
+// so the vertices and operations around one place lie in as many distant stretches of their arrays as
+// there are times. An update reads those of one place at all times (marking readers loads every
+// reader's operation and its vertex's position): at n = 1e6 each such load was a cache miss. Numbered
+// by place instead (vertices along the curve, each vertex's operations in time order after it), they
+// share cache lines. The ids are internal: only the references change, and the facet filters hash each
+// vertex's filter_key, which stays.
+template <int D>
+std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::renumber_vertices_by_place() {
+  const std::size_t count = vertices_.size();
+  std::vector<VertexId> live;
+  std::vector<Point<D>> places;
+  for (VertexId v = 0; v < count; ++v)
+    if (vertices_[v].alive) {
+      live.push_back(v);
+      places.push_back(positions_[v]);
+    }
+  std::vector<VertexId> new_id(count, kNoVertex);
+  VertexId next = 0;
+  for (std::size_t k : engine::spatial_order<D>(places)) new_id[live[k]] = next++;
+  for (VertexId& id : new_id)
+    if (id == kNoVertex) id = next++;  // free slots last
+  permute_in_place(vertices_, new_id);
+  permute_in_place(positions_, new_id);
+  for (Op& op : ops_)
+    if (op.vertex != kNoVertex) op.vertex = new_id[op.vertex];
+  for (VertexId& v : free_vertices_) v = new_id[v];
+  tree_.rename_vertices(new_id);
+  return new_id;
+}
+
+template <int D>
+void WellSpacedEngine<D>::renumber_operations_by_place() {
+  const std::size_t m = ops_.size();
+  std::vector<OpId> new_id(m, kNoOp);
+  OpId next = 0;
+  std::vector<OpId> own;
+  for (VertexId v = 0; v < vertices_.size(); ++v) {  // along the curve, after renumber_vertices_by_place
+    if (!vertices_[v].alive) continue;
+    own.clear();
+    if (vertices_[v].dispatch != kNoOp) own.push_back(vertices_[v].dispatch);
+    for (OpId f = vertices_[v].first_fill; f != kNoOp; f = ops_[f].next_fill) own.push_back(f);
+    std::sort(own.begin(), own.end(), [&](OpId a, OpId b) {
+      return time_key(ops_[a].rank, ops_[a].color) < time_key(ops_[b].rank, ops_[b].color);
+    });
+    for (OpId o : own) new_id[o] = next++;
+  }
+  for (OpId& id : new_id)
+    if (id == kNoOp) id = next++;  // deleted slots last
+  permute_in_place(ops_, new_id);
+  auto renamed = [&](OpId o) { return o == kNoOp ? kNoOp : new_id[o]; };
+  for (Op& op : ops_) op.next_fill = renamed(op.next_fill);
+  for (Vertex& vx : vertices_) {
+    vx.creator = renamed(vx.creator);
+    vx.dispatch = renamed(vx.dispatch);
+    vx.first_fill = renamed(vx.first_fill);
+  }
+  for (const Op& op : ops_)
+    for (std::uint32_t k = op.children_begin; k < op.children_end; ++k) children_[k] = new_id[children_[k]];
+  for (auto& list : readers_)
+    for (OpId& o : list) o = new_id[o];
+  for (OpId& o : free_ops_) o = new_id[o];
+  lay_out_pools();  // the children and reads pools in the new order too
+}
+
+// Rewrites the children and reads pools with each operation's runs in operation order (after the
+// build has numbered the operations by place), with room for an eighth more. The free lists are empty
+// after a build, so the first updates append their runs, and a pool that grew in the middle of an
+// update copied itself whole (41 to 52 ms at 2D n = 1e6, bench/RESULTS.md); later updates mostly take
+// the blocks that earlier ones gave back. Room never written takes no physical memory.
+template <int D>
+void WellSpacedEngine<D>::lay_out_pools() {
+  const PoolEntries live = live_pool_entries();
+  engine::BlockPool children, reads;
+  children.reserve(live.children + live.children / 8 + 1024);
+  reads.reserve(live.reads + live.reads / 8 + 1024);
+  for (Op& op : ops_) {
+    const std::uint32_t children_count = op.children_end - op.children_begin;
+    op.children_begin = children.allocate(children_.run(op.children_begin, op.children_end));
+    op.children_end = op.children_begin + children_count;
+    const std::uint32_t reads_count = op.reads_end - op.reads_begin;
+    op.reads_begin = reads.allocate(reads_.run(op.reads_begin, op.reads_end));
+    op.reads_end = op.reads_begin + reads_count;
+  }
+  children_ = std::move(children);
+  reads_ = std::move(reads);
+}
+
+// The pool entries that the live operations' runs take (their blocks, not just their lengths).
+template <int D>
+typename WellSpacedEngine<D>::PoolEntries WellSpacedEngine<D>::live_pool_entries() const {
+  PoolEntries live;
+  for (const Op& op : ops_)
+    if (!(op.flags & kDead)) {
+      live.children += engine::BlockPool::block_size(op.children_end - op.children_begin);
+      live.reads += engine::BlockPool::block_size(op.reads_end - op.reads_begin);
+    }
+  return live;
+}
+
+template std::vector<engine::VertexId> WellSpacedEngine<2>::renumber_vertices_by_place();
+template std::vector<engine::VertexId> WellSpacedEngine<3>::renumber_vertices_by_place();
+template void WellSpacedEngine<2>::renumber_operations_by_place();
+template void WellSpacedEngine<3>::renumber_operations_by_place();
+template void WellSpacedEngine<2>::lay_out_pools();
+template void WellSpacedEngine<3>::lay_out_pools();
+template WellSpacedEngine<2>::PoolEntries WellSpacedEngine<2>::live_pool_entries() const;
+template WellSpacedEngine<3>::PoolEntries WellSpacedEngine<3>::live_pool_entries() const;
+
+}  // namespace shoremesh

@@ -1,0 +1,382 @@
+// The operations of StableWS (paper, Figure 3): dispatch and fill, each in two steps. Computing reads the
+// engine (its vertex's cell, the ranks, the Steiner points) and writes only the operation's own hints
+// and dependency radii; committing asks for the fills, inserts the Steiner vertices and records what
+// updates need. The operations of one time (rank, colour) are independent (Lemma 6.1): each sees only
+// the vertices born before that time, so a build computes a large batch on every thread and commits it
+// serially in batch order, which numbers vertices and operations exactly as one thread does.
+#include "shoremesh/engine/engine.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+
+#include "engine_internal.hpp"
+
+namespace shoremesh {
+
+using namespace engine;
+using namespace engine_detail;
+
+namespace engine {
+namespace {
+std::atomic<unsigned> g_threads{0};
+std::mutex g_control_mutex;
+std::unique_ptr<tbb::global_control> g_control;
+}  // namespace
+
+void set_thread_count(unsigned threads) {
+  const std::lock_guard lock(g_control_mutex);
+  g_threads = threads;
+  // TBB keeps to the cores unless told otherwise: more threads than cores (oversubscribed, for tests
+  // and measurements) need this leave.
+  g_control.reset();
+  if (threads > 0) g_control = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+}
+
+unsigned thread_count() {
+  const unsigned t = g_threads;
+  return t != 0 ? t : unsigned(std::max(1, tbb::info::default_concurrency()));
+}
+}  // namespace engine
+
+template <int D>
+struct WellSpacedEngine<D>::Workers {
+  tbb::enumerable_thread_specific<Worker> local;
+  std::unique_ptr<tbb::task_arena> arena;
+  unsigned threads = 0;
+};
+
+template <int D>
+void WellSpacedEngine<D>::WorkersDeleter::operator()(Workers* w) const {
+  delete w;
+}
+
+template <int D>
+void WellSpacedEngine<D>::compute(OpId o, Worker& w, Outcome& out) {
+  out.requests.clear();
+  out.steiner.clear();
+  w.covering.clear();
+  if (ops_[o].kind == OpKind::Dispatch) compute_dispatch(o, w, out);
+  else compute_fill(o, w, out);
+  std::swap(out.covering, w.covering);
+}
+
+template <int D>
+void WellSpacedEngine<D>::commit(OpId o, Outcome& out) {
+  ops_[o].flags &= std::uint8_t(~(kFresh | kRedo));
+  if (recording_) register_reads(o, out.covering);
+  if (ops_[o].kind == OpKind::Dispatch) commit_dispatch(o, out);
+  else commit_fill(o, out);
+  ops_[o].flags |= kExecuted;
+  if (stats_) ++stats_->executed;
+  if (!recording_) release_executed(o);
+}
+
+template <int D>
+void WellSpacedEngine<D>::execute(OpId o) {
+  compute(o, serial_, serial_outcome_);
+  commit(o, serial_outcome_);
+}
+
+// A one-shot build forgets an operation once it has run: nothing reads it again. A vertex's fills are
+// looked up only at later times (request_fill: a dispatch asks for fills at its rank or later, and a
+// fill's colour is never 0), so an executed fill leaves its vertex's list.
+template <int D>
+void WellSpacedEngine<D>::release_executed(OpId o) {
+  Op& op = ops_[o];
+  Vertex& vx = vertices_[op.vertex];
+  if (op.kind == OpKind::Fill) {
+    for (OpId* link = &vx.first_fill; *link != kNoOp; link = &ops_[*link].next_fill)
+      if (*link == o) {
+        *link = op.next_fill;
+        break;
+      }
+  } else if (vx.dispatch == o) {
+    vx.dispatch = kNoOp;
+  }
+  op = Op{};
+  op.flags = kDead;
+  free_ops_.push_back(o);
+}
+
+template <int D>
+void WellSpacedEngine<D>::execute_batch_in_parallel() {
+  const std::size_t m = batch_.size();
+  if (outcomes_.size() < m) outcomes_.resize(m);
+  if (!workers_) workers_.reset(new Workers);
+  const unsigned threads = engine::thread_count();
+  if (!workers_->arena || workers_->threads != threads) {
+    workers_->arena = std::make_unique<tbb::task_arena>(int(threads));
+    workers_->threads = threads;
+  }
+  workers_->arena->execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m, 8), [&](const tbb::blocked_range<std::size_t>& range) {
+      Worker& w = workers_->local.local();
+      for (std::size_t k = range.begin(); k != range.end(); ++k) compute(batch_[k], w, outcomes_[k]);
+    });
+  });
+  for (std::size_t k = 0; k < m; ++k) commit(batch_[k], outcomes_[k]);
+}
+
+namespace {
+void add(Counters& to, const Counters& c) {
+  to.dispatches += c.dispatches;
+  to.fills += c.fills;
+  to.fills_idle_by_rank += c.fills_idle_by_rank;
+  to.clipped_voronoi_calls += c.clipped_voronoi_calls;
+  to.cells_reused += c.cells_reused;
+  to.neighbourhoods_reused += c.neighbourhoods_reused;
+  to.cells_updated += c.cells_updated;
+  to.steiner_points += c.steiner_points;
+  to.predicate_calls += c.predicate_calls;
+  to.exact_fallbacks += c.exact_fallbacks;
+  to.neighbour_searches += c.neighbour_searches;
+  to.leaves_visited += c.leaves_visited;
+  to.candidates += c.candidates;
+  to.clips += c.clips;
+  to.operations_undone += c.operations_undone;
+}
+}  // namespace
+
+// A worker's counts join the engine's (sums: the same whatever thread counted what).
+template <int D>
+void WellSpacedEngine<D>::add_counters(Worker& w) {
+  add(counters_, w.counters);
+  counters_.predicate_calls += w.cell.counters().calls;
+  counters_.exact_fallbacks += w.cell.counters().exact;
+  w.counters = Counters{};
+  w.cell.counters() = PredicateCounters{};
+}
+
+template <int D>
+void WellSpacedEngine<D>::collect_counters() {
+  add_counters(serial_);
+  if (workers_)
+    for (Worker& w : workers_->local) add_counters(w);
+}
+
+template <int D>
+void WellSpacedEngine<D>::request_fill(VertexId w, int rank, bool crowded) {
+  for (OpId f = vertices_[w].first_fill; f != kNoOp; f = ops_[f].next_fill)
+    if (ops_[f].rank == rank && !(ops_[f].flags & kDead)) {
+      ++ops_[f].requesters;
+      ops_[f].flags &= std::uint8_t(~kObsolete);  // asked for again before its time: it lives on
+      new_children_.push_back(f);
+      return;
+    }
+  const OpId f = new_op(OpKind::Fill, w, rank, ranks_.color(positions_[w], rank));
+  ops_[f].crowded = crowded;  // a neighbour's: the places are near
+  ops_[f].requesters = 1;
+  ops_[f].next_fill = vertices_[w].first_fill;
+  vertices_[w].first_fill = f;
+  new_children_.push_back(f);
+  mark_fresh(f);
+}
+
+template <int D>
+void WellSpacedEngine<D>::compute_dispatch(OpId o, Worker& w, Outcome& out) {
+  RoundingGuard guard;
+  ++w.counters.dispatches;
+  const VertexId v = ops_[o].vertex;
+  const int op_rank = ops_[o].rank;
+  compute_cell(o, v, false, w);
+  if (w.hood.nearest == kNoVertex) return;  // a lone vertex is well-spaced
+  PredicateCounters& pc = w.cell.counters();
+  const Point<D>& p = positions_[v];
+  // v's fill at its current rank, and fills that update the ranks of its beta-clipped Voronoi
+  // neighbours (bisector faces of the cell no farther than 2 beta NN(v): a superset, harmless, since a
+  // fill at rank floor(log |vw|) finds w already well-spaced unless it truly is due), less those that
+  // cannot be due (already_below_rank). v's own fill is not asked for when v is well-spaced already:
+  // should NN(v) still be |vu| at the beginning of rank r, no vertex came nearer since, the cell only
+  // shrank, and v is well-spaced through rank r (Fact 2), so the fill would insert nothing; should a
+  // vertex z come nearer first, v's fill at the new rank is the business of z's dispatch (Lemma 4.1).
+  const int r = ranks_.rank_of(p, positions_[w.hood.nearest], pc);
+  const bool well_spaced = w.cell.within_scaled_distance(params_.fill_rho_squared, positions_[w.hood.nearest]);
+  if (r >= op_rank && (params_.literal_stable_ws || !well_spaced)) out.requests.push_back({v, r});
+  const double limit2 = 4 * params_.beta_squared * squared_distance(v, w.hood.nearest) * (1 + kReachMargin);
+  w.cell.bisector_neighbours(w.neighbours);
+  for (VertexId x : w.neighbours) {
+    if (squared_distance(v, x) > limit2) continue;
+    const int rx = ranks_.rank_of(p, positions_[x], pc);
+    if (rx < op_rank || (!params_.literal_stable_ws && already_below_rank(w, x, rx, pc))) continue;
+    out.requests.push_back({x, rx});
+  }
+  if (recording_) record_facets(o, w);
+}
+
+template <int D>
+void WellSpacedEngine<D>::commit_dispatch(OpId o, Outcome& out) {
+  RoundingGuard guard;  // the colours of new fills are computed in it, as everywhere
+  new_children_.clear();
+  for (const auto& [x, rank] : out.requests) request_fill(x, rank, ops_[o].crowded);
+  if (recording_) store_children(o);
+}
+
+// A fill of neighbour w at rank rw can only be due if v may be w's nearest neighbour at that rank. Say
+// another neighbour x of v lies nearer w than rho^rw (|wx|^2 < T_rw, exact). Both were born before this
+// dispatch, which runs at rank <= rw, so both are in the output at the beginning of rank rw, and
+// NN(w) < rho^rw there. By Lemma 4.2 (progress) w is then rho-well-spaced, and by Fact 2 the Steiner
+// vertices of rank rw keep it so: the fill would find w well-spaced and insert nothing. Figure 3 asks
+// for it anyway, to keep its proof short; leaving it out keeps the output bit for bit (IdleFills tests)
+// with a third fewer operations in 2D and two fifths fewer in 3D. Taking the witnesses x among v's
+// cell neighbours adds no dependency: this dispatch already reruns when one of them goes (they bound
+// the cell: facet filter) or when a vertex that would be one arrives (it cuts the cell: cell reach).
+template <int D>
+bool WellSpacedEngine<D>::already_below_rank(const Worker& wk, VertexId w, int rw, PredicateCounters& pc) const {
+  for (VertexId x : wk.neighbours)
+    if (x != w && ranks_.rank_below(positions_[w], positions_[x], rw, pc)) return true;
+  return false;
+}
+
+// The Steiner points of a fill, each clipped from v's cell before the next is picked (they are
+// v's neighbours from then on). Their vertex ids exist only once committed: the cell's bisectors of
+// them carry no id, which only bisector_neighbours would read, and only when there are none.
+template <int D>
+void WellSpacedEngine<D>::compute_fill(OpId o, Worker& w, Outcome& out) {
+  RoundingGuard guard;
+  ++w.counters.fills;
+  const VertexId v = ops_[o].vertex;
+  const int op_rank = ops_[o].rank;
+  const Point<D> p = positions_[v];
+  const bool has_cell = compute_cell(o, v, true, w);
+  PredicateCounters& pc = w.cell.counters();
+  for (int inserted = 0; has_cell && w.hood.nearest != kNoVertex &&
+                         !w.cell.within_scaled_distance(params_.fill_rho_squared, positions_[w.hood.nearest]);
+       ++inserted) {
+    if (inserted > 1000) throw std::logic_error("fill inserted over 1000 Steiner points around one vertex");
+    const Point<D> q = pick_steiner(v, w);
+    // Fact 1 puts q's rank above op's; the max only guards the table's rounding for a rho other than
+    // sqrt(2) (for sqrt(2) the table is exact and it never applies).
+    out.steiner.push_back({q, std::max(ranks_.rank_of(q, p, pc), op_rank + 1)});
+    double d2 = 0;
+    for (int i = 0; i < D; ++i) {
+      const double d = p[i] - q[i];
+      d2 += d * d;
+    }
+    w.cell.clip(kNoVertex, q, d2);
+    w.hood.candidates.push_back({d2, kNoVertex, q});
+  }
+  // v was already well-spaced: a vertex inserted farther than NN(v) leaves NN(v) and the clipping cube
+  // as they are and can only shrink the cell, so v stays well-spaced and this fill does nothing again.
+  if (recording_ && has_cell && out.steiner.empty() && w.hood.nearest != kNoVertex) {
+    ops_[o].inserted_depends2 = at_least(squared_distance(v, w.hood.nearest) * (1 + kRadiusMargin));
+    w.cell.bisector_neighbours(w.neighbours);
+    record_facets(o, w);
+  }
+}
+
+template <int D>
+void WellSpacedEngine<D>::commit_fill(OpId o, Outcome& out) {
+  const VertexId v = ops_[o].vertex;
+  const int op_rank = ops_[o].rank;
+  const std::uint32_t op_color = ops_[o].color;
+  // The Steiner vertices of this fill's previous run, when it runs again (see undo).
+  stash_.clear();
+  if (ops_[o].flags & kStashed) {
+    for (OpId d : children(o)) stash_.push_back(d);
+    release_children(ops_[o]);
+    ops_[o].flags &= std::uint8_t(~kStashed);
+  }
+  new_children_.clear();
+  for (const auto& [q, rank] : out.steiner) {
+    auto again = std::find_if(stash_.begin(), stash_.end(), [&](OpId d) { return positions_[ops_[d].vertex] == q; });
+    if (again != stash_.end()) {
+      // The same Steiner point as before: keep the vertex and its dispatch, nothing changes around it.
+      new_children_.push_back(*again);
+      *again = stash_.back();
+      stash_.pop_back();
+      continue;
+    }
+    const VertexId id = new_vertex(q);
+    vertices_[id].creator = o;
+    vertices_[id].leaf = tree_.insert_vertex(id, q, time_key(op_rank, op_color), vertices_[v].leaf);
+    ++counters_.steiner_points;
+    if (dynamic_) mark_readers_at(id, q, vertices_[id].leaf, VertexChange::Inserted, op_rank, op_color);
+    if (caching_) vertex_arrived(id, q, time_key(op_rank, op_color));
+    if (stats_) stats_->steiner_added.push_back(q);
+    const OpId d = new_op(OpKind::Dispatch, id, rank, 0);
+    ops_[d].crowded = ops_[o].crowded;
+    vertices_[id].dispatch = d;
+    new_children_.push_back(d);
+    mark_fresh(d);
+  }
+  if (recording_) store_children(o);
+  // Steiner vertices of the previous run not inserted again leave the output.
+  for (OpId d : stash_) {
+    const VertexId w = ops_[d].vertex;
+    mark_obsolete(d);
+    tree_.erase_vertex(w, vertices_[w].leaf);
+    mark_readers_at(w, positions_[w], vertices_[w].leaf, VertexChange::Removed, op_rank, op_color);
+    kill_vertex(w);
+    if (stats_) stats_->steiner_removed.push_back(positions_[w]);
+  }
+  stash_.clear();
+}
+
+// The Steiner point: toward the cell vertex c farthest from v, at distance min(|vc|, beta NN) shrunk by
+// 2^-10 (so it lies strictly inside the cell, away from the bisectors through c, and rounding cannot push
+// it out), but never nearer than rho NN. That is the largest admissible step, which keeps the output
+// small: the farthest Voronoi vertex is the circumcentre of the worst Delaunay simplex at v, the point
+// Delaunay refinement inserts. Every condition of the picking region is then checked exactly.
+template <int D>
+Point<D> WellSpacedEngine<D>::pick_steiner(VertexId v, Worker& wk) const {
+  constexpr double kInside = 0x1p-10;  // the step's shrink, and the least margin above rho NN
+  PredicateCounters& pc = wk.cell.counters();
+  const Point<D> p = positions_[v];
+  const Point<D> u = positions_[wk.hood.nearest];
+  const Point<D> y = wk.cell.farthest_vertex_offset();
+  double len2 = 0;
+  for (int i = 0; i < D; ++i) len2 += y[i] * y[i];
+  const double len = std::sqrt(len2);
+  const double nn = std::sqrt(squared_distance(v, wk.hood.nearest));
+  const double reach = std::min(len, params_.beta * nn);
+  const double fallback = 0.5 * (params_.rho * nn + reach);
+  double target = reach * (1 - kInside);
+  if (target < params_.rho * nn * (1 + kInside)) target = fallback;
+  for (double t : {target, fallback}) {
+    Point<D> w;
+    for (int i = 0; i < D; ++i) w[i] = std::clamp(p[i] + y[i] * (t / len), 0.0, 1.0);
+    if (compare_squared_distance_scaled<D>(pc, w, p, params_.rho_squared, u, p) < 0) continue;
+    if (compare_squared_distance_scaled<D>(pc, w, p, params_.beta_squared, u, p) >= 0) continue;
+    bool inside = true;
+    for (const Candidate& c : wk.hood.candidates)
+      if (compare_squared_distances<D>(pc, w, p, w, c.position) >= 0) {
+        inside = false;
+        break;
+      }
+    if (inside) return w;
+  }
+  throw std::logic_error("no admissible Steiner point in the picking region of a vertex");
+}
+
+#define SHOREMESH_ENGINE_OPERATIONS(D)                                                                  \
+  template void WellSpacedEngine<D>::WorkersDeleter::operator()(Workers*) const;                       \
+  template void WellSpacedEngine<D>::compute(OpId, Worker&, Outcome&);                                 \
+  template void WellSpacedEngine<D>::commit(OpId, Outcome&);                                           \
+  template void WellSpacedEngine<D>::execute(OpId);                                                    \
+  template void WellSpacedEngine<D>::release_executed(OpId);                                           \
+  template void WellSpacedEngine<D>::execute_batch_in_parallel();                                      \
+  template void WellSpacedEngine<D>::add_counters(Worker&);                                            \
+  template void WellSpacedEngine<D>::collect_counters();                                               \
+  template void WellSpacedEngine<D>::request_fill(VertexId, int, bool);                                \
+  template void WellSpacedEngine<D>::compute_dispatch(OpId, Worker&, Outcome&);                        \
+  template void WellSpacedEngine<D>::commit_dispatch(OpId, Outcome&);                                  \
+  template bool WellSpacedEngine<D>::already_below_rank(const Worker&, VertexId, int, PredicateCounters&) const; \
+  template void WellSpacedEngine<D>::compute_fill(OpId, Worker&, Outcome&);                            \
+  template void WellSpacedEngine<D>::commit_fill(OpId, Outcome&);                                      \
+  template Point<D> WellSpacedEngine<D>::pick_steiner(VertexId, Worker&) const;
+SHOREMESH_ENGINE_OPERATIONS(2)
+SHOREMESH_ENGINE_OPERATIONS(3)
+#undef SHOREMESH_ENGINE_OPERATIONS
+
+}  // namespace shoremesh
