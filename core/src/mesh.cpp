@@ -747,13 +747,12 @@ class MeshTriangulation {
     }
   }
 
-  // Classifies again the faces whose bounding box meets [lo, hi] (a walk from the face at `seed`, a point
-  // in that box and in the mesh's hull). Outside that box the
-  // change of the rings changed no face's side (Mesh::apply with a domain says why).
-  void reclassify_within(const Point2& lo, const Point2& hi, const Point2& seed, Accumulator& acc)
+  // Visits the finite faces whose bounding box meets [lo, hi] (a walk from the face at `seed`, a point in
+  // that box and in the mesh's hull); false (nothing visited) when the seed's face misses the box.
+  template <class F>
+  bool for_each_face_meeting(const Point2& lo, const Point2& hi, const Point2& seed, F&& visit)
     requires(D == 2)
   {
-    if (triangulation.dimension() < 2) return;
     auto meets = [&](Face f) {
       if (triangulation.is_infinite(f)) return false;
       for (int i = 0; i < 2; ++i) {
@@ -768,20 +767,28 @@ class MeshTriangulation {
     };
     Face start = C::locate(triangulation, C::to_cgal(seed), hint_);
     if (triangulation.is_infinite(start)) start = start->neighbor(start->index(triangulation.infinite_vertex()));
-    if (!meets(start)) {  // the seed outside the mesh's hull: no walk to start from
-      reclassify_all(acc);
-      return;
-    }
+    if (!meets(start)) return false;
     std::set<Face> seen{start};
     std::vector<Face> todo{start};
     while (!todo.empty()) {
       const Face f = todo.back();
       todo.pop_back();
       if (!meets(f)) continue;  // the walk stops at the first faces outside the box
-      reclassify(f, acc);
+      visit(f);
       for (int i = 0; i < 3; ++i)
         if (seen.insert(f->neighbor(i)).second) todo.push_back(f->neighbor(i));
     }
+    return true;
+  }
+
+  // Classifies again the faces whose bounding box meets [lo, hi], a box around `seed`. Outside that box
+  // the change of the rings changed no face's side (Mesh::apply with a domain says why).
+  void reclassify_within(const Point2& lo, const Point2& hi, const Point2& seed, Accumulator& acc)
+    requires(D == 2)
+  {
+    if (triangulation.dimension() < 2) return;
+    // The seed outside the mesh's hull: no walk to start from.
+    if (!for_each_face_meeting(lo, hi, seed, [&](Face f) { reclassify(f, acc); })) reclassify_all(acc);
   }
 
  private:
@@ -943,6 +950,29 @@ MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domai
   MeshDelta<D> delta = acc.net();
   element_count_ = element_count_ + delta.added.size() - delta.removed.size();
   return delta;
+}
+
+template <int D>
+std::vector<ElementCorners<2>> Mesh<D>::elements_meeting(const Point2& lo, const Point2& hi) const
+  requires(D == 2)
+{
+  auto& t = *triangulation_;
+  std::vector<ElementCorners<2>> out;
+  if (t.triangulation.dimension() < 2) return out;
+  auto take = [&](auto f) {
+    if (t.kept(f)) out.push_back(t.key(f));
+  };
+  if (!t.for_each_face_meeting(lo, hi, {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])}, take)) {
+    Cgal<2>::for_each_finite_face(t.triangulation, [&](auto f) {  // the box's centre outside the hull
+      const auto k = t.key(f);
+      for (int i = 0; i < 2; ++i) {
+        const double f_lo = std::min({k[0][i], k[1][i], k[2][i]}), f_hi = std::max({k[0][i], k[1][i], k[2][i]});
+        if (f_hi < lo[i] || f_lo > hi[i]) return;
+      }
+      take(f);
+    });
+  }
+  return out;
 }
 
 template <int D>

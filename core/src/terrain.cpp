@@ -493,17 +493,12 @@ TerrainUpdate TerrainSession::patch(int col, int row, int w, int h, std::span<co
   // Triangles with a sample or a node in reach of the changed heights are measured again.
   {
     const auto t1 = Clock::now();
-    std::vector<ElementCorners<2>> near;
-    for (const auto& [key, st] : m.triangles) {
-      double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
-      for (const Point2& p : key) {
-        const Point2 q = g.to_grid(p);
-        for (int i = 0; i < 2; ++i) lo[i] = std::min(lo[i], q[i]), hi[i] = std::max(hi[i], q[i]);
-      }
-      if (hi[0] >= changed.c0 - 1 && lo[0] <= changed.c1 + 1 && hi[1] >= changed.r0 - 1 && lo[1] <= changed.r1 + 1)
-        near.push_back(key);
-    }
-    for (const auto& key : near) m.measure_triangle(key, u);
+    // Within one cell (a node's bilinear height reads the samples less than a cell away); half a cell more
+    // against rounding: measuring a triangle again is harmless.
+    const Point2 a = g.position(changed.c0, changed.r0), b = g.position(changed.c1, changed.r1);
+    const double mx = 1.5 * std::abs(g.dx), my = 1.5 * std::abs(g.dy);
+    const Point2 lo{std::min(a[0], b[0]) - mx, std::min(a[1], b[1]) - my}, hi{std::max(a[0], b[0]) + mx, std::max(a[1], b[1]) + my};
+    for (const auto& key : m.mesh->elements_meeting(lo, hi)) m.measure_triangle(key, u);
     m.tin_stale = true;  // heights changed
     u.error_ms += ms_since(t1);
   }
