@@ -22,24 +22,6 @@ double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-std::vector<std::string> split_words(const std::string& text) {
-  std::istringstream in(text);
-  std::vector<std::string> words;
-  for (std::string w; in >> w;) words.push_back(w);
-  return words;
-}
-
-// The text after the first word, trimmed: a path may contain blanks.
-std::string rest_after_op(const std::string& text) {
-  const std::size_t start = text.find_first_not_of(" \t");
-  const std::size_t op_end = text.find_first_of(" \t", start);
-  if (op_end == std::string::npos) return {};
-  const std::size_t a = text.find_first_not_of(" \t", op_end);
-  if (a == std::string::npos) return {};
-  const std::size_t b = text.find_last_not_of(" \t\r");
-  return text.substr(a, b - a + 1);
-}
-
 double parse_number(const std::string& word) {
   double v = 0;
   const char* first = word.data();
@@ -61,6 +43,24 @@ typename ShoreSession<D>::Options session_options(double rho, std::optional<BoxT
 }
 
 }  // namespace
+
+std::vector<std::string> split_words(const std::string& text) {
+  std::istringstream in(text);
+  std::vector<std::string> words;
+  for (std::string w; in >> w;) words.push_back(w);
+  return words;
+}
+
+// The text after the first word, trimmed: a path may contain blanks.
+std::string rest_after_op(const std::string& text) {
+  const std::size_t start = text.find_first_not_of(" \t");
+  const std::size_t op_end = text.find_first_of(" \t", start);
+  if (op_end == std::string::npos) return {};
+  const std::size_t a = text.find_first_not_of(" \t", op_end);
+  if (a == std::string::npos) return {};
+  const std::size_t b = text.find_last_not_of(" \t\r");
+  return text.substr(a, b - a + 1);
+}
 
 template <int D>
 EditSession<D>::EditSession(const io::InputSet& set, double rho, std::optional<BoxTransform<D>> box, bool keep_hull,

@@ -74,6 +74,10 @@ class EditSession {
   std::vector<std::filesystem::path> inputs_;
 };
 
+// An edit line's words, and the text after its first word (trimmed: a path may contain blanks).
+std::vector<std::string> split_words(const std::string& text);
+std::string rest_after_op(const std::string& text);
+
 // One reply as a line of text for a person.
 std::string reply_text(const nlohmann::json& reply);
 

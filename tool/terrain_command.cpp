@@ -1,9 +1,11 @@
 // shoremesh terrain DEM --max-error E -o OUT: a quality TIN of a DEM within a vertical error bound
 // (core/include/shoremesh/terrain.hpp, docs/terrain.md), with heights in every export, a hillshaded
 // preview, and windows of new heights (--patch) applied through the dynamic engine.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <numbers>
@@ -13,6 +15,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "edit_session.hpp"
 #include "input_args.hpp"
 #include "pipeline.hpp"
 #include "progress.hpp"
@@ -34,6 +37,8 @@ struct TerrainOptionsArgs {
   double seed_fraction = 0;
   std::string output, format, preview;
   std::vector<std::string> patches;
+  std::string edits;  // edit lines (dem-patch FILE, export PATH, stats), '-' for standard input
+  bool json = false;
   PreviewArgs preview_args;
   double rho = std::numbers::sqrt2;
   bool quiet = false;
@@ -77,15 +82,143 @@ std::string update_text(const TerrainUpdate& u) {
   return s.str();
 }
 
+double ms_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+// The TIN with its heights, in lon/lat when the DEM has a coordinate system.
+struct TinView {
+  io::MeshSnapshot<2> snapshot;
+  io::MeshView<2> view;
+  TinView(const TerrainSession& s, const io::DemGrid& plane)
+      : snapshot(s.points(), s.triangles(), s.kinds()),
+        view(plane.to_lonlat ? snapshot.view(plane.to_lonlat) : snapshot.view()) {
+    view.heights = s.heights();
+  }
+};
+
+io::ExportFormat tin_format(const std::filesystem::path& path, const std::string& format, const io::DemGrid& plane,
+                            const std::string& option) {
+  const io::ExportFormat f = format.empty() ? io::export_format_from_path(path) : parse_export_format(format);
+  if (f == io::ExportFormat::Triangle || f == io::ExportFormat::Adcirc)
+    throw ParameterError(option + ": a terrain is written with its heights: .msh, .vtu, .obj, .ply, .off or .geojson");
+  if (f == io::ExportFormat::GeoJson && !plane.to_lonlat)
+    throw InputError(option + ": GeoJSON needs longitude/latitude, and the DEM has no coordinate system");
+  return f;
+}
+
+// The triangles by their corners (sorted), to count what an edit changed.
+std::vector<ElementCorners<2>> tin_corners(const TerrainSession& s) {
+  std::vector<ElementCorners<2>> out;
+  out.reserve(s.triangles().size());
+  for (const auto& t : s.triangles()) {
+    ElementCorners<2> c{s.points()[t[0]], s.points()[t[1]], s.points()[t[2]]};
+    std::sort(c.begin(), c.end());
+    out.push_back(c);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// The terrain's edit language (--edits): one reply per line, a bad line an error reply that changes nothing.
+//   dem-patch FILE   new heights for a window of the DEM (a raster with the DEM's cells, aligned)
+//   export PATH      the current TIN with its heights (.msh .vtu .obj .ply .off .geojson)
+//   stats            counts and the error measured against the current DEM
+class TerrainEdits {
+ public:
+  TerrainEdits(TerrainSession& session, const io::Dem& dem, const io::DemGrid& plane, std::vector<std::filesystem::path> inputs)
+      : session_(session), dem_(dem), plane_(plane), inputs_(std::move(inputs)) {}
+
+  std::optional<nlohmann::json> run(std::size_t line, const std::string& text) {
+    const std::vector<std::string> words = split_words(text);
+    if (words.empty() || words[0][0] == '#') return std::nullopt;
+    const std::string& op = words[0];
+    nlohmann::json reply = {{"line", line}, {"ok", true}, {"op", op}};
+    try {
+      if (op == "dem-patch") patch(rest_after_op(text), reply);
+      else if (op == "export") export_to(rest_after_op(text), reply);
+      else if (op == "stats" && words.size() == 1) stats(reply);
+      else if (op == "stats") throw InputError("stats takes no arguments");
+      else throw InputError("unknown terrain edit '" + op + "' (dem-patch FILE, export PATH, stats)");
+    } catch (const InputError& e) {
+      return nlohmann::json{{"line", line}, {"ok", false}, {"op", op}, {"error", e.what()}};
+    } catch (const ParameterError& e) {
+      return nlohmann::json{{"line", line}, {"ok", false}, {"op", op}, {"error", e.what()}};
+    }
+    return reply;
+  }
+
+  static std::string text(const nlohmann::json& r) {
+    const std::string head = "line " + r["line"].dump() + ": ";
+    if (!r.value("ok", false)) return head + "error: " + r.value("error", "");
+    const std::string op = r.value("op", "");
+    if (op == "dem-patch")
+      return head + "dem-patch " + r.value("file", "") + ": " + r["cells"].dump() + " cells at column " + r["column"].dump() +
+             ", row " + r["row"].dump() + ": triangles -" + r["triangles_removed"].dump() + " +" +
+             r["triangles_added"].dump() + " (now " + r["triangles"].dump() + "); " + r.value("update", "") + "; " +
+             ms(r.value("ms", 0.0));
+    if (op == "export") return head + "wrote " + r.value("path", "") + " (" + r["triangles"].dump() + " triangles)";
+    return head + r["triangles"].dump() + " triangles, " + r["vertices"].dump() + " vertices; error max " +
+           approx(r.value("max_error", 0.0), 6) + ", RMS " + approx(r.value("rms_error", 0.0), 6);
+  }
+
+ private:
+  void patch(const std::string& file, nlohmann::json& reply) {
+    if (file.empty()) throw InputError("dem-patch takes a FILE (a raster with the DEM's cells)");
+    const io::Dem p = io::read_dem(file);
+    const PatchWindow at = locate_patch(dem_, p);
+    const auto before = tin_corners(session_);
+    const auto t0 = std::chrono::steady_clock::now();
+    TerrainUpdate u;
+    try {
+      u = session_.patch(at.col, at.row, p.width, p.height, p.heights, p.valid);
+    } catch (const InputError& e) {
+      throw InputError(e.message(), file);
+    }
+    const double t = ms_since(t0);
+    const auto after = tin_corners(session_);
+    std::vector<ElementCorners<2>> gone, came;
+    std::set_difference(before.begin(), before.end(), after.begin(), after.end(), std::back_inserter(gone));
+    std::set_difference(after.begin(), after.end(), before.begin(), before.end(), std::back_inserter(came));
+    reply.update({{"file", file}, {"column", at.col}, {"row", at.row}, {"cells", std::size_t(p.width) * std::size_t(p.height)},
+                  {"triangles_removed", gone.size()}, {"triangles_added", came.size()},
+                  {"triangles", session_.triangles().size()}, {"update", update_text(u)}, {"ms", t}});
+  }
+
+  void export_to(const std::string& path, nlohmann::json& reply) {
+    if (path.empty()) throw InputError("export takes a PATH (.msh .vtu .obj .ply .off .geojson)");
+    const io::ExportFormat format = tin_format(path, "", plane_, "export");
+    io::OutputBatch batch(inputs_);  // never over an input
+    const TinView tin(session_, plane_);
+    io::export_mesh<2>(batch.add(path, "export"), tin.view, format);
+    batch.commit();
+    reply.update({{"path", path}, {"triangles", session_.triangles().size()}});
+  }
+
+  void stats(nlohmann::json& reply) const {
+    const TerrainError e = session_.error();
+    reply.update({{"triangles", session_.triangles().size()}, {"vertices", session_.points().size()},
+                  {"max_error", e.max}, {"rms_error", e.rms}, {"samples_over", e.over}});
+  }
+
+  TerrainSession& session_;
+  const io::Dem& dem_;
+  const io::DemGrid& plane_;
+  std::vector<std::filesystem::path> inputs_;
+};
+
 int run_terrain(const TerrainOptionsArgs& opt, Progress& progress) {
   if (!(opt.max_error > 0) || !std::isfinite(opt.max_error))
     throw ParameterError("--max-error must be a finite height above 0 (got " + readable(opt.max_error) + ")");
   const std::filesystem::path output = opt.output;
-  const io::ExportFormat format = opt.format.empty() ? io::export_format_from_path(output) : parse_export_format(opt.format);
-  if (format == io::ExportFormat::Triangle || format == io::ExportFormat::Adcirc)
-    throw ParameterError("-o: a terrain is written with its heights: .msh, .vtu, .obj, .ply, .off or .geojson");
   std::vector<std::filesystem::path> inputs{opt.dem};
   inputs.insert(inputs.end(), opt.patches.begin(), opt.patches.end());
+  std::ifstream edit_file;
+  if (!opt.edits.empty() && opt.edits != "-") {
+    edit_file.open(opt.edits);
+    if (!edit_file) throw InputError("cannot read the edits", opt.edits);
+    inputs.emplace_back(opt.edits);
+  }
   io::OutputBatch batch(inputs);
   const std::filesystem::path staged = batch.add(output, "-o");
   const std::filesystem::path staged_preview = opt.preview.empty() ? std::filesystem::path() : batch.add(opt.preview, "--preview");
@@ -93,8 +226,12 @@ int run_terrain(const TerrainOptionsArgs& opt, Progress& progress) {
   progress.stage("reading " + std::filesystem::path(opt.dem).filename().string());
   const io::Dem dem = io::read_dem(opt.dem);
   io::DemGrid plane = io::dem_grid(dem);
-  if (format == io::ExportFormat::GeoJson && !plane.to_lonlat)
-    throw InputError("GeoJSON needs longitude/latitude, and the DEM has no coordinate system", opt.dem);
+  io::ExportFormat format;
+  try {
+    format = tin_format(output, opt.format, plane, "-o");
+  } catch (const InputError& e) {
+    throw InputError(e.message(), opt.dem);
+  }
   std::vector<io::Dem> patches;
   std::vector<PatchWindow> windows;
   for (const std::string& p : opt.patches) {
@@ -129,14 +266,27 @@ int run_terrain(const TerrainOptionsArgs& opt, Progress& progress) {
                           ms(u.error_ms) + ")");
   }
 
+  std::size_t failed = 0;
+  if (!opt.edits.empty()) {
+    progress.stage("edits");
+    TerrainEdits edits(*session, dem, plane, inputs);
+    std::istream& in = opt.edits == "-" ? std::cin : edit_file;
+    std::size_t line_no = 0;
+    for (std::string line; std::getline(in, line);) {
+      const auto reply = edits.run(++line_no, line);
+      if (!reply) continue;
+      failed += !reply->value("ok", false);
+      std::cout << (opt.json ? reply->dump() : TerrainEdits::text(*reply)) << std::endl;  // a program may wait
+    }
+  }
+
   const TerrainUpdate& b = session->build_stats();
   progress.stage("measuring");
   const TerrainError error = session->error();
   const auto& points = session->points();
   const auto& triangles = session->triangles();
-  io::MeshSnapshot<2> snapshot(points, triangles, session->kinds());
-  io::MeshView<2> view = plane.to_lonlat ? snapshot.view(plane.to_lonlat) : snapshot.view();
-  view.heights = session->heights();
+  const TinView tin(*session, plane);
+  const io::MeshView<2>& view = tin.view;
   std::size_t meeting = 0;
   double worst_ratio = 0;
   for (const auto& t : triangles) {
@@ -180,7 +330,8 @@ int run_terrain(const TerrainOptionsArgs& opt, Progress& progress) {
   std::cout << "wrote " << opt.output;
   if (!opt.preview.empty()) std::cout << " and " << opt.preview;
   std::cout << '\n';
-  return error.over == 0 ? kExitOk : kExitInternal;
+  if (failed) std::cerr << "shoremesh: " << failed << " edit line(s) failed (exit code 1)\n";
+  return error.over != 0 ? kExitInternal : failed ? kExitBadInput : kExitOk;
 }
 
 }  // namespace
@@ -206,15 +357,22 @@ Command add_terrain_command(CLI::App& app) {
                   "After the build, replace a window of the DEM by this raster (same cells, aligned) and update the TIN; "
                   "repeatable, applied in order")
       ->take_all();
+  cmd->add_option("--edits", opt->edits,
+                  "After the build (and --patch), edit lines from FILE or '-' (standard input): dem-patch FILE (a "
+                  "window of new heights; the TIN updates and equals a fresh run on the patched DEM) | export PATH | "
+                  "stats ('#' comments); -o is written after the last line");
+  cmd->add_flag("--json", opt->json, "Reply to each edit line with one JSON object");
   add_quiet_option(cmd, opt->quiet);
   cmd->footer(
       "Examples:\n"
       "  shoremesh terrain samples/salish/salish_sea_topobathy.tif --max-error 20 -o salish.obj \\\n"
       "      --preview salish.png --preview-colour height\n"
       "  shoremesh terrain dem.tif --max-error 1 -o tin.vtu --patch dredged_channel.tif\n"
+      "  printf 'dem-patch channel.tif\\nexport dredged.vtu\\ndem-patch levee.tif\\nstats\\n' | \\\n"
+      "      shoremesh terrain dem.tif --max-error 1 -o final.vtu --edits -\n"
       "Exit code 3 if the error bound is not met at some sample (never expected: the TIN is refined until it is).");
   return [opt]() {
-    Progress progress(!opt->quiet && Progress::stderr_is_terminal(), 5 + opt->patches.size());
+    Progress progress(!opt->quiet && Progress::stderr_is_terminal(), 5 + opt->patches.size() + !opt->edits.empty());
     return run_terrain(*opt, progress);
   };
 }

@@ -23,6 +23,7 @@
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 
 #include "shoremesh/error.hpp"
@@ -416,19 +417,50 @@ class MeshTriangulation {
       if (!triangulation.is_infinite(f) && kept(f)) acc.remove(key(f));
   }
 
-  // The shore segments that went stop being constraints (after the point removals, which took the segments
-  // of removed points with them); add_constraints inserts the new ones after the point insertions.
+  // A ring segment's constraint is a chain of constrained edges: CGAL splits it at every mesh point that
+  // lies inside it (on a straight shore, a Steiner point on the line). The chain from a to b, or empty.
+  std::vector<Vertex> constrained_chain(Vertex a, Vertex b) const
+    requires(D == 2)
+  {
+    std::vector<Vertex> chain{a};
+    const auto pa = a->point(), pb = b->point();
+    for (Vertex v = a; v != b;) {
+      std::vector<typename Triangulation::Edge> edges;
+      triangulation.incident_constraints(v, std::back_inserter(edges));
+      Vertex next;
+      for (const auto& [f, i] : edges) {
+        Vertex w = f->vertex(Triangulation::cw(i));
+        if (w == v) w = f->vertex(Triangulation::ccw(i));
+        if (w == b || (w != chain.back() && !triangulation.is_infinite(w) &&
+                       CGAL::orientation(pa, pb, w->point()) == CGAL::COLLINEAR &&
+                       CGAL::collinear_are_strictly_ordered_along_line(v->point(), w->point(), pb))) {
+          next = w;
+          if (w == b) break;
+        }
+      }
+      if (next == Vertex()) return {};
+      chain.push_back(v = next);
+    }
+    return chain;
+  }
+
+  // The shore segments that went stop being constraints, along their whole chain (after the point
+  // removals, which took the segments of removed ring vertices with them); add_constraints inserts the
+  // new ones after the point insertions.
   void drop_constraints(const std::vector<std::pair<Point2, Point2>>& segments, Accumulator& acc)
     requires(D == 2)
   {
     for (const auto& [a, b] : segments) {
       const auto ia = vertex_of.find(a), ib = vertex_of.find(b);
       if (ia == vertex_of.end() || ib == vertex_of.end()) continue;  // a removed point takes it along
-      Face f;
-      int i;
-      if (!triangulation.is_edge(ia->second, ib->second, f, i) || !f->is_constrained(i)) continue;
-      triangulation.remove_constrained_edge(f, i);
-      sweep({ia->second, ib->second}, acc);
+      const std::vector<Vertex> chain = constrained_chain(ia->second, ib->second);
+      for (std::size_t k = 0; k + 1 < chain.size(); ++k) {
+        Face f;
+        int i;
+        if (!triangulation.is_edge(chain[k], chain[k + 1], f, i) || !f->is_constrained(i)) continue;
+        triangulation.remove_constrained_edge(f, i);
+        sweep({chain[k], chain[k + 1]}, acc);
+      }
     }
   }
 
@@ -438,17 +470,66 @@ class MeshTriangulation {
     for (const auto& [a, b] : segments) {
       const auto ia = vertex_of.find(a), ib = vertex_of.find(b);
       if (ia == vertex_of.end() || ib == vertex_of.end()) continue;  // as in build
-      const Vertex va = ia->second, vb = ib->second;
-      std::vector<Vertex> seeds{va, vb};
-      triangulation.on_hole = [&](const auto& faces) {
-        record_deleted(faces, acc);
-        for (Face f : faces)
-          for (int i = 0; i < 3; ++i) seeds.push_back(f->vertex(i));
-      };
-      insert_constraint(va, vb);
-      triangulation.on_hole = nullptr;
-      std::erase_if(seeds, [&](Vertex v) { return triangulation.is_infinite(v); });
-      sweep(seeds, acc);
+      constrain(ia->second, ib->second, acc);
+    }
+  }
+
+  void constrain(Vertex va, Vertex vb, Accumulator& acc)
+    requires(D == 2)
+  {
+    std::vector<Vertex> seeds{va, vb};
+    triangulation.on_hole = [&](const auto& faces) {
+      record_deleted(faces, acc);
+      for (Face f : faces)
+        for (int i = 0; i < 3; ++i) seeds.push_back(f->vertex(i));
+    };
+    insert_constraint(va, vb);
+    triangulation.on_hole = nullptr;
+    std::erase_if(seeds, [&](Vertex v) { return triangulation.is_infinite(v); });
+    sweep(seeds, acc);
+  }
+
+  bool canonical_ties = false;  // Mesh::canonicalize_ties
+
+  // Lawson flips of the unconstrained edges between two kept faces whose four corners are exactly
+  // co-circular, toward the triangulation of a symbolic perturbation: each point lifted by an
+  // infinitesimal that grows with its lexicographic rank. Of four co-circular points the highest-ranked
+  // then lies above the others' circle, so the diagonal avoids it. Edges with a definite in-circle sign are
+  // Delaunay (or constraints) already; flipping toward the perturbed criterion reaches its unique
+  // triangulation (Edelsbrunner & Muecke's simulation of simplicity), whatever CGAL's history left among
+  // the co-circular choices. Starts from the edges of the faces named by `keys` (those still alive).
+  void flip_ties(const std::vector<Key>& keys, Accumulator& acc)
+    requires(D == 2)
+  {
+    std::vector<std::pair<Face, int>> stack;
+    auto push_face = [&](Face f) {
+      for (int i = 0; i < 3; ++i) stack.emplace_back(f, i);
+    };
+    for (const Key& k : keys) {
+      const auto it = vertex_of.find(k[0]);
+      if (it == vertex_of.end()) continue;
+      C::for_each_incident_finite_face(triangulation, it->second, [&](Face f) {
+        if (kept(f) && key(f) == k) push_face(f);
+      });
+    }
+    while (!stack.empty()) {
+      auto [f, i] = stack.back();
+      stack.pop_back();
+      if (triangulation.is_infinite(f) || f->is_constrained(i) || !kept(f)) continue;
+      const Face n = f->neighbor(i);
+      if (triangulation.is_infinite(n) || !kept(n)) continue;
+      const Vertex a = f->vertex(i), b = f->vertex(Triangulation::ccw(i)), c = f->vertex(Triangulation::cw(i));
+      const Vertex d = n->vertex(n->index(f));
+      if (CGAL::side_of_oriented_circle(a->point(), b->point(), c->point(), d->point()) != CGAL::ON_ORIENTED_BOUNDARY)
+        continue;
+      Vertex top = a;
+      for (Vertex v : {b, c, d})
+        if (C::from_cgal(v->point()) > C::from_cgal(top->point())) top = v;
+      if (top != b && top != c) continue;
+      triangulation.flip(f, i);
+      sweep({a, b, c, d}, acc);
+      push_face(f);
+      push_face(n);
     }
   }
 
@@ -520,14 +601,27 @@ class MeshTriangulation {
     return keys;
   }
 
-  void remove(const Point<D>& p, std::vector<Point<D>>& points, std::vector<PointKind>& kinds, Accumulator& acc) {
+  // `ring_vertex`: whether a point is a vertex of the rings before the change (2D). A point with
+  // constraints that is not one lies inside a ring segment, whose constraint is joined again around it.
+  void remove(const Point<D>& p, std::vector<Point<D>>& points, std::vector<PointKind>& kinds, Accumulator& acc,
+              const std::function<bool(const Point2&)>& ring_vertex = {}) {
     const Vertex v = vertex_of.at(p);
     const std::uint32_t slot = v->info();
+    std::vector<Vertex> rejoin;  // the ends of the segment's constrained edges at v
     if constexpr (D == 2) {
       // Its segments go first, with CGAL's flips: points they hid become visible to faces outside the star.
       if (triangulation.dimension() < 2) {
         triangulation.unmark_incident_constraints(v);
       } else if (triangulation.are_there_incident_constraints(v)) {
+        if (ring_vertex && !ring_vertex(p)) {
+          std::vector<typename Triangulation::Edge> edges;
+          triangulation.incident_constraints(v, std::back_inserter(edges));
+          for (const auto& [f, i] : edges) {
+            const Vertex w = f->vertex(Triangulation::cw(i));
+            rejoin.push_back(w == v ? f->vertex(Triangulation::ccw(i)) : w);
+          }
+          if (rejoin.size() != 2) rejoin.clear();
+        }
         triangulation.remove_incident_constraints(v);
         sweep({v}, acc);
       }
@@ -546,6 +640,7 @@ class MeshTriangulation {
       triangulation.remove(v);
       if (!link.empty()) hint_ = link.front();
       if (triangulation.dimension() == D) sweep(link, acc);
+      if (rejoin.size() == 2 && triangulation.dimension() == D) constrain(rejoin[0], rejoin[1], acc);
     } else {
       // The faces destroyed are those around v (its star). The faces created fill the star's hole, so
       // they have only link vertices as corners; so may a few faces outside the star, which the
@@ -652,13 +747,12 @@ class MeshTriangulation {
     }
   }
 
-  // Classifies again the faces whose bounding box meets [lo, hi] (a walk from the face at `seed`, a point
-  // in that box and in the mesh's hull). Outside that box the
-  // change of the rings changed no face's side (Mesh::apply with a domain says why).
-  void reclassify_within(const Point2& lo, const Point2& hi, const Point2& seed, Accumulator& acc)
+  // Visits the finite faces whose bounding box meets [lo, hi] (a walk from the face at `seed`, a point in
+  // that box and in the mesh's hull); false (nothing visited) when the seed's face misses the box.
+  template <class F>
+  bool for_each_face_meeting(const Point2& lo, const Point2& hi, const Point2& seed, F&& visit)
     requires(D == 2)
   {
-    if (triangulation.dimension() < 2) return;
     auto meets = [&](Face f) {
       if (triangulation.is_infinite(f)) return false;
       for (int i = 0; i < 2; ++i) {
@@ -673,20 +767,28 @@ class MeshTriangulation {
     };
     Face start = C::locate(triangulation, C::to_cgal(seed), hint_);
     if (triangulation.is_infinite(start)) start = start->neighbor(start->index(triangulation.infinite_vertex()));
-    if (!meets(start)) {  // the seed outside the mesh's hull: no walk to start from
-      reclassify_all(acc);
-      return;
-    }
+    if (!meets(start)) return false;
     std::set<Face> seen{start};
     std::vector<Face> todo{start};
     while (!todo.empty()) {
       const Face f = todo.back();
       todo.pop_back();
       if (!meets(f)) continue;  // the walk stops at the first faces outside the box
-      reclassify(f, acc);
+      visit(f);
       for (int i = 0; i < 3; ++i)
         if (seen.insert(f->neighbor(i)).second) todo.push_back(f->neighbor(i));
     }
+    return true;
+  }
+
+  // Classifies again the faces whose bounding box meets [lo, hi], a box around `seed`. Outside that box
+  // the change of the rings changed no face's side (Mesh::apply with a domain says why).
+  void reclassify_within(const Point2& lo, const Point2& hi, const Point2& seed, Accumulator& acc)
+    requires(D == 2)
+  {
+    if (triangulation.dimension() < 2) return;
+    // The seed outside the mesh's hull: no walk to start from.
+    if (!for_each_face_meeting(lo, hi, seed, [&](Face f) { reclassify(f, acc); })) reclassify_all(acc);
   }
 
  private:
@@ -812,6 +914,7 @@ MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domai
   if (points_.size() + change.added.size() - change.removed.size() >= MeshTriangulation<D>::kMaxPoints)
     throw InputError("too many points for a mesh");
   std::optional<ChangedWater> water;
+  Domain2 previous;  // the rings before the change (2D with `domain`)
   std::vector<std::pair<Point2, Point2>> dropped, inserted;  // shore segments that went and came
   if constexpr (D == 2) {
     if (domain) {
@@ -819,11 +922,21 @@ MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domai
       changed_segments(domain_, *domain, *water, dropped, inserted);
       // The faces the change creates are classified against the new rings.
       t.update_water(domain_, *domain, *water);
+      previous = std::move(domain_);
       domain_ = *domain;
     }
   }
+  // The old rings' vertices, gathered the first time a removed point has constraints.
+  std::optional<std::unordered_set<Point2, PointHash<2>>> ring_vertices;
+  const std::function<bool(const Point2&)> ring_vertex = [&](const Point2& p) {
+    if (!ring_vertices) {
+      ring_vertices.emplace();
+      for (const Ring& ring : (domain ? previous : domain_).rings) ring_vertices->insert(ring.points.begin(), ring.points.end());
+    }
+    return ring_vertices->count(p) != 0;
+  };
   typename MeshTriangulation<D>::Accumulator acc;
-  for (const Point<D>& p : change.removed) t.remove(p, points_, kinds_, acc);
+  for (const Point<D>& p : change.removed) t.remove(p, points_, kinds_, acc, ring_vertex);
   if constexpr (D == 2) t.drop_constraints(dropped, acc);
   for (std::size_t i = 0; i < change.added.size(); ++i)
     t.insert(change.added[i], i < change.added_input_count ? PointKind::Input : PointKind::Steiner, points_, kinds_, acc);
@@ -831,9 +944,46 @@ MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domai
   if constexpr (D == 2) {
     if (water && water->changed) t.reclassify_within(water->lo, water->hi, water->seed, acc);
   }
+  if constexpr (D == 2) {
+    if (t.canonical_ties) t.flip_ties(std::vector<ElementCorners<2>>(acc.born), acc);
+  }
   MeshDelta<D> delta = acc.net();
   element_count_ = element_count_ + delta.added.size() - delta.removed.size();
   return delta;
+}
+
+template <int D>
+std::vector<ElementCorners<2>> Mesh<D>::elements_meeting(const Point2& lo, const Point2& hi) const
+  requires(D == 2)
+{
+  auto& t = *triangulation_;
+  std::vector<ElementCorners<2>> out;
+  if (t.triangulation.dimension() < 2) return out;
+  auto take = [&](auto f) {
+    if (t.kept(f)) out.push_back(t.key(f));
+  };
+  if (!t.for_each_face_meeting(lo, hi, {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])}, take)) {
+    Cgal<2>::for_each_finite_face(t.triangulation, [&](auto f) {  // the box's centre outside the hull
+      const auto k = t.key(f);
+      for (int i = 0; i < 2; ++i) {
+        const double f_lo = std::min({k[0][i], k[1][i], k[2][i]}), f_hi = std::max({k[0][i], k[1][i], k[2][i]});
+        if (f_hi < lo[i] || f_lo > hi[i]) return;
+      }
+      take(f);
+    });
+  }
+  return out;
+}
+
+template <int D>
+void Mesh<D>::canonicalize_ties()
+  requires(D == 2)
+{
+  auto& t = *triangulation_;
+  t.canonical_ties = true;
+  typename MeshTriangulation<D>::Accumulator acc;  // flips keep the count: a tie's quadrilateral is in the water
+  const std::set<ElementCorners<2>> kept = t.all_keys();
+  t.flip_ties(std::vector<ElementCorners<2>>(kept.begin(), kept.end()), acc);
 }
 
 template <int D>

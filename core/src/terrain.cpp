@@ -11,6 +11,7 @@
 #include <set>
 #include <stdexcept>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "shoremesh/box_transform.hpp"
 #include "shoremesh/domain.hpp"
@@ -117,63 +118,6 @@ struct Tin {
   std::vector<Element<2>> triangles;
 };
 
-// Lawson flips of the edges whose quadrilateral is exactly co-circular, toward the triangulation of a
-// symbolic perturbation: each point lifted by an infinitesimal that grows with its lexicographic rank.
-// The lifted point of highest rank among four co-circular ones lies above the others' circle, so the
-// diagonal avoids it. Edges with a definite in-circle sign are Delaunay already (CGAL's); flipping to the
-// perturbed criterion reaches its unique triangulation (Edelsbrunner and Muecke's simulation of
-// simplicity), whatever triangulation CGAL's history left among the co-circular choices.
-void canonical_flips(std::span<const Point2> pts, std::vector<Element<2>>& tri) {
-  constexpr std::uint32_t kNone = ~std::uint32_t(0);
-  const std::size_t n = tri.size();
-  std::vector<std::uint32_t> nb(3 * n, kNone);  // opposite corner k of triangle t: 3 * other + its corner
-  {
-    std::unordered_map<std::uint64_t, std::uint32_t> open;
-    open.reserve(3 * n);
-    for (std::size_t t = 0; t < n; ++t)
-      for (int k = 0; k < 3; ++k) {
-        const std::uint32_t a = tri[t][(k + 1) % 3], b = tri[t][(k + 2) % 3];
-        const std::uint64_t key = (std::uint64_t(std::min(a, b)) << 32) | std::max(a, b);
-        const auto [it, fresh] = open.emplace(key, std::uint32_t(3 * t + k));
-        if (!fresh) nb[3 * t + k] = it->second, nb[it->second] = std::uint32_t(3 * t + k);
-      }
-  }
-  auto point = [&](std::uint32_t v) { return Kernel::Point_2(pts[v][0], pts[v][1]); };
-  std::vector<std::uint32_t> stack;
-  for (std::uint32_t e = 0; e < 3 * n; ++e)
-    if (nb[e] != kNone && e < nb[e]) stack.push_back(e);
-  while (!stack.empty()) {
-    const std::uint32_t e = stack.back();
-    stack.pop_back();
-    const std::uint32_t f = nb[e];
-    if (f == kNone) continue;
-    const std::uint32_t t = e / 3, u = f / 3;
-    const int k = int(e % 3), j = int(f % 3);
-    const std::uint32_t a = tri[t][k], b = tri[t][(k + 1) % 3], c = tri[t][(k + 2) % 3], d = tri[u][j];
-    if (CGAL::side_of_oriented_circle(point(a), point(b), point(c), point(d)) != CGAL::ON_ORIENTED_BOUNDARY) continue;
-    std::uint32_t top = a;
-    for (std::uint32_t v : {b, c, d})
-      if (pts[v] > pts[top]) top = v;
-    if (top != b && top != c) continue;
-    // t = (a, b, c) and u = (d, c, b) become (a, b, d) and (a, d, c).
-    const std::uint32_t n_ca = nb[3 * t + (k + 1) % 3], n_ab = nb[3 * t + (k + 2) % 3];
-    const std::uint32_t n_bd = nb[3 * u + (j + 1) % 3], n_dc = nb[3 * u + (j + 2) % 3];
-    tri[t] = {a, b, d};
-    tri[u] = {a, d, c};
-    auto link = [&](std::uint32_t x, std::uint32_t y) {
-      nb[x] = y;
-      if (y != kNone) nb[y] = x;
-    };
-    // (a, b, d): a faces b-d, b faces d-a (shared), d faces a-b; (a, d, c): a faces d-c, d faces c-a, c faces a-d.
-    link(3 * t + 0, n_bd);
-    link(3 * t + 2, n_ab);
-    link(3 * u + 0, n_dc);
-    link(3 * u + 1, n_ca);
-    link(3 * t + 1, 3 * u + 2);
-    for (std::uint32_t x : {3 * t + 0, 3 * t + 2, 3 * u + 0, 3 * u + 1}) stack.push_back(x);
-  }
-}
-
 }  // namespace
 
 struct TerrainSession::Impl {
@@ -191,8 +135,16 @@ struct TerrainSession::Impl {
   std::optional<Mesh2> mesh;
   std::unordered_map<Point2, std::size_t, PointHash> input_id;    // every engine input point: its id
   std::unordered_map<Point2, std::size_t, PointHash> sample_at;   // sample input points: their sample
-  std::unordered_map<ElementCorners<2>, TriangleError, CornersHash> errors;
-  Tin tin;
+  // Every triangle of the mesh (= the TIN): its error, and the midpoints of its boundary edges that its
+  // third corner encroaches; `flagged`: the triangles with an error above the bound or such a midpoint.
+  struct TriangleState {
+    TriangleError error;
+    std::vector<Point2> splits;
+  };
+  std::unordered_map<ElementCorners<2>, TriangleState, CornersHash> triangles;
+  std::unordered_set<ElementCorners<2>, CornersHash> flagged;
+  mutable Tin tin;            // the canonical numbering, made when asked for
+  mutable bool tin_stale = true;
   TerrainUpdate build;
   std::size_t rounds = 0;
 
@@ -224,8 +176,12 @@ struct TerrainSession::Impl {
   // The grid's rectangle through the boundary samples that are inputs and the boundary's splits, in order.
   Domain2 rectangle() const {
     std::vector<std::pair<double, Point2>> ring;
-    for (std::size_t s : samples)
-      if (on_boundary(s)) ring.push_back({perimeter_position(position(s)), position(s)});
+    auto take = [&](int c, int r) {
+      const std::size_t s = grid.index(c, r);
+      if (samples.count(s)) ring.push_back({perimeter_position(position(s)), position(s)});
+    };
+    for (int c = 0; c < grid.width; ++c) take(c, 0), take(c, grid.height - 1);
+    for (int r = 1; r + 1 < grid.height; ++r) take(0, r), take(grid.width - 1, r);
     for (const Point2& p : boundary_splits) ring.push_back({perimeter_position(p), p});
     std::sort(ring.begin(), ring.end());
     Domain2 d;
@@ -246,8 +202,7 @@ struct TerrainSession::Impl {
 
   Tin make_tin() const {
     const std::vector<Point2>& pts = mesh->points();
-    std::vector<Element<2>> tri = mesh->elements();
-    canonical_flips(pts, tri);
+    const std::vector<Element<2>> tri = mesh->elements();  // canonical: Mesh::canonicalize_ties
     std::vector<std::uint32_t> used;
     for (const auto& t : tri) used.insert(used.end(), t.begin(), t.end());
     std::sort(used.begin(), used.end());
@@ -271,52 +226,58 @@ struct TerrainSession::Impl {
     return out;
   }
 
-  ElementCorners<2> corners_of(const Element<2>& t) const {
-    ElementCorners<2> c{tin.points[t[0]], tin.points[t[1]], tin.points[t[2]]};
-    std::sort(c.begin(), c.end());
-    return c;
+  const Tin& current_tin() const {
+    if (tin_stale) tin = make_tin(), tin_stale = false;
+    return tin;
   }
 
-  // The error of every triangle of the TIN (cached by its corners), then the round's picks; and the
-  // midpoints of the boundary edges whose triangle's third corner lies in their diametral circle (the
-  // triangle is then not Delaunay, and the angle bound does not cover it: Ruppert's rule, which ends for
-  // the rectangle's right angles).
-  std::vector<std::size_t> picks_of_round(TerrainUpdate& u, std::vector<Point2>& splits) {
+  // A triangle's error, and the midpoints of its boundary edges whose third corner lies in their
+  // diametral circle (the triangle is then not Delaunay, and the angle bound does not cover it:
+  // Ruppert's rule, which ends for the rectangle's right angles).
+  void measure_triangle(const ElementCorners<2>& key, TerrainUpdate& u) {
+    TriangleState st;
+    st.error = measure(grid, {key[0], key[1], key[2]}, {node_height(key[0]), node_height(key[1]), node_height(key[2])});
+    ++u.triangles_measured;
+    for (int k = 0; k < 3; ++k) {
+      const Point2 &a = key[(k + 1) % 3], &b = key[(k + 2) % 3], &c = key[k];
+      if (!same_boundary_line(a, b)) continue;
+      // c in the diametral circle of ab: an obtuse angle at c (CGAL's exact predicate).
+      const bool encroached = CGAL::angle(Kernel::Point_2(a[0], a[1]), Kernel::Point_2(c[0], c[1]),
+                                          Kernel::Point_2(b[0], b[1])) == CGAL::OBTUSE;
+      const Point2 mid{0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
+      const Point2 gm = grid.to_grid(mid), ga = grid.to_grid(a);
+      // No split below 1/1024 of a cell: the engine resolves it, but no DEM error needs it.
+      if (encroached && std::hypot(gm[0] - ga[0], gm[1] - ga[1]) > 1.0 / 1024) st.splits.push_back(mid);
+    }
+    if (st.error.error > options.max_error || !st.splits.empty()) flagged.insert(key);
+    else flagged.erase(key);
+    triangles.insert_or_assign(key, std::move(st));
+  }
+
+  // The triangles follow the mesh's change: those that went are forgotten, those that came measured.
+  void follow(const MeshDelta<2>& delta, TerrainUpdate& u) {
     const auto t0 = Clock::now();
-    std::unordered_map<ElementCorners<2>, TriangleError, CornersHash> next;
-    next.reserve(tin.triangles.size());
+    for (const auto& k : delta.removed) triangles.erase(k), flagged.erase(k);
+    for (const auto& k : delta.added) measure_triangle(k, u);
+    tin_stale = true;
+    u.error_ms += ms_since(t0);
+  }
+
+  // The round's picks: the sample of largest error of every triangle over the bound (sorted), and the
+  // midpoints of encroached boundary edges. A function of the TIN: `flagged` holds exactly its triangles
+  // that have either.
+  std::vector<std::size_t> picks_of_round(std::vector<Point2>& splits) const {
     std::vector<std::size_t> out;
-    for (const auto& t : tin.triangles) {
-      const ElementCorners<2> key = corners_of(t);
-      const auto it = errors.find(key);
-      TriangleError e;
-      if (it != errors.end()) {
-        e = it->second;
-      } else {
-        e = measure(grid, {tin.points[t[0]], tin.points[t[1]], tin.points[t[2]]},
-                    {tin.heights[t[0]], tin.heights[t[1]], tin.heights[t[2]]});
-        ++u.triangles_measured;
-      }
-      next.emplace(key, e);
-      if (e.error > options.max_error && e.sample != kNoSample && !samples.count(e.sample)) out.push_back(e.sample);
-      for (int k = 0; k < 3; ++k) {
-        const Point2 &a = tin.points[t[(k + 1) % 3]], &b = tin.points[t[(k + 2) % 3]], &c = tin.points[t[k]];
-        if (!same_boundary_line(a, b)) continue;
-        // c in the diametral circle of ab: an obtuse angle at c (CGAL's exact predicate).
-        const bool encroached = CGAL::angle(Kernel::Point_2(a[0], a[1]), Kernel::Point_2(c[0], c[1]),
-                                            Kernel::Point_2(b[0], b[1])) == CGAL::OBTUSE;
-        const Point2 mid{0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
-        const Point2 gm = grid.to_grid(mid), ga = grid.to_grid(a);
-        // No split below 1/1024 of a cell: the engine resolves it, but no DEM error needs it.
-        if (encroached && std::hypot(gm[0] - ga[0], gm[1] - ga[1]) > 1.0 / 1024) splits.push_back(mid);
-      }
+    for (const auto& key : flagged) {
+      const TriangleState& st = triangles.at(key);
+      if (st.error.error > options.max_error && st.error.sample != kNoSample && !samples.count(st.error.sample))
+        out.push_back(st.error.sample);
+      splits.insert(splits.end(), st.splits.begin(), st.splits.end());
     }
     std::sort(splits.begin(), splits.end());
     splits.erase(std::unique(splits.begin(), splits.end()), splits.end());
-    errors = std::move(next);
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
-    u.error_ms += ms_since(t0);
     return out;
   }
 
@@ -339,8 +300,15 @@ struct TerrainSession::Impl {
     const auto t1 = Clock::now();
     const std::vector<Point2> points = ws->points();
     mesh.emplace(points, ws->input_count(), refinement->refined());
-    tin = make_tin();
+    mesh->canonicalize_ties();
     u.mesh_ms += ms_since(t1);
+    MeshDelta<2> all;
+    for (const auto& e : mesh->elements()) {
+      ElementCorners<2> c{points[e[0]], points[e[1]], points[e[2]]};
+      std::sort(c.begin(), c.end());
+      all.added.push_back(c);
+    }
+    follow(all, u);
   }
 
   // Samples become inputs (`added`) or stop being inputs (`removed`): one batch for the rectangle's splits,
@@ -391,24 +359,19 @@ struct TerrainSession::Impl {
     u.operations += report.operations_touched();
     u.engine_ms += ms_since(t0);
     const auto t1 = Clock::now();
-    // While the rectangle's ring stays the same the mesh follows the change (Mesh::apply). When the ring
-    // changes it is made afresh: Mesh::apply(change, domain) on rings edited as here (vertices inserted on
-    // and removed from straight sides) left a triangle out of the water that a fresh mesh keeps (70 x 55
-    // synthetic grid, E = 10, no seeds: 897 triangles against 898). check_valid() compares with a fresh mesh.
-    Domain2 ring = refinement->refined();
-    if (ring.rings[0].points == mesh->domain().rings[0].points)
-      mesh->apply(PointChange<2>::from_update(report, removed_points, added_points));
-    else
-      mesh.emplace(ws->points(), ws->input_count(), std::move(ring));
-    tin = make_tin();
+    const MeshDelta<2> delta =
+        mesh->apply(PointChange<2>::from_update(report, removed_points, added_points), refinement->refined());
     u.mesh_ms += ms_since(t1);
+    follow(delta, u);
   }
 
   void run_rounds(TerrainUpdate& u) {
     rounds = 0;
     for (;;) {
       std::vector<Point2> splits;
-      std::vector<std::size_t> round = picks_of_round(u, splits);
+      const auto t0 = Clock::now();
+      std::vector<std::size_t> round = picks_of_round(splits);
+      u.error_ms += ms_since(t0);
       // A midpoint at a sample (to rounding: it halves an edge between samples) is that sample.
       std::erase_if(splits, [&](const Point2& p) {
         const Point2 g = grid.to_grid(p);
@@ -512,34 +475,35 @@ TerrainUpdate TerrainSession::patch(int col, int row, int w, int h, std::span<co
   u.seeds_removed = seeds_removed.size();
   u.seed_ms = ms_since(t0);
   // The greedy rounds start again from the seeds: every pick goes (a pick that is now a seed stays).
-  std::set<std::size_t> target(m.samples);
-  for (std::size_t s : m.picks) target.erase(s);
-  for (std::size_t s : seeds_removed) target.erase(s);
-  for (std::size_t s : m.corners()) target.insert(s);
-  for (std::size_t s : seeds_added) target.insert(s);
+  // The samples go from `samples` to samples - picks - seeds_removed + corners + seeds_added, computed
+  // from the change alone (not a copy of every sample).
+  const std::array<std::size_t, 4> corner_samples = m.corners();
+  const std::set<std::size_t> staying(seeds_added.begin(), seeds_added.end());
+  std::set<std::size_t> leaving(m.picks.begin(), m.picks.end());
+  leaving.insert(seeds_removed.begin(), seeds_removed.end());
   std::vector<std::size_t> added, removed;
-  std::set_difference(target.begin(), target.end(), m.samples.begin(), m.samples.end(), std::back_inserter(added));
-  std::set_difference(m.samples.begin(), m.samples.end(), target.begin(), target.end(), std::back_inserter(removed));
+  for (std::size_t s : leaving)
+    if (!staying.count(s) && std::find(corner_samples.begin(), corner_samples.end(), s) == corner_samples.end())
+      removed.push_back(s);
+  for (const std::set<std::size_t>& from : {staying, std::set<std::size_t>(corner_samples.begin(), corner_samples.end())})
+    for (std::size_t s : from)
+      if (!m.samples.count(s)) added.push_back(s);
   u.picks_removed = m.picks.size();
   m.picks.clear();
   // Triangles with a sample or a node in reach of the changed heights are measured again.
-  for (auto it = m.errors.begin(); it != m.errors.end();) {
-    double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
-    for (const Point2& p : it->first) {
-      const Point2 q = g.to_grid(p);
-      for (int i = 0; i < 2; ++i) lo[i] = std::min(lo[i], q[i]), hi[i] = std::max(hi[i], q[i]);
-    }
-    const bool meets = hi[0] >= changed.c0 - 1 && lo[0] <= changed.c1 + 1 && hi[1] >= changed.r0 - 1 && lo[1] <= changed.r1 + 1;
-    it = meets ? m.errors.erase(it) : std::next(it);
+  {
+    const auto t1 = Clock::now();
+    // Within one cell (a node's bilinear height reads the samples less than a cell away); half a cell more
+    // against rounding: measuring a triangle again is harmless.
+    const Point2 a = g.position(changed.c0, changed.r0), b = g.position(changed.c1, changed.r1);
+    const double mx = 1.5 * std::abs(g.dx), my = 1.5 * std::abs(g.dy);
+    const Point2 lo{std::min(a[0], b[0]) - mx, std::min(a[1], b[1]) - my}, hi{std::max(a[0], b[0]) + mx, std::max(a[1], b[1]) + my};
+    for (const auto& key : m.mesh->elements_meeting(lo, hi)) m.measure_triangle(key, u);
+    m.tin_stale = true;  // heights changed
+    u.error_ms += ms_since(t1);
   }
   const std::vector<Point2> splits_removed(m.boundary_splits.begin(), m.boundary_splits.end());
-  if (!added.empty() || !removed.empty() || !splits_removed.empty()) {
-    m.change_samples(added, removed, u, {}, splits_removed);
-  } else {
-    const auto t1 = Clock::now();
-    m.tin = m.make_tin();  // heights changed
-    u.mesh_ms += ms_since(t1);
-  }
+  if (!added.empty() || !removed.empty() || !splits_removed.empty()) m.change_samples(added, removed, u, {}, splits_removed);
   m.run_rounds(u);
   return u;
 }
@@ -547,10 +511,10 @@ TerrainUpdate TerrainSession::patch(int col, int row, int w, int h, std::span<co
 const HeightGrid& TerrainSession::grid() const { return impl_->grid; }
 const TerrainOptions& TerrainSession::options() const { return impl_->options; }
 const TerrainUpdate& TerrainSession::build_stats() const { return impl_->build; }
-const std::vector<Point2>& TerrainSession::points() const { return impl_->tin.points; }
-const std::vector<double>& TerrainSession::heights() const { return impl_->tin.heights; }
-const std::vector<PointKind>& TerrainSession::kinds() const { return impl_->tin.kinds; }
-const std::vector<Element<2>>& TerrainSession::triangles() const { return impl_->tin.triangles; }
+const std::vector<Point2>& TerrainSession::points() const { return impl_->current_tin().points; }
+const std::vector<double>& TerrainSession::heights() const { return impl_->current_tin().heights; }
+const std::vector<PointKind>& TerrainSession::kinds() const { return impl_->current_tin().kinds; }
+const std::vector<Element<2>>& TerrainSession::triangles() const { return impl_->current_tin().triangles; }
 std::size_t TerrainSession::seed_count() const { return impl_->seeds.size(); }
 std::size_t TerrainSession::pick_count() const { return impl_->picks.size(); }
 std::size_t TerrainSession::input_count() const { return impl_->ws->input_count(); }
@@ -562,9 +526,10 @@ TerrainError TerrainSession::error() const {
   const HeightGrid& g = m.grid;
   std::vector<float> err(g.z.size(), -1.0f);
   std::vector<double> exact(g.z.size(), -1.0);
-  for (const auto& t : m.tin.triangles)
-    for_each_sample(g, {m.tin.points[t[0]], m.tin.points[t[1]], m.tin.points[t[2]]},
-                    {m.tin.heights[t[0]], m.tin.heights[t[1]], m.tin.heights[t[2]]},
+  const Tin& tin = m.current_tin();
+  for (const auto& t : tin.triangles)
+    for_each_sample(g, {tin.points[t[0]], tin.points[t[1]], tin.points[t[2]]},
+                    {tin.heights[t[0]], tin.heights[t[1]], tin.heights[t[2]]},
                     [&](std::size_t i, double zi) { exact[i] = std::max(exact[i], std::abs(g.z[i] - zi)); });
   TerrainError e;
   double sum = 0;
@@ -583,30 +548,45 @@ TerrainError TerrainSession::error() const {
 void TerrainSession::check_valid() const {
   const Impl& m = *impl_;
   m.mesh->check_valid();
-  {
-    // The mesh the updates left equals a fresh one on the engine's output and the rectangle.
-    auto corners = [](const Mesh2& mesh) {
-      std::vector<ElementCorners<2>> out;
-      for (const auto& e : mesh.elements()) {
-        ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
-        std::sort(c.begin(), c.end());
-        out.push_back(c);
-      }
-      std::sort(out.begin(), out.end());
-      return out;
-    };
-    const Mesh2 fresh(m.ws->points(), m.ws->input_count(), m.refinement->refined());
-    const auto a = corners(*m.mesh), b = corners(fresh);
-    if (a.size() != b.size())
-      throw std::logic_error("the updated mesh has " + std::to_string(a.size()) + " triangles, a fresh one " +
-                             std::to_string(b.size()));
+  // The mesh the updates left equals a fresh one on the engine's output and the rectangle, triangle for
+  // triangle; every triangle's cached state equals a fresh measurement.
+  auto corners = [](const Mesh2& mesh) {
+    std::vector<ElementCorners<2>> out;
+    for (const auto& e : mesh.elements()) {
+      ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
+      std::sort(c.begin(), c.end());
+      out.push_back(c);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  Mesh2 fresh(m.ws->points(), m.ws->input_count(), m.refinement->refined());
+  fresh.canonicalize_ties();
+  const auto a = corners(*m.mesh), b = corners(fresh);
+  if (a != b)
+    throw std::logic_error("the updated mesh (" + std::to_string(a.size()) + " triangles) differs from a fresh one (" +
+                           std::to_string(b.size()) + ")");
+  if (m.triangles.size() != a.size()) throw std::logic_error("the triangle cache does not match the mesh");
+  Impl copy;
+  copy.grid = m.grid;
+  copy.options = m.options;
+  copy.sample_at = m.sample_at;
+  for (const auto& key : a) {
+    TerrainUpdate u;
+    copy.measure_triangle(key, u);
+    const auto it = m.triangles.find(key);
+    const auto& y = copy.triangles.at(key);
+    if (it == m.triangles.end() || it->second.error.error != y.error.error || it->second.error.sample != y.error.sample ||
+        it->second.splits != y.splits || m.flagged.count(key) != copy.flagged.count(key))
+      throw std::logic_error("a triangle's cached error differs from a fresh measurement");
   }
   const Tin again = m.make_tin();
-  if (again.points != m.tin.points || again.triangles != m.tin.triangles || again.heights != m.tin.heights)
+  const Tin& tin = m.current_tin();
+  if (again.points != tin.points || again.triangles != tin.triangles || again.heights != tin.heights)
     throw std::logic_error("the session's TIN is not the canonical TIN of its mesh");
-  terrain::Seeds fresh;
-  fresh.build(m.grid, m.options.seed_fraction * m.options.max_error);
-  if (fresh.sorted() != m.seeds.sorted()) throw std::logic_error("the seeds differ from a fresh quadtree");
+  terrain::Seeds fresh_seeds;
+  fresh_seeds.build(m.grid, m.options.seed_fraction * m.options.max_error);
+  if (fresh_seeds.sorted() != m.seeds.sorted()) throw std::logic_error("the seeds differ from a fresh quadtree");
 }
 
 }  // namespace shoremesh

@@ -278,6 +278,54 @@ TEST(TerrainCommand, PatchedRunEqualsAFreshRunOnThePatchedDem) {
   EXPECT_FALSE(fs::exists(dir / "c.vtu"));
 }
 
+// The terrain's edit lines: each dem-patch updates the TIN, an export in between equals a fresh run on
+// the DEM patched so far, the final -o equals a fresh run on the DEM with every patch; a bad line gets an
+// error reply naming it, the session goes on, and the exit code is 1.
+TEST(TerrainCommand, DemPatchEditLinesEqualFreshRunsOnThePatchedDem) {
+  TempDir dir;
+  const int w = 40, h = 30;
+  std::vector<float> z = hills(w, h);
+  write_dem(dir / "dem.tif", w, h, z);
+  struct Window {
+    int col, row, w, h;
+    float delta;
+  };
+  const std::vector<Window> windows = {{20, 8, 12, 3, -15}, {3, 18, 5, 6, 9}};
+  for (std::size_t k = 0; k < windows.size(); ++k) {
+    const Window& p = windows[k];
+    std::vector<float> cells;
+    for (int r = p.row; r < p.row + p.h; ++r)
+      for (int c = p.col; c < p.col + p.w; ++c) cells.push_back(z[std::size_t(r) * w + c] + p.delta);
+    write_dem(dir / ("p" + std::to_string(k) + ".tif"), p.w, p.h, cells, {},
+              {400000 + p.col * 1000.0, 1000, 0, 5400000 - p.row * 1000.0, 0, -1000});
+    std::size_t i = 0;
+    for (int r = p.row; r < p.row + p.h; ++r)
+      for (int c = p.col; c < p.col + p.w; ++c) z[std::size_t(r) * w + c] = cells[i++];
+    write_dem(dir / ("dem" + std::to_string(k) + ".tif"), w, h, z);
+  }
+  write_file(dir / "edits.txt",
+             "# a dredged channel, then a raised bank\ndem-patch p0.tif\nexport after0.vtu\ndem-patch missing.tif\n"
+             "dem-patch p1.tif\nstats\nlevee 3\n");
+  const RunResult r = shoremesh(dir, "terrain dem.tif --max-error 2 --quiet -o final.vtu --edits edits.txt");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.out.find("line 2: dem-patch p0.tif: 36 cells at column 20, row 8: triangles -"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("line 4: error: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("missing.tif"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("line 5: dem-patch p1.tif"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("line 7: error: unknown terrain edit 'levee'"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("2 edit line(s) failed"), std::string::npos) << r.err;
+  ASSERT_EQ(shoremesh(dir, "terrain dem0.tif --max-error 2 --quiet -o fresh0.vtu").code, 0);
+  ASSERT_EQ(shoremesh(dir, "terrain dem1.tif --max-error 2 --quiet -o fresh1.vtu").code, 0);
+  EXPECT_EQ(read_file(dir / "after0.vtu"), read_file(dir / "fresh0.vtu"));
+  EXPECT_EQ(read_file(dir / "final.vtu"), read_file(dir / "fresh1.vtu"));
+  // JSON replies for programs; an export over an input is refused.
+  write_file(dir / "json.txt", "stats\nexport dem.tif\n");
+  const RunResult j = shoremesh(dir, "terrain dem.tif --max-error 2 --quiet -o j.obj --json --edits json.txt");
+  EXPECT_EQ(j.code, 1);
+  EXPECT_NE(j.out.find("{\"line\":1,\"max_error\":"), std::string::npos) << j.out;
+  EXPECT_NE(j.out.find("\"ok\":false"), std::string::npos) << j.out;
+}
+
 TEST(TerrainCommand, BadInputIsRefusedWithAClearError) {
   TempDir dir;
   write_dem(dir / "dem.tif", 10, 10, hills(10, 10));

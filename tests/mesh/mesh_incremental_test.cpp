@@ -196,6 +196,38 @@ TEST(MeshIncremental, RingEditsEqualFromScratch) { check_ring_edits(std::nullopt
 // A box across the lake, so that the water and the box both cut the mesh.
 TEST(MeshIncremental, RingEditsClippedToABoxEqualFromScratch) { check_ring_edits(BoxTransform<2>{{0.3, 0.25}, 0.5}); }
 
+// A point lying inside a ring segment (not a ring vertex: CGAL splits the segment's constraint there) is
+// removed: the segment must stay a constraint from end to end, as in a fresh mesh, although a point just
+// outside the ring (p) would otherwise take a Delaunay edge across it.
+TEST(MeshIncremental, RemovingAPointInsideARingSegmentKeepsTheSegment) {
+  const Domain2 domain{{Ring{{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, RingRole::Shore}}};
+  std::vector<Point2> points = {{0, 0}, {10, 0}, {10, 10}, {0, 10}, {5, 0}, {5, 0.5}, {5, -0.5}, {5, 6}};
+  Mesh2 mesh(points, 4, domain);
+  PointChange<2> change;
+  change.removed.push_back({5, 0});
+  points.erase(points.begin() + 4);
+  mesh.apply(change);
+  mesh.check_valid();
+  EXPECT_EQ(corner_list(mesh), corner_list(Mesh2(points, 4, domain)));
+  EXPECT_TRUE(mesh.shoreline_crossings().ok());
+}
+
+// A ring segment with a point inside it is replaced (its ring gets a vertex off the old line): the whole
+// old segment stops being a constraint, not only its part next to the ends, as in a fresh mesh.
+TEST(MeshIncremental, DroppingARingSegmentThroughAPointDropsAllOfIt) {
+  const Domain2 before{{Ring{{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, RingRole::Shore}}};
+  const Domain2 after{{Ring{{{0, 0}, {5, -2}, {10, 0}, {10, 10}, {0, 10}}, RingRole::Shore}}};
+  std::vector<Point2> points = {{0, 0}, {10, 0}, {10, 10}, {0, 10}, {5, 0}, {2.5, 0.3}, {2.5, -0.3}, {7.5, 0.3}, {7.5, -0.3}, {5, 6}};
+  Mesh2 mesh(points, 4, before);
+  PointChange<2> change;
+  change.added.push_back({5, -2});
+  change.added_input_count = 1;
+  points.push_back({5, -2});
+  mesh.apply(change, after);
+  mesh.check_valid();
+  EXPECT_EQ(corner_list(mesh), corner_list(Mesh2(points, 4, after)));
+}
+
 // Inserting one point changes only the triangles whose circumcircle contained it: all new triangles
 // have it as a corner.
 TEST(MeshIncremental, InsertionChangesOnlyTheCavity) {

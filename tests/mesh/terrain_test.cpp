@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <numbers>
 #include <random>
+#include <set>
 
 #include "shoremesh/error.hpp"
 #include "shoremesh/terrain.hpp"
@@ -249,6 +250,62 @@ TEST(Terrain, RandomPatchesEqualAFreshRun) {
       if (testing::Test::HasFailure()) return;
     }
     s.check_valid();
+  }
+}
+
+// A patch changes only triangles within its reach. With seeds the input is local: the seeds are
+// re-decided only for quadtree nodes whose window meets the patch, and the rounds start from them. Its
+// reach here: twice the longest edge of the triangles (old or new) that meet the patch grown by a cell,
+// around the patch. Each patch is also checked against a fresh run.
+TEST(Terrain, DemPatchChangesOnlyTrianglesWithinItsReach) {
+  TerrainOptions o;
+  o.max_error = 1.0;
+  o.seed_fraction = 0.5;
+  TerrainSession s(synthetic_grid(96, 80, 30, 11), o);
+  auto corners = [&]() {
+    std::set<std::array<Point2, 3>> out;
+    for (const auto& t : s.triangles()) {
+      std::array<Point2, 3> c{s.points()[t[0]], s.points()[t[1]], s.points()[t[2]]};
+      std::sort(c.begin(), c.end());
+      out.insert(c);
+    }
+    return out;
+  };
+  std::mt19937 rng(99);
+  for (int k = 0; k < 5; ++k) {
+    const int w = 1 + int(rng() % 10), h = 1 + int(rng() % 10);
+    const int col = int(rng() % (96 - w + 1)), row = int(rng() % (80 - h + 1));
+    std::vector<float> z(std::size_t(w) * h);
+    for (int r = 0; r < h; ++r)
+      for (int c = 0; c < w; ++c) z[std::size_t(r) * w + c] = s.grid().at(col + c, row + r) - 8 + float(rng() % 9);
+    const auto before = corners();
+    s.patch(col, row, w, h, z);
+    const auto after = corners();
+    // Distance in cells from a point to the window.
+    auto distance = [&](const Point2& p) {
+      const Point2 g = s.grid().to_grid(p);
+      return std::hypot(std::max({0.0, col - g[0], g[0] - (col + w - 1)}), std::max({0.0, row - g[1], g[1] - (row + h - 1)}));
+    };
+    auto min_distance = [&](const std::array<Point2, 3>& t) { return std::min({distance(t[0]), distance(t[1]), distance(t[2])}); };
+    double longest = 0;  // cells
+    for (const auto* tins : {&before, &after})
+      for (const auto& t : *tins) {
+        if (min_distance(t) > 1) continue;
+        for (int i = 0; i < 3; ++i) {
+          const Point2 a = s.grid().to_grid(t[i]), b = s.grid().to_grid(t[(i + 1) % 3]);
+          longest = std::max(longest, std::hypot(a[0] - b[0], a[1] - b[1]));
+        }
+      }
+    std::size_t changed = 0;
+    for (const auto* tins : {&before, &after})
+      for (const auto& t : *tins) {
+        if ((tins == &before ? after : before).count(t)) continue;
+        ++changed;
+        EXPECT_LE(min_distance(t), 2 * longest) << "patch " << k;
+      }
+    EXPECT_LT(changed, after.size() / 20) << "patch " << k;  // a small part of the TIN
+    expect_same_tin(s, TerrainSession(s.grid(), o));
+    if (testing::Test::HasFailure()) return;
   }
 }
 

@@ -96,6 +96,17 @@ class Mesh {
   MeshDelta<D> apply(const PointChange<D>& change, const Domain2& domain)
     requires(D == 2);
 
+  // The elements whose bounding box meets the box [lo, hi], corners sorted: a walk from the box's centre,
+  // O(those elements) when the centre lies in the mesh's hull.
+  std::vector<ElementCorners<2>> elements_meeting(const Point2& lo, const Point2& hi) const
+    requires(D == 2);
+
+  // From now on (and at once) co-circular ties are broken canonically: among the Delaunay meshes of
+  // co-circular points the one of a symbolic perturbation (lexicographic rank; docs/terrain.md), so that
+  // the elements are a function of the points and rings, whatever the history of updates (lattice points).
+  void canonicalize_ties()
+    requires(D == 2);
+
   // Element quality against the bound that rho-well-spacedness guarantees. The guarantee covers the
   // elements whose circumcentre lies in `box` (the engine's box; the points' bounding box by default).
   QualityReport<D> quality(double rho, std::optional<BoxTransform<D>> box = {}) const;
