@@ -443,7 +443,10 @@ std::string reply_text(const json& r) {
     for (std::size_t k = 1; k < ids.size(); ++k) run = run && ids[k].get<long long>() == ids[k - 1].get<long long>() + 1;
     if (run) return ", ids " + ids.front().dump() + ".." + ids.back().dump();
     std::string each;
-    for (const auto& id : ids) each += (each.empty() ? "" : " ") + id.dump();
+    for (const auto& id : ids) {
+      if (!each.empty()) each += ' ';
+      each += id.dump();
+    }
     return ", ids " + each;
   };
   if (op == "add-ring" || op == "add-line")
