@@ -5,6 +5,7 @@
 // A second kind of preview shows what one dynamic update changed.
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -37,6 +38,9 @@ struct PreviewOptions {
   // Height (2D, the view's heights): hypsometric tints (blues below 0, greens to browns to white above)
   // by the corners' mean height, hillshaded by the triangle's slope (light from the north-west, 45 degrees up).
   PreviewColouring colouring = PreviewColouring::None;
+  // Size with a size function h (2D): the longest edge over h at the centroid instead, blue (1/4) through
+  // green (1) to red (above 1.01: the bound broken).
+  std::function<double(const Point2&)> size_at;
   double rho = 1.4142135623730951;
   // An image drawn underneath, covering the mesh-coordinate rectangle background_extent
   // {min x, min y, max x, max y} (its top row at max y).
