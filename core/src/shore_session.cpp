@@ -278,13 +278,16 @@ struct ShoreSession<D>::Impl {
       std::optional<ShoreRefinement> old_refinement;
       const Domain2 rings_before = refinement ? refinement->rings() : Domain2{};
       const Domain2 rings_after = rings ? *rings : rings_before;
+      bool h_changed = new_size != nullptr;
       if (!new_size && rings && size->depends_on_rings()) {
+        // The new field holds the new rings even where h did not change: a later size edit reads them.
         auto field = std::make_shared<SizeField>(*size);
-        if (field->set_rings(rings_after)) new_size = std::move(field);
+        h_changed = field->set_rings(rings_after);
+        new_size = std::move(field);
       }
       SplitChange splits;
       if (refinement) {
-        if (new_size) {
+        if (h_changed) {
           // The rule changed: a fresh refinement of the new input, and the difference of the splits.
           std::vector<Point2> loose = loose_points();
           for (const Point2& p : loose_removed) loose.erase(std::find(loose.begin(), loose.end(), p));

@@ -115,11 +115,18 @@ SizeField::SizeField(SizeTerms terms, const BoxTransform<2>& box, const Domain2&
     throw ParameterError("--grade and --min-size need a size term: --max-size, --size-from-shore, --size-polygons, "
                          "--size-raster, --size-from-depth or --size-from-slope");
 
-  // The grid: cells a little finer than the smallest size a term names, 2^5 .. 2^11 per side.
+  // The grid: cells a little finer than the smallest of --max-size, --min-size, H0 and a quarter of each
+  // polygon's narrower side, 2^5 .. 2^11 per side (2^10 without them). Not from the polygons' sizes: a
+  // `size` edit must not move the grid (h would change everywhere), and a fresh run must choose the same.
   double hint = kInf;
   for (const auto& v : {terms_.max_size, terms_.min_size, terms_.shore_size})
     if (v) hint = std::min(hint, *v);
-  for (const SizePolygon& p : terms_.polygons) hint = std::min(hint, p.size);
+  for (const SizePolygon& p : terms_.polygons) {
+    double lo[2] = {kInf, kInf}, hi[2] = {-kInf, -kInf};
+    for (const Point2& q : p.rings.front())
+      for (int a = 0; a < 2; ++a) lo[a] = std::min(lo[a], q[a]), hi[a] = std::max(hi[a], q[a]);
+    hint = std::min(hint, 0.25 * std::min(hi[0] - lo[0], hi[1] - lo[1]));
+  }
   k_ = std::isfinite(hint) ? std::clamp(static_cast<int>(std::ceil(std::log2(box_.side / hint))) + 1, 5, 11) : 10;
   n_ = std::size_t{1} << k_;
   cell_ = box_.side / static_cast<double>(n_);

@@ -38,9 +38,6 @@ struct PreviewOptions {
   // Height (2D, the view's heights): hypsometric tints (blues below 0, greens to browns to white above)
   // by the corners' mean height, hillshaded by the triangle's slope (light from the north-west, 45 degrees up).
   PreviewColouring colouring = PreviewColouring::None;
-  // Size with a size function h (2D): the longest edge over h at the centroid instead, blue (1/4) through
-  // green (1) to red (above 1.01: the bound broken).
-  std::function<double(const Point2&)> size_at;
   double rho = 1.4142135623730951;
   // An image drawn underneath, covering the mesh-coordinate rectangle background_extent
   // {min x, min y, max x, max y} (its top row at max y).
@@ -54,6 +51,9 @@ struct PreviewOptions {
   PreviewView3D view3d = PreviewView3D::Surface;
   double azimuth = 30, elevation = 25;  // degrees: the direction the surface is seen from
   double slice_z = 0.5;                 // the plane of a z-slice, in mesh coordinates
+  // 2D, Size colouring with a size function h: the longest edge over h at the centroid instead, blue (1/4)
+  // through green (1) to red (above 1.01: the bound broken).
+  std::function<double(const Point2&)> size_at = {};
 };
 
 // An RGB image with float channels in [0, 1], row 0 at the top.
