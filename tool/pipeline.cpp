@@ -1,5 +1,8 @@
 #include "pipeline.hpp"
 
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
+
 #include <algorithm>
 #include <cctype>
 #include <set>
@@ -14,6 +17,13 @@
 #include "shoremesh/shore_session.hpp"
 
 namespace shoremesh::tool {
+
+namespace {
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
+using BBox = bg::model::box<BPoint>;
+}  // namespace
 
 template <int D>
 std::optional<BoxTransform<D>> parse_box(const std::vector<double>& numbers) {
@@ -251,14 +261,25 @@ QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransfo
       // Elements below the bound: those the shore's constraints made (their circumcircle holds a mesh point
       // hidden behind the shore, so they are not Delaunay) and the others. Few: each is checked against
       // every point.
+      // The points in an R-tree (built at the first element below the bound): a fine mesh near a
+      // detailed shore has thousands of them, each checked against a million points otherwise.
+      std::optional<bgi::rtree<BPoint, bgi::quadratic<16>>> index;
       for (const auto& e : elements) {
         const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
         const ElementShape<2> shape = element_shape<2>(c);
         if (shape.radius_edge <= rho) continue;
+        if (!index) {
+          std::vector<BPoint> all;
+          all.reserve(mesh.points().size());
+          for (const Point2& p : mesh.points()) all.emplace_back(p[0], p[1]);
+          index.emplace(all.begin(), all.end());
+        }
         const double radius = std::hypot(c[0][0] - shape.circumcentre[0], c[0][1] - shape.circumcentre[1]);
+        const Point2& o = shape.circumcentre;
         bool hides = false;
-        for (const Point2& p : mesh.points())
-          hides = hides || std::hypot(p[0] - shape.circumcentre[0], p[1] - shape.circumcentre[1]) < radius * (1 - 1e-9);
+        for (auto it = index->qbegin(bgi::intersects(BBox(BPoint(o[0] - radius, o[1] - radius), BPoint(o[0] + radius, o[1] + radius))));
+             it != index->qend() && !hides; ++it)
+          hides = std::hypot(bg::get<0>(*it) - o[0], bg::get<1>(*it) - o[1]) < radius * (1 - 1e-9);
         ++(hides ? q.shore_below_bound : q.interior_below_bound);
       }
       const ShorelineReport s = mesh.shoreline_crossings();
