@@ -8,7 +8,7 @@
 # (max) or --size-from-shore 200 0.05 (shore). gmsh (Debian's, `gmsh -2`, default algorithm): the rings
 # shoremesh traced (an `edit` session's `export X.rings`) as a .geo (bench/sizing_geo.py), with
 # Mesh.MeshSizeMax 5000 and the shore points at 5000, boundary extension off (max), or a Distance field on every shore curve
-# (Sampling 40) and a MathEval background field 200 + 0.05 * distance (shore), sizes from points,
+# (NumPointsPerCurve 40) and a MathEval background field 200 + 0.05 * distance (shore), sizes from points,
 # curvature and boundary off. gmsh has no gradient limit: the max run's field is uniform, and the shore
 # term grows by 0.05, below the grade.
 set -euo pipefail
@@ -47,12 +47,14 @@ for config in "${configs[@]}"; do
     echo "shoremesh $config run $i: ${t} s, nodes triangles: $points, seeds $seeds, worst longest/h $ratio, load $(cut -d' ' -f1 /proc/loadavg)"
     echo "$t" >>"$work/ours"
     start=$(date +%s.%N)
-    gmsh "$work/s.geo" -2 -format msh4 -o "$work/peer.msh" >"$work/glog" 2>&1
+    status=0
+    gmsh "$work/s.geo" -2 -format msh4 -o "$work/peer.msh" >"$work/glog" 2>&1 || status=$?
     end=$(date +%s.%N)
     t=$(echo "$end - $start" | bc)
-    gnodes=$(awk '/^\$Nodes/{getline; print $2; exit}' "$work/peer.msh")
-    gtris=$(grep -o 'Info *: [0-9]* nodes [0-9]* elements' "$work/glog" | tail -1)
-    echo "gmsh $config run $i: ${t} s, nodes $gnodes ($gtris)"
+    gnodes=$(awk '/^\$Nodes/{getline; print $2; exit}' "$work/peer.msh" 2>/dev/null || true)
+    gtris=$(grep -o 'Info *: [0-9]* nodes [0-9]* elements' "$work/glog" | tail -1 || true)
+    echo "gmsh $config run $i: ${t} s, exit $status, nodes $gnodes ($gtris)"
+    [[ $status == 0 ]] || tail -5 "$work/glog"
     echo "$t" >>"$work/peer"
   done
   echo "median $config: shoremesh $(median <"$work/ours") s, gmsh $(median <"$work/peer") s"

@@ -60,7 +60,7 @@ def main():
         lines += [
             'Field[1] = Distance;',
             f'Field[1].CurvesList = {{{", ".join(map(str, curves))}}};',
-            'Field[1].Sampling = 40;',
+            'Field[1].NumPointsPerCurve = 40;',
             'Field[2] = MathEval;',
             f'Field[2].F = "{lc!r} + {rate!r} * F1";',
             'Background Field = 2;',
