@@ -23,6 +23,7 @@ struct EditOptions {
   bool lonlat_edits = false;
   EngineArgs engine;
   PreviewArgs preview;
+  SizeArgs size;
 };
 
 void print(const nlohmann::json& reply, bool as_json) {
@@ -35,10 +36,13 @@ int run_edit(const EditOptions& opt, const io::InputSet& set, Progress& progress
     throw InputError("--lonlat-edits needs 2D lon/lat input (GPS, GeoJSON, a geographic image, --lonlat files)");
   progress.stage("StableWS and mesh of " + std::to_string(set.size()) + " points");
   const auto start = std::chrono::steady_clock::now();
+  std::optional<SizeTerms> size = size_terms(opt.size, set);
+  if (size && D != 2) throw ParameterError("size control (--max-size and the other size options) is for 2D meshes");
   EditSession<D> session(set, opt.engine.rho, parse_box<D>(opt.engine.box), opt.engine.keep_hull, opt.preview,
-                         opt.lonlat_edits);
+                         opt.lonlat_edits, std::move(size));
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   std::vector<std::filesystem::path> inputs = input_paths(opt.in, set);
+  for (const auto& p : size_paths(opt.size)) inputs.push_back(p);
   if (opt.edits != "-") inputs.emplace_back(opt.edits);
   session.set_inputs(std::move(inputs));
   progress.finish();
@@ -73,6 +77,7 @@ Command add_edit_command(CLI::App& app) {
   cmd->add_flag("--lonlat-edits", opt->lonlat_edits,
                 "Edit lines give lon lat in degrees (lon/lat input only; projected like the input)");
   add_engine_options(cmd, opt->engine);
+  add_size_options(cmd, opt->size);
   add_preview_options(cmd, opt->preview);
   cmd->footer(
       "Ids: input points are numbered from 0 in the order they were read (files in order); each add takes the next\n"

@@ -34,8 +34,10 @@ double parse_number(const std::string& word) {
 }
 
 template <int D>
-typename ShoreSession<D>::Options session_options(double rho, std::optional<BoxTransform<D>> box, bool keep_hull) {
+typename ShoreSession<D>::Options session_options(double rho, std::optional<BoxTransform<D>> box, bool keep_hull,
+                                                  std::optional<SizeTerms> size) {
   typename ShoreSession<D>::Options o;
+  o.size = std::move(size);
   o.rho = rho;
   o.box = box;
   o.keep_hull = keep_hull;
@@ -64,13 +66,13 @@ std::string rest_after_op(const std::string& text) {
 
 template <int D>
 EditSession<D>::EditSession(const io::InputSet& set, double rho, std::optional<BoxTransform<D>> box, bool keep_hull,
-                            PreviewArgs preview, bool lonlat_edits)
+                            PreviewArgs preview, bool lonlat_edits, std::optional<SizeTerms> size)
     : frame_(UserFrame::of(set)),
       lonlat_edits_(lonlat_edits),
       preview_(std::move(preview)),
       session_([&] {
         try {
-          return ShoreSession<D>(session_input<D>(set), session_options<D>(rho, box, keep_hull));
+          return ShoreSession<D>(session_input<D>(set), session_options<D>(rho, box, keep_hull, std::move(size)));
         } catch (const PointInputError& e) {
           rethrow_with_origin(e, set);
         }
@@ -83,6 +85,7 @@ json EditSession<D>::build_reply(double ms) const {
   json r = {{"line", 0}, {"ok", true}, {"op", "build"}};
   r["input_points"] = session_.input_count();
   r["shore_splits"] = session_.split_count();
+  r["size_seeds"] = session_.seed_count();
   r["steiner_points"] = session_.steiner_count();
   r["elements"] = session_.mesh().element_count();
   std::vector<double> box(session_.box().origin.begin(), session_.box().origin.end());
@@ -106,6 +109,7 @@ std::optional<json> EditSession<D>::run(std::size_t line, const std::string& tex
     else if (op == "move") reply = move(words);
     else if (op == "add-ring" || op == "add-line") reply = add_ring(words, rest_after_op(text));
     else if (op == "remove-ring") reply = remove_ring(words);
+    else if (op == "size") reply = set_size(words);
     else if (op == "export") reply = export_to({op, rest_after_op(text)});
     else if (op == "preview") reply = preview({op, rest_after_op(text)});
     else if (op == "preview-change") reply = preview_change({op, rest_after_op(text)});
@@ -114,7 +118,7 @@ std::optional<json> EditSession<D>::run(std::size_t line, const std::string& tex
       reply = stats();
     } else {
       throw InputError("unknown edit '" + op +
-                       "' (add, remove, move, add-ring, add-line, remove-ring, export, preview, preview-change, stats)");
+                       "' (add, remove, move, add-ring, add-line, remove-ring, size, export, preview, preview-change, stats)");
     }
   } catch (const InputError& e) {
     return json{{"line", line}, {"ok", false}, {"op", op}, {"error", e.what()}};
@@ -181,6 +185,7 @@ void EditSession<D>::record(const SessionEdit<D>& edit, json& reply) {
   reply["elements"] = session_.mesh().element_count();
   reply["input_points"] = session_.input_count();
   reply["shore_splits"] = session_.split_count();
+  reply["size_seeds"] = session_.seed_count();
   reply["steiner_points"] = session_.steiner_count();
   reply["mesh_ms"] = edit.mesh_ms;
   reply["ms"] = edit.ms;
@@ -326,7 +331,10 @@ json EditSession<D>::preview(const std::vector<std::string>& words) {
   if (words.size() != 2 || words[1].empty()) throw InputError("preview takes a PATH (.png)");
   const auto start = Clock::now();
   io::OutputBatch batch(inputs_);
-  write_preview<D>(session_.mesh(), batch.add(words[1], "preview"), preview_);
+  PreviewArgs args = preview_;
+  // The size colouring reads h as the session holds it now (a size edit replaces it); not owned.
+  if (const SizeField* field = session_.size_field()) args.size = std::shared_ptr<const SizeField>(field, [](const SizeField*) {});
+  write_preview<D>(session_.mesh(), batch.add(words[1], "preview"), args);
   batch.commit();
   return {{"path", words[1]}, {"ms", ms_since(start)}};
 }
@@ -384,6 +392,18 @@ json EditSession<D>::preview_change(const std::vector<std::string>& words) {
   }
 }
 
+// size POLYGON H: size polygon POLYGON (0-based, in the file's order) takes size H.
+template <int D>
+json EditSession<D>::set_size(const std::vector<std::string>& words) {
+  if (words.size() != 3) throw InputError("size takes POLYGON H (a size polygon's number from 0, and its new size)");
+  const std::size_t polygon = parse_id(words[1]);
+  const double size = parse_number(words[2]);
+  const SessionEdit<D> edit = session_.set_polygon_size(polygon, size);
+  json reply = {{"polygon", polygon}, {"size", size}};
+  record(edit, reply);
+  return reply;
+}
+
 template <int D>
 json EditSession<D>::stats() const {
   const auto start = Clock::now();
@@ -391,6 +411,7 @@ json EditSession<D>::stats() const {
   json r;
   r["input_points"] = session_.input_count();
   r["shore_splits"] = session_.split_count();
+  r["size_seeds"] = session_.seed_count();
   r["steiner_points"] = session_.steiner_count();
   r["next_id"] = session_.next_id();
   r["elements"] = q.elements;
@@ -455,6 +476,9 @@ std::string reply_text(const json& r) {
   if (op == "remove-ring")
     return line + "removed ring " + count(r, "ring") + " (" + count(r, "points") + " points" + id_range() + ")" + change();
   if (op == "move") return line + "moved id " + count(r, "id") + " to " + r.value("at", "") + change();
+  if (op == "size")
+    return line + "size polygon " + count(r, "polygon") + " is now " + approx(r.value("size", 0.0)) + " (" +
+           count(r, "size_seeds") + " size seeds)" + change();
   if (op == "export" || op == "preview" || op == "preview-change")
     return line + "wrote " + r.value("path", "") + ", " + millis(r);
   if (op == "stats")

@@ -29,8 +29,9 @@ class EditSession {
   // `keep_hull`: without rings, the mesh keeps the elements along the box's edge.
   // `lonlat_edits`: edit lines give lon lat (degrees), projected like the input (2D lon/lat input only:
   // the caller checks).
+  // `size`: element size control (2D; docs/sizing.md), which adds the `size POLYGON H` line.
   EditSession(const io::InputSet& set, double rho, std::optional<BoxTransform<D>> box, bool keep_hull,
-              PreviewArgs preview, bool lonlat_edits = false);
+              PreviewArgs preview, bool lonlat_edits = false, std::optional<SizeTerms> size = std::nullopt);
 
   // The reply to the initial build (op "build", line 0): counts, the box, and `ms`, the time it took.
   nlohmann::json build_reply(double ms) const;
@@ -53,6 +54,7 @@ class EditSession {
   nlohmann::json move(const std::vector<std::string>& words);
   nlohmann::json add_ring(const std::vector<std::string>& words, const std::string& rest);
   nlohmann::json remove_ring(const std::vector<std::string>& words);
+  nlohmann::json set_size(const std::vector<std::string>& words);
   nlohmann::json export_to(const std::vector<std::string>& words);
   nlohmann::json preview(const std::vector<std::string>& words);
   nlohmann::json preview_change(const std::vector<std::string>& words);

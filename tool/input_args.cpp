@@ -5,12 +5,14 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <numbers>
 
 #include "progress.hpp"
 #include "shoremesh/engine/engine.hpp"
 #include "shoremesh/error.hpp"
 #include "shoremesh/io/dem.hpp"
 #include "shoremesh/io/open_boundary.hpp"
+#include "shoremesh/io/size_polygons.hpp"
 #include "shoremesh/io/soundings.hpp"
 
 namespace shoremesh::tool {
@@ -67,6 +69,98 @@ void add_engine_options(CLI::App* cmd, EngineArgs& args) {
   cmd->add_flag("--keep-hull", args.keep_hull,
                 "Keep the mesh elements whose circumcentre lies outside the box (slivers along its edge, which the "
                 "quality bound does not cover; dropped by default)");
+}
+
+void add_size_options(CLI::App* cmd, SizeArgs& a) {
+  auto* g = cmd->add_option_group("Element size (docs/sizing.md; the input's units, metres when georeferenced)");
+  g->add_option("--max-size", a.max_size, "Longest element edge anywhere")->check(finite_number());
+  g->add_option("--min-size", a.min_size, "The size function is never below this")->check(finite_number());
+  g->add_option("--grade", a.grade, "Grading G: h(x) <= h(y) + G |x - y| (limgrad); e.g. 0.15")->check(finite_number());
+  g->add_option("--size-from-shore", a.from_shore, "H0 RATE: size H0 at the shore, growing by RATE per unit away")
+      ->expected(2)
+      ->check(finite_number());
+  g->add_option("--size-polygons", a.polygons, "GeoJSON polygons with a 'size' property each (lon/lat when the input is)")
+      ->check(CLI::ExistingFile);
+  g->add_option("--size-raster", a.raster, "A raster of sizes (any raster GDAL reads; nodata: no size there)")
+      ->check(CLI::ExistingFile);
+  g->add_option("--size-from-depth", a.from_depth,
+                "WL: wavelength term h = T sqrt(g depth) / WL (needs --dem or --depth-from)")
+      ->check(finite_number());
+  g->add_option("--size-period", a.period, "T of --size-from-depth in seconds (default 44712, the M2 tide)")
+      ->check(above_zero(true));
+  g->add_option("--size-from-slope", a.from_slope,
+                "S: slope term h = 2 pi depth / (S |grad depth|) (needs --dem or --depth-from)")
+      ->check(finite_number());
+}
+
+std::vector<std::filesystem::path> size_paths(const SizeArgs& args) {
+  std::vector<std::filesystem::path> out;
+  for (const std::string* f : {&args.polygons, &args.raster})
+    if (!f->empty()) out.emplace_back(*f);
+  return out;
+}
+
+std::optional<SizeTerms> size_terms(const SizeArgs& a, const io::InputSet& set) {
+  if (!a.any()) return std::nullopt;
+  SizeTerms t;
+  t.max_size = a.max_size;
+  t.min_size = a.min_size;
+  t.grade = a.grade;
+  if (!a.from_shore.empty()) {
+    if (set.domain.empty()) throw ParameterError("--size-from-shore needs a shoreline (rings) in the input");
+    t.shore_size = a.from_shore.at(0);
+    t.shore_rate = a.from_shore.at(1);
+  }
+  if (!a.polygons.empty()) t.polygons = io::read_size_polygons(a.polygons, set.projection);
+  if (!a.raster.empty()) {
+    auto dem = std::make_shared<const io::Dem>(io::read_dem(a.raster));
+    auto frame = std::make_shared<const io::DemFrame>(dem, set.projection);
+    t.sampled.push_back({"--size-raster " + a.raster, [dem, frame](const Point2& p) {
+                           const Point2 c = frame->to_cell(p);
+                           if (c[0] < -0.5 || c[1] < -0.5 || c[0] > dem->width - 0.5 || c[1] > dem->height - 0.5)
+                             return std::nan("");  // beyond the raster: no size there
+                           return dem->bilinear(c[0], c[1]);
+                         }});
+  }
+  if (a.from_depth || a.from_slope) {
+    if (!set.depth || !set.depth->frame)
+      throw ParameterError(std::string(a.from_depth ? "--size-from-depth" : "--size-from-slope") +
+                           " needs depths from a DEM: --dem or --depth-from");
+    const auto frame = set.depth->frame;
+    const io::DepthOptions options = set.depth->options;
+    auto depth = [frame, options](const Point2& p) {
+      const Point2 c = frame->to_cell(p);
+      double height = frame->dem().bilinear(c[0], c[1]);
+      if (options.max_height) height = std::min(height, *options.max_height);
+      double d = -height;
+      if (options.min_depth) d = std::max(d, *options.min_depth);
+      return d;
+    };
+    if (a.from_depth) {
+      const double wl = *a.from_depth, period = a.period;
+      if (!(wl > 0)) throw ParameterError("--size-from-depth: WL must be above 0 (got " + readable(wl) + ")");
+      t.sampled.push_back({"--size-from-depth " + readable(wl), [depth, wl, period](const Point2& p) {
+                             const double d = depth(p);
+                             return d > 0 ? period * std::sqrt(9.81 * d) / wl : std::nan("");
+                           }});
+    }
+    if (a.from_slope) {
+      const double slope = *a.from_slope;
+      if (!(slope > 0)) throw ParameterError("--size-from-slope: S must be above 0 (got " + readable(slope) + ")");
+      t.sampled.push_back({"--size-from-slope " + readable(slope), [depth, frame, slope](const Point2& p) {
+                             // Central differences half a DEM cell each way, in the mesh's units.
+                             const Point2 c = frame->to_cell(p), cx = frame->to_cell({p[0] + 1, p[1]});
+                             const double cells_per_unit = std::max(std::hypot(cx[0] - c[0], cx[1] - c[1]), 1e-300);
+                             const double step = 0.5 / cells_per_unit;
+                             const double gx = (depth({p[0] + step, p[1]}) - depth({p[0] - step, p[1]})) / (2 * step);
+                             const double gy = (depth({p[0], p[1] + step}) - depth({p[0], p[1] - step})) / (2 * step);
+                             const double d = depth(p), g = std::hypot(gx, gy);
+                             if (!(d > 0) || !(g > 0)) return std::nan("");
+                             return 2 * std::numbers::pi * d / (slope * g);
+                           }});
+    }
+  }
+  return t;
 }
 
 void add_preview_options(CLI::App* cmd, PreviewArgs& args) {

@@ -53,6 +53,28 @@ void add_engine_options(CLI::App* cmd, EngineArgs& args);  // --threads too
 // Registers --threads (the engine's thread count, process-wide).
 void add_threads_option(CLI::App* cmd);
 
+// Element size control (docs/sizing.md), in the input's units (metres for georeferenced input).
+struct SizeArgs {
+  std::optional<double> max_size, min_size, grade;
+  std::vector<double> from_shore;  // H0 RATE
+  std::string polygons;            // GeoJSON polygons with a `size` property
+  std::string raster;              // a raster of sizes (GDAL)
+  std::optional<double> from_depth;  // WL: h = T sqrt(g depth) / WL
+  double period = 44712;             // T in seconds (M2: 12.42 h)
+  std::optional<double> from_slope;  // S: h = 2 pi depth / (S |grad depth|)
+  bool any() const {
+    return max_size || min_size || grade || !from_shore.empty() || !polygons.empty() || !raster.empty() || from_depth ||
+           from_slope;
+  }
+};
+void add_size_options(CLI::App* cmd, SizeArgs& args);
+// The size terms the options ask for (nullopt: none), reading the polygons and the raster, and sampling the
+// depth source of `set` for --size-from-depth and --size-from-slope. ParameterError/InputError naming the
+// option for what cannot be honoured.
+std::optional<SizeTerms> size_terms(const SizeArgs& args, const io::InputSet& set);
+// The files the size options read (outputs may replace none).
+std::vector<std::filesystem::path> size_paths(const SizeArgs& args);
+
 // Registers --preview-colour and --preview-width.
 void add_preview_options(CLI::App* cmd, PreviewArgs& args);
 // Registers --quiet.

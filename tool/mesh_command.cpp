@@ -26,6 +26,7 @@ struct MeshOptions {
   std::string preview;
   PreviewArgs preview_args;
   EngineArgs engine;
+  SizeArgs size;
   std::string format;
 };
 
@@ -45,7 +46,7 @@ OutputPaths plan_outputs(io::OutputBatch& batch, const std::filesystem::path& ou
 
 template <int D>
 int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress) {
-  const EngineInput<D> in = engine_input<D>(set, parse_box<D>(opt.engine.box));
+  const EngineInput<D> in = engine_input<D>(set, parse_box<D>(opt.engine.box), size_terms(opt.size, set));
   const std::vector<Point<D>>& points = in.points;
   const UserFrame frame = UserFrame::of(set);
   const std::filesystem::path output = opt.output;
@@ -58,13 +59,15 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
     throw ParameterError("--preview-colour height is for terrains (shoremesh terrain DEM --max-error E ...)");
   if (opt.preview_args.colouring == "depth" && !set.depth)
     throw ParameterError("--preview-colour depth needs depths: --dem, --depth-from or x,y,depth soundings");
-  io::OutputBatch batch(input_paths(opt.in, set));
+  std::vector<std::filesystem::path> read = input_paths(opt.in, set);
+  for (const auto& p : size_paths(opt.size)) read.push_back(p);
+  io::OutputBatch batch(read);
   const OutputPaths staged = plan_outputs(batch, output, format, opt.preview);
 
   progress.stage("StableWS on " + std::to_string(points.size()) + " points");
   StableResult<D> result;
   try {
-    result = stable_well_spaced<D>(points, session_parameters<D>(opt.engine.rho), parse_box<D>(opt.engine.box));
+    result = stable_well_spaced<D>(points, session_parameters<D>(opt.engine.rho), in.box);
   } catch (const PointInputError& e) {
     rethrow_with_origin(e, set);
   }
@@ -88,11 +91,12 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
     progress.stage("drawing " + std::filesystem::path(opt.preview).filename().string());
     PreviewArgs args = opt.preview_args;
     args.rho = opt.engine.rho;
+    args.size = in.size;
     write_preview<D>(mesh, staged.preview, args, &frame);
   }
   progress.stage("measuring quality");
   QualityNumbers quality = quality_numbers<D>(mesh, opt.engine.rho, result.box, frame);
-  quality.shore_splits = points.size() - in.input_count;
+  quality.shore_splits = in.split_count;
   batch.commit();
   progress.finish();
 
@@ -103,6 +107,8 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
   std::cout << describe_input(set);
   std::cout << "box: origin " << frame.point(result.box.origin) << ", side " << frame.length(result.box.side) << '\n';
   std::cout << quality_text(quality, D);
+  if constexpr (D == 2)
+    if (in.size) std::cout << size_text(*in.size, mesh, in.seed_count, frame);
   if constexpr (D == 2)
     if (frame.depth) std::cout << depth_text(mesh_depths(io::MeshSnapshot<2>(mesh).view(), frame));
   std::cout << "wrote " << opt.output;
@@ -124,6 +130,7 @@ Command add_mesh_command(CLI::App& app) {
   cmd->add_option("--preview", opt->preview, "Also draw the mesh to this PNG");
   add_preview_options(cmd, opt->preview_args);
   add_engine_options(cmd, opt->engine);
+  add_size_options(cmd, opt->size);
   cmd->add_option("--format", opt->format, "Output format (default: from the output's extension)")
       ->check(CLI::IsMember({"msh", "vtu", "node", "fort14", "geojson", "obj", "ply", "off"}));
   cmd->footer(

@@ -1,5 +1,8 @@
 #include "pipeline.hpp"
 
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
+
 #include <algorithm>
 #include <cctype>
 #include <array>
@@ -26,6 +29,10 @@ struct PointKey {
     return std::hash<double>{}(p[0] + 0.0) * 0x9E3779B97F4A7C15ull ^ std::hash<double>{}(p[1] + 0.0);
   }
 };
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
+using BBox = bg::model::box<BPoint>;
 }  // namespace
 
 template <int D>
@@ -100,20 +107,47 @@ SessionInput<D> session_input(const io::InputSet& set) {
 }
 
 template <int D>
-EngineInput<D> engine_input(const io::InputSet& set, const std::optional<BoxTransform<D>>& box) {
+EngineInput<D> engine_input(const io::InputSet& set, const std::optional<BoxTransform<D>>& box,
+                            const std::optional<SizeTerms>& size) {
   SessionInput<D> session = session_input<D>(set);
   EngineInput<D> in;
-  std::vector<Point2> splits;
+  in.box = box;
+  std::vector<Point2> splits, seeds;
   if constexpr (D == 2) {
-    if (const auto refinement = refine_input(session, box)) {
+    if (size) {
+      in.box = run_box(session, box);
+      in.size = std::make_shared<const SizeField>(*size, *in.box, session.rings);
+    }
+    if (const auto refinement = refine_input(session, box, in.size)) {
       splits = refinement->split_points();
       in.domain = refinement->refined();
     }
+    if (in.size) seeds = size_seeds(*in.size, in.domain);
+  } else if (size) {
+    throw ParameterError("size control (--max-size and the other size options) is for 2D meshes");
   }
   in.input_count = session.points.size();
+  in.split_count = splits.size();
+  in.seed_count = seeds.size();
   in.points = std::move(session.points);
-  if constexpr (D == 2) in.points.insert(in.points.end(), splits.begin(), splits.end());
+  if constexpr (D == 2) {
+    in.points.insert(in.points.end(), splits.begin(), splits.end());
+    in.points.insert(in.points.end(), seeds.begin(), seeds.end());
+  }
   return in;
+}
+
+std::string size_text(const SizeField& field, const Mesh<2>& mesh, std::size_t seeds, const UserFrame& frame) {
+  const SizeSummary s = field.summary();
+  const SizeRatio r = size_ratio(field, mesh.points(), mesh.elements());
+  std::ostringstream out;
+  out << "size: h " << frame.length(s.min) << " .. " << frame.length(s.max) << " over the water (grid " << s.grid_cells
+      << " x " << s.grid_cells << "), grading " << approx(s.grading, 3);
+  if (field.terms().grade) out << " (--grade " << approx(*field.terms().grade) << ")";
+  out << "; longest edge / h(centroid) <= " << approx(r.worst, 4) << " (mean " << approx(r.mean, 3) << ")";
+  if (r.worst > 0) out << ", worst near " << frame.point(r.worst_at);
+  out << "; " << seeds << " size seeds among the input points\n";
+  return out.str();
 }
 
 void rethrow_with_origin(const PointInputError& e, const io::InputSet& set) {
@@ -196,7 +230,13 @@ void write_preview(const Mesh<D>& mesh, const std::filesystem::path& path, const
   std::vector<double> depths;
   if constexpr (D == 2)
     if (frame && args.colouring == "depth") depths = mesh_depths(view, *frame), view.depths = depths;
-  io::render_preview<D>(path, view, preview_options(args));
+  io::PreviewOptions options = preview_options(args);
+  if (args.size && args.colouring == "size") {
+    // The view may be in lon/lat for exports, never for previews: the mesh's frame, as h is.
+    const auto field = args.size;
+    options.size_at = [field](const Point2& p) { return field->at(p); };
+  }
+  io::render_preview<D>(path, view, options);
 }
 
 template <int D>
@@ -231,14 +271,25 @@ QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransfo
       // Elements below the bound: those the shore's constraints made (their circumcircle holds a mesh point
       // hidden behind the shore, so they are not Delaunay) and the others. Few: each is checked against
       // every point.
+      // The points in an R-tree (built at the first element below the bound): a fine mesh near a
+      // detailed shore has thousands of them, each checked against a million points otherwise.
+      std::optional<bgi::rtree<BPoint, bgi::quadratic<16>>> index;
       for (const auto& e : elements) {
         const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
         const ElementShape<2> shape = element_shape<2>(c);
         if (shape.radius_edge <= rho) continue;
+        if (!index) {
+          std::vector<BPoint> all;
+          all.reserve(mesh.points().size());
+          for (const Point2& p : mesh.points()) all.emplace_back(p[0], p[1]);
+          index.emplace(all.begin(), all.end());
+        }
         const double radius = std::hypot(c[0][0] - shape.circumcentre[0], c[0][1] - shape.circumcentre[1]);
+        const Point2& o = shape.circumcentre;
         bool hides = false;
-        for (const Point2& p : mesh.points())
-          hides = hides || std::hypot(p[0] - shape.circumcentre[0], p[1] - shape.circumcentre[1]) < radius * (1 - 1e-9);
+        for (auto it = index->qbegin(bgi::intersects(BBox(BPoint(o[0] - radius, o[1] - radius), BPoint(o[0] + radius, o[1] + radius))));
+             it != index->qend() && !hides; ++it)
+          hides = std::hypot(bg::get<0>(*it) - o[0], bg::get<1>(*it) - o[1]) < radius * (1 - 1e-9);
         ++(hides ? q.shore_below_bound : q.interior_below_bound);
       }
       // Each ring vertex's water angle: the sum of its triangles' angles there.
@@ -357,8 +408,10 @@ template std::optional<BoxTransform<2>> parse_box<2>(const std::vector<double>&)
 template std::optional<BoxTransform<3>> parse_box<3>(const std::vector<double>&);
 template SessionInput<2> session_input<2>(const io::InputSet&);
 template SessionInput<3> session_input<3>(const io::InputSet&);
-template EngineInput<2> engine_input<2>(const io::InputSet&, const std::optional<BoxTransform<2>>&);
-template EngineInput<3> engine_input<3>(const io::InputSet&, const std::optional<BoxTransform<3>>&);
+template EngineInput<2> engine_input<2>(const io::InputSet&, const std::optional<BoxTransform<2>>&,
+                                        const std::optional<SizeTerms>&);
+template EngineInput<3> engine_input<3>(const io::InputSet&, const std::optional<BoxTransform<3>>&,
+                                        const std::optional<SizeTerms>&);
 template std::vector<Point<2>> input_points<2>(const io::InputSet&);
 template std::vector<Point<3>> input_points<3>(const io::InputSet&);
 template void export_mesh_file<2>(const Mesh<2>&, const std::filesystem::path&, std::optional<io::ExportFormat>,

@@ -3,6 +3,7 @@
 // options, the mesh of a point set (clipped to the water when the input has rings), exports, previews and
 // the quality summary in the user's units.
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -19,6 +20,7 @@
 #include "shoremesh/parameters.hpp"
 #include "shoremesh/shore_refinement.hpp"
 #include "shoremesh/shore_session.hpp"
+#include "shoremesh/size_function.hpp"
 #include "shoremesh/well_spaced.hpp"
 #include "user_frame.hpp"
 
@@ -50,14 +52,24 @@ SessionInput<D> session_input(const io::InputSet& set);
 // What the engine and the mesh take: the input points, then (2D with rings) the canonical split points of
 // the shore (refine_input), which make every shore segment a mesh edge; the mesh's domain is the rings
 // with those splits in them.
+// With size control (2D) the size seeds follow the splits, the box is fixed to the input's before they
+// join, and the field is kept for the summary.
 template <int D>
 struct EngineInput {
   std::vector<Point<D>> points;
   std::size_t input_count = 0;  // the user's input points, first in `points`
+  std::size_t split_count = 0, seed_count = 0;  // then the splits, then the size seeds
   Domain2 domain;               // refined rings (2D), empty otherwise
+  std::optional<BoxTransform<D>> box;  // the box to give the engine (nullopt: fitted to `points`)
+  std::shared_ptr<const SizeField> size;
 };
 template <int D>
-EngineInput<D> engine_input(const io::InputSet& set, const std::optional<BoxTransform<D>>& box);
+EngineInput<D> engine_input(const io::InputSet& set, const std::optional<BoxTransform<D>>& box,
+                            const std::optional<SizeTerms>& size = std::nullopt);
+
+// "size: h 4,000 .. 5,000 m (grid 512 x 512), graded 0.15 (--grade 0.15); longest edge / h(centroid) <= 0.98
+// (mean 0.71), worst near ...; 7,234 size seeds\n"
+std::string size_text(const SizeField& field, const Mesh<2>& mesh, std::size_t seeds, const UserFrame& frame);
 
 // An engine error about particular input points, said with the file and line they came from (about the
 // points as a whole: with the input files).
@@ -79,6 +91,7 @@ struct PreviewArgs {
   std::string colouring = "none";  // none | quality | size | depth | height (terrain)
   int width = 1024;
   double rho = 1.4142135623730951;
+  std::shared_ptr<const SizeField> size;  // with size control: the size colouring shows longest edge / h
 };
 io::PreviewOptions preview_options(const PreviewArgs& args);
 

@@ -161,7 +161,7 @@ struct ShoreRefinement::Impl {
     if (m == p || m == q) return false;
     if (engine::compare_squared_distance_to<2>(counters, p, q, rule.min_length * rule.min_length) < 0) return false;
     const double g2 = rule.gamma * rule.gamma;
-    bool hit = false, taken = false;
+    bool hit = rule.max_length && std::hypot(q[0] - p[0], q[1] - p[1]) > rule.max_length(p, q), taken = false;
     for (auto it = points.qbegin(bgi::intersects(disk_box(n))); it != points.qend(); ++it) {
       const Point2 x = point_of(*it);
       if (x == m) taken = true;

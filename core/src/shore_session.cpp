@@ -57,7 +57,12 @@ Parameters<D> session_parameters(double rho) {
   return parameters;
 }
 
-std::optional<ShoreRefinement> refine_input(const SessionInput<2>& input, const std::optional<BoxTransform<2>>& box) {
+BoxTransform<2> run_box(const SessionInput<2>& input, const std::optional<BoxTransform<2>>& box) {
+  return box ? *box : BoxTransform<2>::fit(input.points);
+}
+
+std::optional<ShoreRefinement> refine_input(const SessionInput<2>& input, const std::optional<BoxTransform<2>>& box,
+                                            std::shared_ptr<const SizeField> size) {
   if (input.rings.empty()) return std::nullopt;
   const std::size_t n = input.points.size();
   if (input.ring_ids.size() != input.rings.rings.size())
@@ -81,8 +86,9 @@ std::optional<ShoreRefinement> refine_input(const SessionInput<2>& input, const 
   for (std::size_t i = 0; i < n; ++i)
     if (!on_ring[i]) loose.push_back(input.points[i]);
   // No split below 2^-32 of the engine's box: the given one, or the one the engine fits to the input.
-  const double side = box ? box->side : BoxTransform<2>::fit(input.points).side;
-  return ShoreRefinement(input.rings, loose, RefinementRule::for_box(side));
+  RefinementRule rule = RefinementRule::for_box(run_box(input, box).side);
+  if (size) rule.max_length = shore_max_length(std::move(size));
+  return ShoreRefinement(input.rings, loose, rule);
 }
 
 template <int D>
@@ -108,6 +114,9 @@ struct ShoreSession<D>::Impl {
   std::optional<ShoreRefinement> refinement;  // 2D with rings: the user's rings and their canonical splits
   std::optional<DynamicWellSpaced<D>> set;
   std::unordered_map<Point2, std::size_t, ExactHash> split_id;  // a split point's engine id
+  std::shared_ptr<const SizeField> size;  // 2D with size control: h (the refinement's rule shares it)
+  std::vector<Point2> seeds;              // the size seeds, sorted
+  std::unordered_map<Point2, std::size_t, ExactHash> seed_id;  // a seed's engine id
   std::vector<std::size_t> engine_of_user;  // by user id: the engine's input id (kRemoved once removed)
   std::optional<RingEdgeIndex> ring_index;  // the edges of the user's rings
   std::vector<std::vector<std::size_t>> ring_ids;  // ring r's vertices as input ids (empty: removed)
@@ -242,6 +251,7 @@ struct ShoreSession<D>::Impl {
     const std::size_t user_adds = static_cast<std::size_t>(
         std::count_if(edits.begin(), edits.end(), [](const Edit<D>& e) { return e.kind == Edit<D>::Kind::Add; }));
     if constexpr (D == 2) {
+      if (size) return apply_sized(std::move(edits), rings, loose_removed, loose_added, nullptr, removed, added, report);
       if (refinement) {
         const Domain2 before = refinement->rings();
         const SplitChange change = refinement->update(rings ? *rings : before, loose_removed, loose_added);
@@ -268,6 +278,89 @@ struct ShoreSession<D>::Impl {
     }
     (void)rings, (void)loose_removed, (void)loose_added;
     return set->apply(edits, &report);
+  }
+
+  // The loose input points now (2D): the live ones on no ring.
+  std::vector<Point2> loose_points() const {
+    std::vector<Point2> out;
+    if constexpr (D == 2)
+      for (std::size_t id = 0; id < engine_of_user.size(); ++id)
+        if (engine_of_user[id] != kRemoved && !ring_of.count(id)) out.push_back(set->input_point(engine_of_user[id]));
+    return out;
+  }
+
+  // apply_edits under size control: h follows the rings (--size-from-shore) or `new_size` (a size edit);
+  // when h changed, the splits are a fresh refinement's (the rule changed everywhere it did), otherwise
+  // the refinement's update; the seeds are recomputed from h and the refined rings. All the differences go
+  // to the engine in one propagation. On an error nothing changed.
+  std::vector<std::size_t> apply_sized(std::vector<Edit<D>> edits, const Domain2* rings,
+                                       const std::vector<Point<D>>& loose_removed,
+                                       const std::vector<Point<D>>& loose_added,
+                                       std::shared_ptr<const SizeField> new_size, std::vector<Point<D>>& removed,
+                                       std::vector<Point<D>>& added, UpdateReport<D>& report) {
+    if constexpr (D != 2) {
+      (void)rings, (void)loose_removed, (void)loose_added, (void)new_size, (void)removed, (void)added;
+      return set->apply(edits, &report);
+    } else {
+      const std::size_t user_adds = static_cast<std::size_t>(
+          std::count_if(edits.begin(), edits.end(), [](const Edit<D>& e) { return e.kind == Edit<D>::Kind::Add; }));
+      const auto old_size = size;
+      std::optional<ShoreRefinement> old_refinement;
+      const Domain2 rings_before = refinement ? refinement->rings() : Domain2{};
+      const Domain2 rings_after = rings ? *rings : rings_before;
+      bool h_changed = new_size != nullptr;
+      if (!new_size && rings && size->depends_on_rings()) {
+        // The new field holds the new rings even where h did not change: a later size edit reads them.
+        auto field = std::make_shared<SizeField>(*size);
+        h_changed = field->set_rings(rings_after);
+        new_size = std::move(field);
+      }
+      SplitChange splits;
+      if (refinement) {
+        if (h_changed) {
+          // The rule changed: a fresh refinement of the new input, and the difference of the splits.
+          std::vector<Point2> loose = loose_points();
+          for (const Point2& p : loose_removed) loose.erase(std::find(loose.begin(), loose.end(), p));
+          loose.insert(loose.end(), loose_added.begin(), loose_added.end());
+          RefinementRule rule = RefinementRule::for_box(set->box().side);
+          rule.max_length = shore_max_length(new_size);
+          ShoreRefinement fresh(rings_after, loose, rule);
+          const auto before = refinement->split_points(), after = fresh.split_points();
+          std::set_difference(before.begin(), before.end(), after.begin(), after.end(), std::back_inserter(splits.removed));
+          std::set_difference(after.begin(), after.end(), before.begin(), before.end(), std::back_inserter(splits.added));
+          old_refinement.emplace(std::move(*refinement));
+          refinement.emplace(std::move(fresh));
+        } else {
+          splits = refinement->update(rings_after, loose_removed, loose_added);
+        }
+      }
+      if (new_size) size = new_size;
+      const std::vector<Point2> new_seeds = size_seeds(*size, refinement ? refinement->refined() : Domain2{});
+      std::vector<Point2> seeds_removed, seeds_added;
+      std::set_difference(seeds.begin(), seeds.end(), new_seeds.begin(), new_seeds.end(), std::back_inserter(seeds_removed));
+      std::set_difference(new_seeds.begin(), new_seeds.end(), seeds.begin(), seeds.end(), std::back_inserter(seeds_added));
+      for (const Point2& p : splits.removed) edits.push_back({Edit<D>::Kind::Remove, split_id.at(p), {}});
+      for (const Point2& p : seeds_removed) edits.push_back({Edit<D>::Kind::Remove, seed_id.at(p), {}});
+      for (const Point2& p : splits.added) edits.push_back({Edit<D>::Kind::Add, 0, p});
+      for (const Point2& p : seeds_added) edits.push_back({Edit<D>::Kind::Add, 0, p});
+      std::vector<std::size_t> ids;
+      try {
+        ids = set->apply(edits, &report);
+      } catch (...) {
+        size = old_size;
+        if (old_refinement) refinement.emplace(std::move(*old_refinement));
+        else if (refinement) refinement->update(rings_before, loose_added, loose_removed);
+        throw;
+      }
+      for (const Point2& p : splits.removed) split_id.erase(p), removed.push_back(p);
+      for (const Point2& p : seeds_removed) seed_id.erase(p), removed.push_back(p);
+      std::size_t next = user_adds;
+      for (const Point2& p : splits.added) split_id.emplace(p, ids[next++]), added.push_back(p);
+      for (const Point2& p : seeds_added) seed_id.emplace(p, ids[next++]), added.push_back(p);
+      seeds = new_seeds;
+      ids.resize(user_adds);
+      return ids;
+    }
   }
 
   // After the engine took an edit: the mesh takes the engine's Steiner changes plus the input points that
@@ -326,6 +419,9 @@ ShoreSession<D>::ShoreSession(const SessionInput<D>& input, const Options& optio
   Impl& m = *impl_;
   m.options = options;
   const std::size_t n = input.points.size();
+  std::optional<BoxTransform<D>> box = options.box;
+  if constexpr (D != 2)
+    if (options.size) throw InputError("size control is for 2D inputs");
   if constexpr (D == 2) {
     if (!input.rings.empty()) {
       // Closed rings first: a line's end may be one of their vertices (a jetty); no other vertex is
@@ -357,7 +453,14 @@ ShoreSession<D>::ShoreSession(const SessionInput<D>& input, const Options& optio
         }
       if (const auto defect = find_ring_defect(input.rings, !m.lines_at.empty()))
         throw InputError("invalid rings: " + defect->describe());
-      m.refinement = refine_input(input, options.box);  // checks that the ring ids name the rings' points
+    }
+    if (options.size) {
+      // The box is fixed before the seeds join the input (a fresh run fits it to the input points alone).
+      box = run_box(input, options.box);
+      m.size = std::make_shared<const SizeField>(*options.size, *box, input.rings);
+    }
+    if (!input.rings.empty()) {
+      m.refinement = refine_input(input, options.box, m.size);  // checks that the ring ids name the rings' points
       m.ring_index.emplace(input.rings);
     }
   }
@@ -367,9 +470,15 @@ ShoreSession<D>::ShoreSession(const SessionInput<D>& input, const Options& optio
   if constexpr (D == 2)
     if (m.refinement) splits = m.refinement->split_points();
   if constexpr (D == 2) engine_points.insert(engine_points.end(), splits.begin(), splits.end());
-  m.set.emplace(engine_points, session_parameters<D>(options.rho), options.box);
+  if constexpr (D == 2)
+    if (m.size) {
+      m.seeds = size_seeds(*m.size, m.refinement ? m.refinement->refined() : Domain2{});
+      engine_points.insert(engine_points.end(), m.seeds.begin(), m.seeds.end());
+    }
+  m.set.emplace(engine_points, session_parameters<D>(options.rho), box);
   for (std::size_t id = 0; id < n; ++id) m.engine_of_user.push_back(id);
   for (std::size_t j = 0; j < splits.size(); ++j) m.split_id.emplace(splits[j], n + j);
+  for (std::size_t j = 0; j < m.seeds.size(); ++j) m.seed_id.emplace(m.seeds[j], n + splits.size() + j);
   Domain2 refined;
   if constexpr (D == 2)
     if (m.refinement) refined = m.refinement->refined();
@@ -592,6 +701,33 @@ SessionEdit<D> ShoreSession<D>::remove_ring(std::size_t r) {
 }
 
 template <int D>
+SessionEdit<D> ShoreSession<D>::set_polygon_size(std::size_t polygon, double size) {
+  Impl& m = *impl_;
+  if constexpr (D != 2) {
+    (void)polygon, (void)size;
+    throw InputError("size control is for 2D sessions");
+  } else {
+    if (!m.size || m.size->terms().polygons.empty())
+      throw InputError("this session has no size polygons (--size-polygons FILE.geojson)");
+    auto field = std::make_shared<SizeField>(*m.size);
+    const auto edit_start = Clock::now();
+    field->set_polygon_size(polygon, size);
+    SessionEdit<D> out;
+    out.id = polygon;
+    const auto start = Clock::now();
+    std::vector<Point<D>> removed, added;
+    m.apply_sized({}, nullptr, {}, {}, std::move(field), removed, added, out.engine);
+    m.update_mesh(std::move(removed), std::move(added), edit_start, start, out);
+    return out;
+  }
+}
+
+template <int D>
+std::size_t ShoreSession<D>::seed_count() const { return impl_->seed_id.size(); }
+template <int D>
+const SizeField* ShoreSession<D>::size_field() const { return impl_->size.get(); }
+
+template <int D>
 const Mesh<D>& ShoreSession<D>::mesh() const { return *impl_->mesh; }
 template <int D>
 const BoxTransform<D>& ShoreSession<D>::box() const { return impl_->set->box(); }
@@ -630,7 +766,9 @@ std::optional<std::pair<std::size_t, std::size_t>> ShoreSession<D>::ring_of(std:
 template <int D>
 std::size_t ShoreSession<D>::next_id() const { return impl_->engine_of_user.size(); }
 template <int D>
-std::size_t ShoreSession<D>::input_count() const { return impl_->set->input_count() - impl_->split_id.size(); }
+std::size_t ShoreSession<D>::input_count() const {
+  return impl_->set->input_count() - impl_->split_id.size() - impl_->seed_id.size();
+}
 template <int D>
 std::size_t ShoreSession<D>::split_count() const { return impl_->split_id.size(); }
 template <int D>
@@ -669,6 +807,7 @@ std::vector<Point<D>> ShoreSession<D>::canonical_points() const {
   if constexpr (D == 2)
     if (m.refinement)
       for (const Point2& p : m.refinement->split_points()) out.push_back(p);
+  if constexpr (D == 2) out.insert(out.end(), m.seeds.begin(), m.seeds.end());
   out.insert(out.end(), all.begin() + static_cast<std::ptrdiff_t>(m.set->input_count()), all.end());
   return out;
 }

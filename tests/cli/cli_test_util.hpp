@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <array>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "../io/io_test_util.hpp"
+#include "shoremesh/point.hpp"
 
 namespace shoremesh::cli_test {
 
@@ -93,6 +95,39 @@ inline std::vector<std::string> lines_of(const std::string& text) {
   std::istringstream in(text);
   for (std::string l; std::getline(in, l);) lines.push_back(l);
   return lines;
+}
+
+// Triangle's .node/.ele as written by `mesh -o X.node`, read here line by line (1-based numbering).
+struct TriangleFiles {
+  std::vector<Point2> nodes;
+  std::vector<std::array<std::size_t, 3>> triangles;
+};
+
+inline TriangleFiles read_triangle_files(const fs::path& node) {
+  TriangleFiles t;
+  std::istringstream n(read_file(node));
+  std::size_t count = 0, dim = 0, attributes = 0, markers = 0;
+  n >> count >> dim >> attributes >> markers;
+  for (std::size_t i = 0; i < count; ++i) {
+    std::size_t id = 0, marker = 0;
+    Point2 p;
+    n >> id >> p[0] >> p[1];
+    if (markers) n >> marker;
+    t.nodes.push_back(p);
+  }
+  fs::path ele = node;
+  ele.replace_extension(".ele");
+  std::istringstream e(read_file(ele));
+  std::size_t corners = 0;
+  e >> count >> corners >> attributes;
+  for (std::size_t i = 0; i < count; ++i) {
+    std::size_t id = 0;
+    std::array<std::size_t, 3> tri{};
+    e >> id >> tri[0] >> tri[1] >> tri[2];
+    for (auto& v : tri) --v;
+    t.triangles.push_back(tri);
+  }
+  return t;
 }
 
 }  // namespace shoremesh::cli_test

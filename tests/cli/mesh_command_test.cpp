@@ -277,39 +277,6 @@ TEST(MeshCommand, GpsWalkClosedByGuessCanBeKeptOpen) {
 namespace shoremesh::cli_test {
 namespace {
 
-// Triangle's .node/.ele as written by `mesh -o X.node`, read here line by line (1-based numbering).
-struct TriangleFiles {
-  std::vector<Point2> nodes;
-  std::vector<std::array<std::size_t, 3>> triangles;
-};
-
-TriangleFiles read_triangle_files(const fs::path& node) {
-  TriangleFiles t;
-  std::istringstream n(read_file(node));
-  std::size_t count = 0, dim = 0, attributes = 0, markers = 0;
-  n >> count >> dim >> attributes >> markers;
-  for (std::size_t i = 0; i < count; ++i) {
-    std::size_t id = 0, marker = 0;
-    Point2 p;
-    n >> id >> p[0] >> p[1];
-    if (markers) n >> marker;
-    t.nodes.push_back(p);
-  }
-  fs::path ele = node;
-  ele.replace_extension(".ele");
-  std::istringstream e(read_file(ele));
-  std::size_t corners = 0;
-  e >> count >> corners >> attributes;
-  for (std::size_t i = 0; i < count; ++i) {
-    std::size_t id = 0;
-    std::array<std::size_t, 3> tri{};
-    e >> id >> tri[0] >> tri[1] >> tri[2];
-    for (auto& v : tri) --v;
-    t.triangles.push_back(tri);
-  }
-  return t;
-}
-
 // Checked from the exported mesh alone: each given segment a-b is a chain of mesh edges whose inner vertices
 // lie on it (to rounding), and the triangles' area is `area`.
 void expect_conforming_export(const TriangleFiles& t, const std::vector<std::vector<Point2>>& rings, double area,

@@ -138,20 +138,7 @@ std::size_t check_conforming(const Mesh2& mesh, const Domain2& rings, const Doma
   return below;
 }
 
-Domain2 superior(double scale = 1) {
-  const auto lonlat = mesh_test::read_rings(mesh_test::samples("superior/lake_superior_lonlat.csv"));
-  const mesh_test::Equirectangular projection;
-  Domain2 d;
-  for (std::size_t r = 0; r < lonlat.size(); ++r) {
-    Ring ring{{}, r == 0 ? RingRole::Shore : RingRole::Island};
-    for (const Point2& ll : lonlat[r]) {
-      const Point2 p = projection.forward(ll);
-      ring.points.push_back({p[0] * scale, p[1] * scale});
-    }
-    d.rings.push_back(std::move(ring));
-  }
-  return d;
-}
+using mesh_test::superior;
 
 // A letter A drawn as Triangle's A.poly is: an outer outline with a triangular hole, sharp serifs.
 Domain2 letter_a() {
@@ -221,16 +208,7 @@ std::vector<Point2> jetty_from(const Point2& a, double t, double step) {
   return jetty;
 }
 
-SessionInput<2> session_input(const Domain2& rings) {
-  SessionInput<2> in;
-  in.rings = rings;
-  for (const Ring& r : rings.rings) {
-    in.ring_ids.emplace_back();
-    for (std::size_t k = 0; k < r.points.size(); ++k) in.ring_ids.back().push_back(in.points.size() + k);
-    in.points.insert(in.points.end(), r.points.begin(), r.points.end());
-  }
-  return in;
-}
+using mesh_test::session_input;
 
 // Random edits of Lake Superior's GSHHG rings through the library's ShoreSession, as `shoremesh edit`
 // makes them: shore points moved, added after a vertex and removed, loose points added and removed,

@@ -17,6 +17,7 @@
 
 #include "shoremesh/domain.hpp"
 #include "shoremesh/mesh.hpp"
+#include "shoremesh/shore_session.hpp"
 #include "../io/io_test_util.hpp"
 
 namespace shoremesh::mesh_test {
@@ -196,5 +197,33 @@ inline std::vector<Point2> sample_domain(const Domain2& domain, double h, double
 // The io tests' scratch directory and data paths serve here too.
 using io::test::ScratchDir;
 using io::test::samples;
+
+// Lake Superior's GSHHG rings (46: the shore, then the islands) in metres, scaled by `scale`.
+inline Domain2 superior(double scale = 1) {
+  const auto lonlat = read_rings(samples("superior/lake_superior_lonlat.csv"));
+  const Equirectangular projection;
+  Domain2 d;
+  for (std::size_t r = 0; r < lonlat.size(); ++r) {
+    Ring ring{{}, r == 0 ? RingRole::Shore : RingRole::Island};
+    for (const Point2& ll : lonlat[r]) {
+      const Point2 p = projection.forward(ll);
+      ring.points.push_back({p[0] * scale, p[1] * scale});
+    }
+    d.rings.push_back(std::move(ring));
+  }
+  return d;
+}
+
+// A session's input from rings: their points in ring order, nothing loose.
+inline SessionInput<2> session_input(const Domain2& rings) {
+  SessionInput<2> in;
+  in.rings = rings;
+  for (const Ring& r : rings.rings) {
+    in.ring_ids.emplace_back();
+    for (std::size_t k = 0; k < r.points.size(); ++k) in.ring_ids.back().push_back(in.points.size() + k);
+    in.points.insert(in.points.end(), r.points.begin(), r.points.end());
+  }
+  return in;
+}
 
 }  // namespace shoremesh::mesh_test

@@ -15,6 +15,7 @@
 // Every decision is an exact predicate (engine/predicates.hpp: intervals, then GMP).
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -30,6 +31,9 @@ struct RefinementRule {
   // No subsegment shorter than this is split (0: none): the callers give a fixed fraction of the engine's
   // box, so that no split comes nearer to a point than the engine resolves.
   double min_length = 0;
+  // Size control (size_function.hpp): a subsegment pq is also halved while longer than max_length(p, q)
+  // (empty: no limit). A rule of the subsegment alone, so the splits stay one least fixed point.
+  std::function<double(const Point2&, const Point2&)> max_length;
 
   // The rule for a session or run in `box_side`: no split below 2^-32 of the side.
   static RefinementRule for_box(double box_side) {

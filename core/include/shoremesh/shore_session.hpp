@@ -21,6 +21,7 @@
 #include "shoremesh/mesh.hpp"
 #include "shoremesh/parameters.hpp"
 #include "shoremesh/shore_refinement.hpp"
+#include "shoremesh/size_function.hpp"
 #include "shoremesh/well_spaced.hpp"
 
 namespace shoremesh {
@@ -44,7 +45,13 @@ Parameters<D> session_parameters(double rho);
 // The shore's canonical splits of a 2D input's rings (valid ones) for the engine's box: the given one, or
 // the one the engine fits to the input points; nullopt without rings. InputError when the ring ids do
 // not name the rings' points.
-std::optional<ShoreRefinement> refine_input(const SessionInput<2>& input, const std::optional<BoxTransform<2>>& box);
+// With a size field, subsegments are also halved while longer than it allows (shore_max_length).
+std::optional<ShoreRefinement> refine_input(const SessionInput<2>& input, const std::optional<BoxTransform<2>>& box,
+                                            std::shared_ptr<const SizeField> size = nullptr);
+
+// The box a run uses: the given one, or the one the engine fits to the input points (before any split or
+// size seed is added, so that those never move it).
+BoxTransform<2> run_box(const SessionInput<2>& input, const std::optional<BoxTransform<2>>& box);
 
 // The mesh of `points` (the first `input_count` are input points): with rings, every segment of `domain`
 // is a constraint and the mesh is all of the water (not clipped to the box: the box is fitted to the
@@ -79,6 +86,8 @@ class ShoreSession {
     double rho = 1.4142135623730951;
     std::optional<BoxTransform<D>> box;  // fitted to the input when not given; never grows
     bool keep_hull = false;              // without rings: keep the slivers along the box's edge
+    // Element size control (2D, docs/sizing.md): the size seeds join the engine's input after the splits.
+    std::optional<SizeTerms> size;
   };
 
   // InputError (PointInputError for the engine's refusals, naming input ids) when the input is invalid.
@@ -103,6 +112,10 @@ class ShoreSession {
   // Ring (or line) `ring` and all of its points go; the last closed ring cannot (the water would be
   // undefined).
   SessionEdit<D> remove_ring(std::size_t ring);
+  // Size polygon `polygon` (0-based, as read) takes size `size`: h, the shore's size splits and the size
+  // seeds are recomputed and their difference applied as one edit. InputError/ParameterError, changing
+  // nothing, without size polygons or for a bad size.
+  SessionEdit<D> set_polygon_size(std::size_t polygon, double size);
 
   const Mesh<D>& mesh() const;
   const BoxTransform<D>& box() const;
@@ -117,7 +130,10 @@ class ShoreSession {
   std::size_t next_id() const;
   std::size_t input_count() const;  // live input points the user gave (splits not counted)
   std::size_t split_count() const;
+  std::size_t seed_count() const;  // size seeds among the engine's input points
   std::size_t steiner_count() const;
+  // The size field (null without size control).
+  const SizeField* size_field() const;
   // Ring numbers given so far (removed ones included), and ring r's points now (none once removed).
   std::size_t ring_count() const;
   const std::vector<Point2>& ring(std::size_t r) const;
@@ -126,7 +142,7 @@ class ShoreSession {
   Domain2 rings() const;
   const Domain2& refined_rings() const;
   // The point set as a fresh run on the current input lists it: the input points by id, the shore's
-  // splits (sorted), then the Steiner points.
+  // splits (sorted), the size seeds (sorted), then the Steiner points.
   std::vector<Point<D>> canonical_points() const;
   // The input a fresh run would take now (removed points and rings left out, ids renumbered in order).
   SessionInput<D> current_input() const;

@@ -70,6 +70,17 @@ Rgb height_colour(const ElementCorners<2>& c, const std::array<double, 3>& h, do
   return {std::min(1.0f, tint.r * k), std::min(1.0f, tint.g * k), std::min(1.0f, tint.b * k)};
 }
 
+// Longest edge over h at the centroid: log scale from 1/4 (blue) to 1 (green), red above 1.01.
+Rgb size_ratio_colour(const ElementCorners<2>& c, const std::function<double(const Point2&)>& size_at) {
+  const double longest = std::max({std::hypot(c[0][0] - c[1][0], c[0][1] - c[1][1]), std::hypot(c[1][0] - c[2][0], c[1][1] - c[2][1]),
+                                   std::hypot(c[2][0] - c[0][0], c[2][1] - c[0][1])});
+  const double h = size_at({(c[0][0] + c[1][0] + c[2][0]) / 3, (c[0][1] + c[1][1] + c[2][1]) / 3});
+  const double ratio = longest / h;
+  if (!(ratio <= 1.01)) return {0.9f, 0.1f, 0.1f};
+  const float t = static_cast<float>(std::clamp(std::log(ratio / 0.25) / std::log(4.0), 0.0, 1.0));
+  return {0.1f, 0.25f + 0.55f * t, 0.85f - 0.65f * t};
+}
+
 PreviewImage draw_2d(const MeshView<2>& view, const PreviewOptions& o) {
   const auto [lo, hi] = bounds_of(view.points);
   Canvas canvas(lo, hi, o.width, o.height, o.margin, o.background_colour);
@@ -99,6 +110,7 @@ PreviewImage draw_2d(const MeshView<2>& view, const PreviewOptions& o) {
               ? depth_colour(deep > shallow ? ((view.depths[e[0]] + view.depths[e[1]] + view.depths[e[2]]) / 3 - shallow) /
                                                   (deep - shallow)
                                             : 0.5)
+          : o.size_at ? size_ratio_colour(c, o.size_at)
               : size_colour(large > small ? std::log(element_size(c) / small) / std::log(large / small) : 0.5);
       canvas.triangle(xy(c[0]), xy(c[1]), xy(c[2]), colour, 0.75);
     }

@@ -5,6 +5,7 @@
 // A second kind of preview shows what one dynamic update changed.
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -50,6 +51,9 @@ struct PreviewOptions {
   PreviewView3D view3d = PreviewView3D::Surface;
   double azimuth = 30, elevation = 25;  // degrees: the direction the surface is seen from
   double slice_z = 0.5;                 // the plane of a z-slice, in mesh coordinates
+  // 2D, Size colouring with a size function h: the longest edge over h at the centroid instead, blue (1/4)
+  // through green (1) to red (above 1.01: the bound broken).
+  std::function<double(const Point2&)> size_at = {};
 };
 
 // An RGB image with float channels in [0, 1], row 0 at the top.

@@ -1,0 +1,137 @@
+#pragma once
+// Element size control (docs/sizing.md): a size function h(x) over the engine's box, composed as gmsh and
+// OceanMesh2D compose theirs (the minimum of the terms given, clamped to [min, max], then graded to be
+// G-Lipschitz as limgrad does), and the canonical "size seeds" through which the engine honours it.
+//
+// h lives on a grid of 2^k x 2^k cells aligned with the engine's box; h(x) is the bilinear interpolant of
+// the node values, so the quadtree of the seeds reads exact minima from a pyramid. Terms that come from
+// files (a raster of sizes, depths, slopes) are sampled by the caller at the grid's nodes (no file I/O
+// here). Everything is a deterministic function of the terms, the box and the rings.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "shoremesh/box_transform.hpp"
+#include "shoremesh/domain.hpp"
+#include "shoremesh/point.hpp"
+
+namespace shoremesh {
+
+// A polygon with a size (a GeoJSON Polygon's `size` property): h <= size inside its outer ring and
+// outside its holes.
+struct SizePolygon {
+  std::vector<std::vector<Point2>> rings;  // outer ring, then holes
+  double size = 0;
+  std::string name;  // for messages: "polygon 3 (file.geojson feature 3)"
+};
+
+// A term sampled by the caller at points (a raster, the depth or the slope): its size there, or NaN / +inf
+// where it sets none. `name` is the option it came from ("--size-raster sizes.tif").
+struct SampledSizeTerm {
+  std::string name;
+  std::function<double(const Point2&)> size;
+};
+
+struct SizeTerms {
+  std::optional<double> max_size, min_size, grade;
+  std::optional<double> shore_size, shore_rate;  // --size-from-shore H0 RATE
+  std::vector<SizePolygon> polygons;
+  std::vector<SampledSizeTerm> sampled;
+  std::size_t point_cap = 10'000'000;  // refused when a term alone would ask for more points
+  bool empty() const {
+    return !max_size && !min_size && !shore_size && polygons.empty() && sampled.empty();
+  }
+};
+
+// What the summary reports about h and the mesh.
+struct SizeSummary {
+  double min = 0, max = 0;  // h over the water's grid nodes
+  double grading = 0;       // max |h(u) - h(v)| / |uv| over grid neighbours
+  std::size_t grid_cells = 0;  // per side
+};
+
+class SizeField {
+ public:
+  // ParameterError naming the option for a bad value (non-positive, NaN, min > max, grade <= 0) and
+  // InputError naming the term whose sizes alone would exceed terms.point_cap points in the water.
+  SizeField(SizeTerms terms, const BoxTransform<2>& box, const Domain2& rings);
+
+  double at(const Point2& p) const;  // h(p), bilinear; clamped to the box
+  // A lower bound of h over the axis-aligned square [x0, x0 + side] x [y0, y0 + side] (exact for squares
+  // aligned with the grid).
+  double min_over(const Point2& lo, double side) const;
+  // A lower bound of h over the segment's bounding box.
+  double min_over_segment(const Point2& a, const Point2& b) const;
+
+  // Whether the shore term reads the rings (then a shore edit changes h).
+  bool depends_on_rings() const { return terms_.shore_size.has_value(); }
+  // The rings changed: recomputes h (the shore term and the water). Returns whether h changed.
+  bool set_rings(const Domain2& rings);
+  // Polygon `index` (0-based) takes size `size`; ParameterError for a bad size, InputError for no such
+  // polygon. Returns whether h changed.
+  bool set_polygon_size(std::size_t index, double size);
+  const SizeTerms& terms() const { return terms_; }
+
+  SizeSummary summary() const;
+  const BoxTransform<2>& box() const { return box_; }
+  int levels() const { return k_; }
+  std::size_t cells() const { return n_; }
+  const std::vector<double>& nodes() const { return h_; }  // (n + 1)^2, row-major from the box's origin
+
+  bool operator==(const SizeField& o) const { return h_ == o.h_; }
+
+ private:
+  void compute();
+  void build_pyramid();
+  void water_mask();
+  double min_over_box(const Point2& lo, const Point2& hi) const;
+  std::size_t node(std::size_t i, std::size_t j) const { return j * (n_ + 1) + i; }
+
+  SizeTerms terms_;
+  BoxTransform<2> box_;
+  Domain2 rings_;
+  int k_ = 0;
+  std::size_t n_ = 0;
+  double cell_ = 0;
+  std::vector<double> sampled_;         // min of the sampled terms at the nodes (computed once)
+  std::vector<std::uint8_t> water_;     // per node: in the water (for the estimates and the summary)
+  std::vector<std::vector<std::size_t>> polygon_nodes_;  // per polygon: the nodes inside it
+  std::vector<double> shore_;           // the shore term at the nodes (empty without it)
+  std::vector<double> h_;
+  std::vector<std::vector<double>> pyramid_;  // level l: min over blocks of 2^l x 2^l cells (their nodes)
+};
+
+// The canonical seeds of h (docs/sizing.md): the centres of the leaves of the quadtree of the box split
+// while a leaf's side exceeds kSeedFactor times the least h over the leaf grown by its side on every side,
+// moved off the centre by a canonical jitter of at most kSeedJitter times the side (a grid of seeds would
+// put four points on every circle), kept where they lie in the water, at least a quarter of their leaf's
+// side from every segment of `refined`, and outside every segment's diametral circle grown by gamma.
+// Sorted. kSeedFactor * 2 * (1/sqrt 2 + sqrt 2 * kSeedJitter) <= 1: docs/sizing.md.
+inline constexpr double kSeedFactor = 0.66;
+inline constexpr double kSeedJitter = 0.03;
+// A leaf whose seed is dropped (on land or too near the shore) is split again, this many levels at most,
+// and its quarters' seeds are tried: the gap along the shore stays a fraction of h.
+inline constexpr int kSeedRetries = 2;
+// The shore's subsegments are halved while longer than kShoreFactor times the least h near them
+// (RefinementRule::max_length).
+inline constexpr double kShoreFactor = 0.7;
+std::vector<Point2> size_seeds(const SizeField& field, const Domain2& refined, double gamma = 1.25);
+
+// The rule's max_length for this field: kShoreFactor times the least h over the subsegment's bounding box.
+// The field is shared: the refinement that holds the rule keeps it alive.
+std::function<double(const Point2&, const Point2&)> shore_max_length(std::shared_ptr<const SizeField> field);
+
+// The worst ratio of an element's longest edge to h at its centroid, over 2D elements.
+struct SizeRatio {
+  double worst = 0, mean = 0;
+  Point2 worst_at{};
+};
+SizeRatio size_ratio(const SizeField& field, const std::vector<Point2>& points,
+                     const std::vector<std::array<std::uint32_t, 3>>& triangles);
+
+}  // namespace shoremesh

@@ -1,0 +1,511 @@
+#include "shoremesh/size_function.hpp"
+
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+
+#include "shoremesh/error.hpp"
+#include "shoremesh/mesh_water.hpp"
+
+namespace shoremesh {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string number(double x) { return readable(x); }
+
+void check_size(const std::optional<double>& v, const std::string& option) {
+  if (v && !(std::isfinite(*v) && *v > 0))
+    throw ParameterError(option + " must be a positive finite size (got " + number(*v) + ")");
+}
+
+double dist_to_segment(const Point2& p, const Point2& a, const Point2& b) {
+  const double dx = b[0] - a[0], dy = b[1] - a[1];
+  const double l2 = dx * dx + dy * dy;
+  double t = l2 > 0 ? ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / l2 : 0;
+  t = std::clamp(t, 0.0, 1.0);
+  return std::hypot(p[0] - (a[0] + t * dx), p[1] - (a[1] + t * dy));
+}
+
+// The even-odd rule over the polygon's rings (its outer ring and holes), exact (ring_contains).
+bool polygon_contains(const SizePolygon& poly, const Point2& p) {
+  bool in = false;
+  for (const auto& r : poly.rings) in ^= ring_contains(r, p);
+  return in;
+}
+
+// h(v) <= h(u) + grade * |uv| over the grid's 8-neighbours, by raster sweeps until nothing changes: the
+// largest function below h that is grade-Lipschitz between neighbours (limgrad; Persson 2006).
+void limit_gradient(std::vector<double>& h, std::size_t n, double cell, double grade) {
+  const std::size_t w = n + 1;
+  const double a = grade * cell, d = grade * cell * std::numbers::sqrt2;
+  for (bool changed = true; changed;) {
+    changed = false;
+    auto relax = [&](std::size_t v, std::size_t u, double step) {
+      const double c = h[u] + step;
+      if (c < h[v]) h[v] = c, changed = true;
+    };
+    for (std::size_t j = 0; j < w; ++j)
+      for (std::size_t i = 0; i < w; ++i) {
+        const std::size_t v = j * w + i;
+        if (i > 0) relax(v, v - 1, a);
+        if (j > 0) {
+          relax(v, v - w, a);
+          if (i > 0) relax(v, v - w - 1, d);
+          if (i + 1 < w) relax(v, v - w + 1, d);
+        }
+      }
+    for (std::size_t j = w; j-- > 0;)
+      for (std::size_t i = w; i-- > 0;) {
+        const std::size_t v = j * w + i;
+        if (i + 1 < w) relax(v, v + 1, a);
+        if (j + 1 < w) {
+          relax(v, v + w, a);
+          if (i + 1 < w) relax(v, v + w + 1, d);
+          if (i > 0) relax(v, v + w - 1, d);
+        }
+      }
+  }
+}
+
+// A leaf's canonical jitter in [-1, 1]^2 from its level and place (splitmix64): a grid of seeds would put
+// four points on every circle, where the Delaunay mesh is not unique.
+std::array<double, 2> jitter(int level, std::uint64_t ix, std::uint64_t iy) {
+  std::uint64_t z = (static_cast<std::uint64_t>(level) << 58) ^ (ix << 29) ^ iy;
+  auto next = [&z] {
+    z += 0x9E3779B97F4A7C15ull;
+    std::uint64_t x = z;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+    x ^= x >> 31;
+    return static_cast<double>(x >> 11) * 0x1.0p-53 * 2 - 1;
+  };
+  const double u = next();
+  return {u, next()};
+}
+
+}  // namespace
+
+SizeField::SizeField(SizeTerms terms, const BoxTransform<2>& box, const Domain2& rings)
+    : terms_(std::move(terms)), box_(box), rings_(rings) {
+  check_size(terms_.max_size, "--max-size");
+  check_size(terms_.min_size, "--min-size");
+  if (terms_.min_size && terms_.max_size && *terms_.min_size > *terms_.max_size)
+    throw ParameterError("--min-size " + number(*terms_.min_size) + " is larger than --max-size " +
+                         number(*terms_.max_size));
+  if (terms_.grade && !(std::isfinite(*terms_.grade) && *terms_.grade > 0))
+    throw ParameterError("--grade must be above 0 (got " + number(*terms_.grade) + ")");
+  if (terms_.shore_size) {
+    check_size(terms_.shore_size, "--size-from-shore H0");
+    if (!terms_.shore_rate || !(std::isfinite(*terms_.shore_rate) && *terms_.shore_rate >= 0))
+      throw ParameterError("--size-from-shore RATE must be a finite number >= 0 (got " +
+                           number(terms_.shore_rate.value_or(std::nan(""))) + ")");
+  }
+  for (const SizePolygon& p : terms_.polygons)
+    if (!(std::isfinite(p.size) && p.size > 0))
+      throw ParameterError(p.name + ": size must be a positive finite number (got " + number(p.size) + ")");
+  if (terms_.empty())
+    throw ParameterError("--grade and --min-size need a size term: --max-size, --size-from-shore, --size-polygons, "
+                         "--size-raster, --size-from-depth or --size-from-slope");
+
+  // The grid: cells a little finer than the smallest of --max-size, --min-size, H0 and a quarter of each
+  // polygon's narrower side, 2^5 .. 2^11 per side (2^10 without them). Not from the polygons' sizes: a
+  // `size` edit must not move the grid (h would change everywhere), and a fresh run must choose the same.
+  double hint = kInf;
+  for (const auto& v : {terms_.max_size, terms_.min_size, terms_.shore_size})
+    if (v) hint = std::min(hint, *v);
+  for (const SizePolygon& p : terms_.polygons) {
+    double lo[2] = {kInf, kInf}, hi[2] = {-kInf, -kInf};
+    for (const Point2& q : p.rings.front())
+      for (int a = 0; a < 2; ++a) lo[a] = std::min(lo[a], q[a]), hi[a] = std::max(hi[a], q[a]);
+    hint = std::min(hint, 0.25 * std::min(hi[0] - lo[0], hi[1] - lo[1]));
+  }
+  k_ = std::isfinite(hint) ? std::clamp(static_cast<int>(std::ceil(std::log2(box_.side / hint))) + 1, 5, 11) : 10;
+  n_ = std::size_t{1} << k_;
+  cell_ = box_.side / static_cast<double>(n_);
+  const std::size_t w = n_ + 1;
+
+  // Sampled terms, once (they do not read the rings).
+  sampled_.assign(w * w, kInf);
+  for (const SampledSizeTerm& t : terms_.sampled)
+    for (std::size_t j = 0; j < w; ++j)
+      for (std::size_t i = 0; i < w; ++i) {
+        const Point2 p{box_.origin[0] + static_cast<double>(i) * cell_, box_.origin[1] + static_cast<double>(j) * cell_};
+        const double v = t.size(p);
+        if (std::isnan(v)) continue;
+        if (!(v > 0))
+          throw InputError(t.name + ": size " + number(v) + " at (" + number(p[0]) + ", " + number(p[1]) +
+                           ") is not above 0");
+        sampled_[node(i, j)] = std::min(sampled_[node(i, j)], v);
+      }
+  compute();
+
+  // The point cap, term by term: about area / (sqrt(3)/4 h^2) triangles, half as many points.
+  const double cell_area = cell_ * cell_;
+  auto estimate = [&](auto&& size_at) {
+    double points = 0;
+    for (std::size_t v = 0; v < w * w; ++v) {
+      if (!water_[v]) continue;
+      double s = size_at(v);
+      if (terms_.min_size) s = std::max(s, *terms_.min_size);
+      if (std::isfinite(s)) points += cell_area / (std::sqrt(3.0) / 2 * s * s);
+    }
+    return points;
+  };
+  auto check_cap = [&](double points, const std::string& term) {
+    if (points > static_cast<double>(terms_.point_cap))
+      throw InputError(term + " asks for about " + number(std::round(points)) + " points in the water, more than the " +
+                       std::to_string(terms_.point_cap) + "-point cap; give a larger size");
+  };
+  if (terms_.max_size) check_cap(estimate([&](std::size_t) { return *terms_.max_size; }), "--max-size " + number(*terms_.max_size));
+  if (terms_.shore_size) {
+    check_cap(estimate([&](std::size_t v) { return shore_[v]; }),
+              "--size-from-shore " + number(*terms_.shore_size) + " " + number(*terms_.shore_rate));
+  }
+  for (std::size_t q = 0; q < terms_.polygons.size(); ++q) {
+    const SizePolygon& poly = terms_.polygons[q];
+    double points = 0;
+    for (std::size_t v : polygon_nodes_[q])
+      if (water_[v]) points += cell_area / (std::sqrt(3.0) / 2 * std::pow(std::max(poly.size, terms_.min_size.value_or(0)), 2));
+    check_cap(points, poly.name + " (size " + number(poly.size) + ")");
+  }
+  if (!terms_.sampled.empty()) {
+    std::string names;
+    for (const auto& t : terms_.sampled) names += (names.empty() ? "" : ", ") + t.name;
+    check_cap(estimate([&](std::size_t v) { return sampled_[v]; }), names);
+  }
+  check_cap(estimate([&](std::size_t v) { return h_[v]; }),
+            terms_.grade ? "the graded size (--grade " + number(*terms_.grade) + ")" : "the size function");
+}
+
+void SizeField::compute() {
+  const std::size_t w = n_ + 1;
+  auto position = [&](std::size_t v) {
+    return Point2{box_.origin[0] + static_cast<double>(v % w) * cell_, box_.origin[1] + static_cast<double>(v / w) * cell_};
+  };
+  water_mask();
+
+  // Polygons: the nodes inside each (kept, so that a size edit reads no geometry again).
+  if (polygon_nodes_.size() != terms_.polygons.size()) {
+    polygon_nodes_.assign(terms_.polygons.size(), {});
+    for (std::size_t q = 0; q < terms_.polygons.size(); ++q) {
+      double lo[2] = {kInf, kInf}, hi[2] = {-kInf, -kInf};
+      for (const auto& r : terms_.polygons[q].rings)
+        for (const Point2& p : r)
+          for (int a = 0; a < 2; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+      auto index = [&](double x, int a, bool up) {
+        const double t = (x - box_.origin[a]) / cell_;
+        return static_cast<std::size_t>(std::clamp(up ? std::ceil(t) : std::floor(t), 0.0, static_cast<double>(n_)));
+      };
+      for (std::size_t j = index(lo[1], 1, false); j <= index(hi[1], 1, true); ++j)
+        for (std::size_t i = index(lo[0], 0, false); i <= index(hi[0], 0, true); ++i)
+          if (polygon_contains(terms_.polygons[q], position(node(i, j)))) polygon_nodes_[q].push_back(node(i, j));
+    }
+  }
+
+  // The shore term: H0 + RATE * distance, exact beside each segment, carried on by the same sweeps.
+  shore_.clear();
+  if (terms_.shore_size) {
+    shore_.assign(w * w, kInf);
+    for (const Ring& ring : rings_.rings)
+      for (std::size_t k = 0; k < ring.segment_count(); ++k) {
+        const Point2& a = ring.points[k];
+        const Point2& b = ring.points[(k + 1) % ring.points.size()];
+        auto range = [&](int axis) {
+          const double lo = (std::min(a[axis], b[axis]) - box_.origin[axis]) / cell_ - 1;
+          const double hi = (std::max(a[axis], b[axis]) - box_.origin[axis]) / cell_ + 1;
+          return std::pair{static_cast<std::size_t>(std::clamp(std::floor(lo), 0.0, double(n_))),
+                           static_cast<std::size_t>(std::clamp(std::ceil(hi), 0.0, double(n_)))};
+        };
+        const auto [i0, i1] = range(0);
+        const auto [j0, j1] = range(1);
+        for (std::size_t j = j0; j <= j1; ++j)
+          for (std::size_t i = i0; i <= i1; ++i) {
+            const std::size_t v = node(i, j);
+            shore_[v] = std::min(shore_[v], *terms_.shore_size + *terms_.shore_rate * dist_to_segment(position(v), a, b));
+          }
+      }
+    if (*terms_.shore_rate > 0) limit_gradient(shore_, n_, cell_, *terms_.shore_rate);
+    else std::fill(shore_.begin(), shore_.end(), rings_.empty() ? kInf : *terms_.shore_size);
+  }
+
+  h_ = sampled_;
+  if (terms_.max_size)
+    for (double& x : h_) x = std::min(x, *terms_.max_size);
+  if (!shore_.empty())
+    for (std::size_t v = 0; v < h_.size(); ++v) h_[v] = std::min(h_[v], shore_[v]);
+  for (std::size_t q = 0; q < terms_.polygons.size(); ++q)
+    for (std::size_t v : polygon_nodes_[q]) h_[v] = std::min(h_[v], terms_.polygons[q].size);
+  if (terms_.min_size)
+    for (double& x : h_) x = std::max(x, *terms_.min_size);
+  if (terms_.grade) limit_gradient(h_, n_, cell_, *terms_.grade);
+  build_pyramid();
+}
+
+// Water at the nodes, for the estimates and the summary only (without closed rings: everywhere): the
+// even-odd rule along each row of nodes, from the crossings of the ring edges with it.
+void SizeField::water_mask() {
+  const std::size_t w = n_ + 1;
+  const bool any = std::any_of(rings_.rings.begin(), rings_.rings.end(),
+                               [](const Ring& r) { return r.closed() && r.points.size() >= 3; });
+  water_.assign(w * w, any ? 0 : 1);
+  if (!any) return;
+  std::vector<std::vector<double>> crossings(w);
+  for (const Ring& ring : rings_.rings) {
+    if (!ring.closed()) continue;
+    for (std::size_t k = 0; k < ring.points.size(); ++k) {
+      const Point2& a = ring.points[k];
+      const Point2& b = ring.points[(k + 1) % ring.points.size()];
+      if (a[1] == b[1]) continue;
+      const double ya = (a[1] - box_.origin[1]) / cell_, yb = (b[1] - box_.origin[1]) / cell_;
+      const double lo = std::max(0.0, std::ceil(std::min(ya, yb))), hi = std::min(double(n_), std::floor(std::max(ya, yb)));
+      for (double j = lo; j <= hi; ++j) {
+        const double y = box_.origin[1] + j * cell_;
+        if ((a[1] > y) == (b[1] > y)) continue;  // half-open: a vertex on the row counts once
+        crossings[static_cast<std::size_t>(j)].push_back(a[0] + (y - a[1]) * (b[0] - a[0]) / (b[1] - a[1]));
+      }
+    }
+  }
+  for (std::size_t j = 0; j < w; ++j) {
+    auto& xs = crossings[j];
+    std::sort(xs.begin(), xs.end());
+    std::size_t passed = 0;
+    for (std::size_t i = 0; i < w; ++i) {
+      const double x = box_.origin[0] + static_cast<double>(i) * cell_;
+      while (passed < xs.size() && xs[passed] <= x) ++passed;
+      water_[node(i, j)] = (xs.size() - passed) % 2;
+    }
+  }
+}
+
+void SizeField::build_pyramid() {
+  pyramid_.clear();
+  std::vector<double> level(n_ * n_);
+  for (std::size_t j = 0; j < n_; ++j)
+    for (std::size_t i = 0; i < n_; ++i)
+      level[j * n_ + i] = std::min({h_[node(i, j)], h_[node(i + 1, j)], h_[node(i, j + 1)], h_[node(i + 1, j + 1)]});
+  pyramid_.push_back(std::move(level));
+  for (std::size_t m = n_ / 2; m >= 1; m /= 2) {
+    const auto& below = pyramid_.back();
+    std::vector<double> up(m * m);
+    for (std::size_t j = 0; j < m; ++j)
+      for (std::size_t i = 0; i < m; ++i)
+        up[j * m + i] = std::min({below[2 * j * 2 * m + 2 * i], below[2 * j * 2 * m + 2 * i + 1],
+                                  below[(2 * j + 1) * 2 * m + 2 * i], below[(2 * j + 1) * 2 * m + 2 * i + 1]});
+    pyramid_.push_back(std::move(up));
+  }
+}
+
+double SizeField::at(const Point2& p) const {
+  const double u = std::clamp((p[0] - box_.origin[0]) / cell_, 0.0, static_cast<double>(n_));
+  const double v = std::clamp((p[1] - box_.origin[1]) / cell_, 0.0, static_cast<double>(n_));
+  const std::size_t i = std::min(static_cast<std::size_t>(u), n_ - 1), j = std::min(static_cast<std::size_t>(v), n_ - 1);
+  const double fu = u - static_cast<double>(i), fv = v - static_cast<double>(j);
+  const double h00 = h_[node(i, j)], h10 = h_[node(i + 1, j)], h01 = h_[node(i, j + 1)], h11 = h_[node(i + 1, j + 1)];
+  if (!std::isfinite(h00) || !std::isfinite(h10) || !std::isfinite(h01) || !std::isfinite(h11))
+    return std::max({h00, h10, h01, h11}) == kInf && std::min({h00, h10, h01, h11}) == kInf ? kInf
+                                                                                          : std::min({h00, h10, h01, h11});
+  return (1 - fv) * ((1 - fu) * h00 + fu * h10) + fv * ((1 - fu) * h01 + fu * h11);
+}
+
+double SizeField::min_over(const Point2& lo, double side) const {
+  return min_over_box(lo, {lo[0] + side, lo[1] + side});
+}
+
+double SizeField::min_over_segment(const Point2& a, const Point2& b) const {
+  return min_over_box({std::min(a[0], b[0]), std::min(a[1], b[1])}, {std::max(a[0], b[0]), std::max(a[1], b[1])});
+}
+
+// The bilinear h over a cell lies between its nodes' values: the least over the cells the box meets, read
+// from the coarsest pyramid level whose blocks stay at most about half the box.
+double SizeField::min_over_box(const Point2& lo, const Point2& hi) const {
+  auto cell_range = [&](int axis) {
+    const double a = std::floor((lo[axis] - box_.origin[axis]) / cell_);
+    const double b = std::floor((hi[axis] - box_.origin[axis]) / cell_);
+    return std::pair{static_cast<std::size_t>(std::clamp(a, 0.0, double(n_ - 1))),
+                     static_cast<std::size_t>(std::clamp(b, 0.0, double(n_ - 1)))};
+  };
+  const auto [i0, i1] = cell_range(0);
+  const auto [j0, j1] = cell_range(1);
+  const std::size_t span = std::max(i1 - i0, j1 - j0) + 1;
+  std::size_t l = 0;
+  while (l + 1 < pyramid_.size() && (std::size_t{2} << l) * 2 <= span) ++l;
+  const std::size_t m = n_ >> l;
+  double out = kInf;
+  for (std::size_t j = j0 >> l; j <= j1 >> l; ++j)
+    for (std::size_t i = i0 >> l; i <= i1 >> l; ++i) out = std::min(out, pyramid_[l][j * m + i]);
+  return out;
+}
+
+bool SizeField::set_rings(const Domain2& rings) {
+  rings_ = rings;
+  if (!depends_on_rings()) {
+    // The water changes the summary only: recompute the mask cheaply enough through compute().
+    const std::vector<double> before = h_;
+    compute();
+    return before != h_;
+  }
+  const std::vector<double> before = h_;
+  compute();
+  return before != h_;
+}
+
+bool SizeField::set_polygon_size(std::size_t index, double size) {
+  if (index >= terms_.polygons.size())
+    throw InputError("no size polygon " + std::to_string(index) + " (size polygons: " +
+                     (terms_.polygons.empty() ? std::string("none") : "0.." + std::to_string(terms_.polygons.size() - 1)) + ")");
+  if (!(std::isfinite(size) && size > 0))
+    throw ParameterError("size of polygon " + std::to_string(index) + " must be a positive finite number (got " +
+                         number(size) + ")");
+  const std::vector<double> before = h_;
+  terms_.polygons[index].size = size;
+  compute();
+  return before != h_;
+}
+
+SizeSummary SizeField::summary() const {
+  SizeSummary s;
+  s.min = kInf;
+  s.max = 0;
+  s.grid_cells = n_;
+  const std::size_t w = n_ + 1;
+  for (std::size_t v = 0; v < w * w; ++v) {
+    if (!water_[v] || !std::isfinite(h_[v])) continue;
+    s.min = std::min(s.min, h_[v]);
+    s.max = std::max(s.max, h_[v]);
+    const std::size_t i = v % w, j = v / w;
+    auto look = [&](std::size_t u, double len) {
+      if (std::isfinite(h_[u])) s.grading = std::max(s.grading, std::abs(h_[u] - h_[v]) / len);
+    };
+    if (i + 1 < w) look(v + 1, cell_);
+    if (j + 1 < w) {
+      look(v + w, cell_);
+      if (i + 1 < w) look(v + w + 1, cell_ * std::numbers::sqrt2);
+      if (i > 0) look(v + w - 1, cell_ * std::numbers::sqrt2);
+    }
+  }
+  if (s.min == kInf) s.min = 0;
+  return s;
+}
+
+namespace {
+
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
+using BBox = bg::model::box<BPoint>;
+using SegmentEntry = std::pair<BBox, std::uint32_t>;
+
+}  // namespace
+
+std::vector<Point2> size_seeds(const SizeField& field, const Domain2& refined, double gamma) {
+  const BoxTransform<2>& box = field.box();
+  // The root: the box, or with --max-size the least square of side kSeedFactor * max * 2^m that covers it,
+  // so that where the maximum binds the leaves are exactly that size (docs/sizing.md).
+  double root = box.side;
+  if (const auto& max = field.terms().max_size) {
+    root = kSeedFactor * *max;
+    while (root < box.side) root *= 2;
+  }
+  // The segments, with the region where a seed would be too near: the diametral circle grown by gamma.
+  std::vector<std::pair<Point2, Point2>> segments;
+  std::vector<SegmentEntry> entries;
+  for (const Ring& ring : refined.rings)
+    for (std::size_t k = 0; k < ring.segment_count(); ++k) {
+      const Point2& a = ring.points[k];
+      const Point2& b = ring.points[(k + 1) % ring.points.size()];
+      const double r = gamma * 0.5 * std::hypot(b[0] - a[0], b[1] - a[1]);
+      const Point2 m{0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
+      entries.push_back({BBox(BPoint(std::min({a[0], b[0], m[0] - r}), std::min({a[1], b[1], m[1] - r})),
+                              BPoint(std::max({a[0], b[0], m[0] + r}), std::max({a[1], b[1], m[1] + r}))),
+                         static_cast<std::uint32_t>(segments.size())});
+      segments.push_back({a, b});
+    }
+  const bgi::rtree<SegmentEntry, bgi::quadratic<16>> index(entries.begin(), entries.end());
+  const WaterTest water(refined);
+  auto clear_of_shore = [&](const Point2& p, double side) {
+    const double near = 0.25 * side;
+    for (auto it = index.qbegin(bgi::intersects(BBox(BPoint(p[0] - near, p[1] - near), BPoint(p[0] + near, p[1] + near))));
+         it != index.qend(); ++it) {
+      const auto& [a, b] = segments[it->second];
+      if (dist_to_segment(p, a, b) < near) return false;
+      const double mx = 0.5 * (a[0] + b[0]) - p[0], my = 0.5 * (a[1] + b[1]) - p[1];
+      const double l2 = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
+      if (4 * (mx * mx + my * my) < gamma * gamma * l2) return false;
+    }
+    return true;
+  };
+
+  std::vector<Point2> seeds;
+  struct Node {
+    int level;
+    std::uint64_t ix, iy;
+    int extra;  // levels below the size rule's leaf: a dropped seed's leaf is tried again in quarters
+  };
+  std::vector<Node> work{{0, 0, 0, 0}};
+  const std::size_t hard_cap = 4 * field.terms().point_cap;
+  std::size_t visited = 0;
+  while (!work.empty()) {
+    const Node n = work.back();
+    work.pop_back();
+    const double side = std::ldexp(root, -n.level);
+    const Point2 lo{box.origin[0] + static_cast<double>(n.ix) * side, box.origin[1] + static_cast<double>(n.iy) * side};
+    if (lo[0] >= box.origin[0] + box.side || lo[1] >= box.origin[1] + box.side) continue;  // beyond the box
+    if (++visited > hard_cap)
+      throw InputError("the size function asks for more than " + std::to_string(hard_cap) + " quadtree cells");
+    auto split = [&](int extra) {
+      for (std::uint64_t c = 0; c < 4; ++c) work.push_back({n.level + 1, 2 * n.ix + (c & 1), 2 * n.iy + (c >> 1), extra});
+    };
+    if (n.extra == 0) {
+      const double h = field.min_over({lo[0] - side, lo[1] - side}, 3 * side);
+      if (!std::isfinite(h)) continue;  // no term sets a size here
+      if (side > kSeedFactor * h && n.level < 60) {
+        split(0);
+        continue;
+      }
+    }
+    const auto [u, v] = jitter(n.level, n.ix, n.iy);
+    const Point2 p{lo[0] + (0.5 + kSeedJitter * u) * side, lo[1] + (0.5 + kSeedJitter * v) * side};
+    if (box.contains(p) && water.in_water(p) && clear_of_shore(p, side)) {
+      seeds.push_back(p);
+    } else if (n.extra < kSeedRetries && n.level < 60) {
+      split(n.extra + 1);  // near the shore: the leaf's quarters fill what it leaves
+    }
+  }
+  std::sort(seeds.begin(), seeds.end());
+  return seeds;
+}
+
+std::function<double(const Point2&, const Point2&)> shore_max_length(std::shared_ptr<const SizeField> field) {
+  return [field](const Point2& a, const Point2& b) { return kShoreFactor * field->min_over_segment(a, b); };
+}
+
+SizeRatio size_ratio(const SizeField& field, const std::vector<Point2>& points,
+                     const std::vector<std::array<std::uint32_t, 3>>& triangles) {
+  SizeRatio r;
+  double sum = 0;
+  std::size_t count = 0;
+  for (const auto& t : triangles) {
+    const Point2 &a = points[t[0]], &b = points[t[1]], &c = points[t[2]];
+    const Point2 g{(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3};
+    const double h = field.at(g);
+    if (!std::isfinite(h)) continue;
+    const double longest = std::max({std::hypot(a[0] - b[0], a[1] - b[1]), std::hypot(b[0] - c[0], b[1] - c[1]),
+                                     std::hypot(c[0] - a[0], c[1] - a[1])});
+    const double ratio = longest / h;
+    sum += ratio;
+    ++count;
+    if (ratio > r.worst) r.worst = ratio, r.worst_at = g;
+  }
+  r.mean = count ? sum / static_cast<double>(count) : 0;
+  return r;
+}
+
+}  // namespace shoremesh
