@@ -296,8 +296,10 @@ TEST(TerrainCommand, DemPatchEditLinesEqualFreshRunsOnThePatchedDem) {
     std::vector<float> cells;
     for (int r = p.row; r < p.row + p.h; ++r)
       for (int c = p.col; c < p.col + p.w; ++c) cells.push_back(z[std::size_t(r) * w + c] + p.delta);
-    const std::string name = "p" + std::to_string(k);
-    write_dem(dir / (name + ".tif"), p.w, p.h, cells, {},
+    std::string name = std::to_string(k);
+    name.insert(0, 1, 'p');
+    name.append(".tif");
+    write_dem(dir / name, p.w, p.h, cells, {},
               {400000 + p.col * 1000.0, 1000, 0, 5400000 - p.row * 1000.0, 0, -1000});
     std::size_t i = 0;
     for (int r = p.row; r < p.row + p.h; ++r)

@@ -405,7 +405,7 @@ TEST(ConformingMesh, JettiesThroughRandomEditsEqualAFreshRun) {
         session.remove_ring(island);
         island_there = false;
       } else {  // and put back (refused where a line lies now)
-        island = session.add_ring(lake.rings[1].points).ring;
+        island = session.add_ring(lake.rings[1].points).ring.value();
         island_there = true;
         closed_ring.push_back(true);
       }

@@ -274,7 +274,9 @@ TEST(SizeControl, EachTermChangesTheMeshOnlyWhereItBinds) {
       const double cell = field.box().side / double(field.cells());
       const bool deep = c.what == "shore" || (g[0] > c.binds[0] + 2 * cell && g[0] < c.binds[2] - 2 * cell &&
                                               g[1] > c.binds[1] + 2 * cell && g[1] < c.binds[3] - 2 * cell);
-      if (deep) EXPECT_LE(field.at(g), 1.2 * term + cell) << c.what;
+      if (deep) {
+        EXPECT_LE(field.at(g), 1.2 * term + cell) << c.what;
+      }
       EXPECT_LE(longest_edge(mesh, e), 1.01 * field.at(g)) << c.what << " near " << g[0] << ", " << g[1];
     }
     EXPECT_GT(inside, 10u) << c.what;
