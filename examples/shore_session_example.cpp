@@ -26,14 +26,8 @@ std::vector<Point2> polygon(Point2 centre, double radius, int corners, double wo
 
 // The mesh's triangles as sorted corner triples: what a fresh run must reproduce.
 std::vector<ElementCorners<2>> triangles(const Mesh<2>& mesh) {
-  std::vector<ElementCorners<2>> out;
-  for (const auto& e : mesh.elements()) {
-    ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
-    std::sort(c.begin(), c.end());
-    out.push_back(c);
-  }
-  std::sort(out.begin(), out.end());
-  return out;
+  const auto elements = mesh.elements();
+  return sorted_corners<2>(mesh.points(), elements);
 }
 
 void print(const char* what, const SessionEdit<2>& e, const ShoreSession<2>& s) {

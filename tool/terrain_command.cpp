@@ -109,15 +109,7 @@ io::ExportFormat tin_format(const std::filesystem::path& path, const std::string
 
 // The triangles by their corners (sorted), to count what an edit changed.
 std::vector<ElementCorners<2>> tin_corners(const TerrainSession& s) {
-  std::vector<ElementCorners<2>> out;
-  out.reserve(s.triangles().size());
-  for (const auto& t : s.triangles()) {
-    ElementCorners<2> c{s.points()[t[0]], s.points()[t[1]], s.points()[t[2]]};
-    std::sort(c.begin(), c.end());
-    out.push_back(c);
-  }
-  std::sort(out.begin(), out.end());
-  return out;
+  return sorted_corners<2>(s.points(), s.triangles());
 }
 
 // The terrain's edit language (--edits): one reply per line, a bad line an error reply that changes nothing.

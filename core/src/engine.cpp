@@ -401,17 +401,7 @@ void WellSpacedEngine<D>::kill_vertex(VertexId v) {
 template <int D>
 void WellSpacedEngine<D>::kill(OpId o) {
   Op& op = ops_[o];
-  Vertex& vx = vertices_[op.vertex];
-  if (op.kind == OpKind::Fill) {
-    // Unlink from the vertex's fill list.
-    for (OpId* link = &vx.first_fill; *link != kNoOp; link = &ops_[*link].next_fill)
-      if (*link == o) {
-        *link = op.next_fill;
-        break;
-      }
-  } else if (vx.dispatch == o) {
-    vx.dispatch = kNoOp;
-  }
+  unlink_from_vertex(o);
   release_reads(op);  // none once undone; a fresh operation never ran
   release_children(op);
   op.flags = kDead;

@@ -88,12 +88,10 @@ void WellSpacedEngine<D>::execute(OpId o) {
   commit(o, serial_outcome_);
 }
 
-// A one-shot build forgets an operation once it has run: nothing reads it again. A vertex's fills are
-// looked up only at later times (request_fill: a dispatch asks for fills at its rank or later, and a
-// fill's colour is never 0), so an executed fill leaves its vertex's list.
+// The vertex no longer names o: a fill leaves its vertex's fill list, a dispatch its dispatch slot.
 template <int D>
-void WellSpacedEngine<D>::release_executed(OpId o) {
-  Op& op = ops_[o];
+void WellSpacedEngine<D>::unlink_from_vertex(OpId o) {
+  const Op& op = ops_[o];
   Vertex& vx = vertices_[op.vertex];
   if (op.kind == OpKind::Fill) {
     for (OpId* link = &vx.first_fill; *link != kNoOp; link = &ops_[*link].next_fill)
@@ -104,6 +102,15 @@ void WellSpacedEngine<D>::release_executed(OpId o) {
   } else if (vx.dispatch == o) {
     vx.dispatch = kNoOp;
   }
+}
+
+// A one-shot build forgets an operation once it has run: nothing reads it again. A vertex's fills are
+// looked up only at later times (request_fill: a dispatch asks for fills at its rank or later, and a
+// fill's colour is never 0), so an executed fill leaves its vertex's list.
+template <int D>
+void WellSpacedEngine<D>::release_executed(OpId o) {
+  Op& op = ops_[o];
+  unlink_from_vertex(o);
   op = Op{};
   op.flags = kDead;
   free_ops_.push_back(o);
@@ -365,6 +372,7 @@ Point<D> WellSpacedEngine<D>::pick_steiner(VertexId v, Worker& wk) const {
   template void WellSpacedEngine<D>::commit(OpId, Outcome&);                                           \
   template void WellSpacedEngine<D>::execute(OpId);                                                    \
   template void WellSpacedEngine<D>::release_executed(OpId);                                           \
+  template void WellSpacedEngine<D>::unlink_from_vertex(OpId);                                         \
   template void WellSpacedEngine<D>::execute_batch_in_parallel();                                      \
   template void WellSpacedEngine<D>::add_counters(Worker&);                                            \
   template void WellSpacedEngine<D>::collect_counters();                                               \

@@ -551,14 +551,8 @@ void TerrainSession::check_valid() const {
   // The mesh the updates left equals a fresh one on the engine's output and the rectangle, triangle for
   // triangle; every triangle's cached state equals a fresh measurement.
   auto corners = [](const Mesh2& mesh) {
-    std::vector<ElementCorners<2>> out;
-    for (const auto& e : mesh.elements()) {
-      ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
-      std::sort(c.begin(), c.end());
-      out.push_back(c);
-    }
-    std::sort(out.begin(), out.end());
-    return out;
+    const auto elements = mesh.elements();
+    return sorted_corners<2>(mesh.points(), elements);
   };
   Mesh2 fresh(m.ws->points(), m.ws->input_count(), m.refinement->refined());
   fresh.canonicalize_ties();

@@ -79,15 +79,8 @@ inline std::vector<Point2> jittered_lattice(double side, double h, double jitter
 // are the same mesh iff these lists are equal.
 template <int D>
 std::vector<ElementCorners<D>> corner_list(const Mesh<D>& mesh) {
-  std::vector<ElementCorners<D>> out;
-  for (const auto& e : mesh.elements()) {
-    ElementCorners<D> c;
-    for (int i = 0; i <= D; ++i) c[i] = mesh.points()[e[i]];
-    std::sort(c.begin(), c.end());
-    out.push_back(c);
-  }
-  std::sort(out.begin(), out.end());
-  return out;
+  const auto elements = mesh.elements();
+  return sorted_corners<D>(mesh.points(), elements);
 }
 
 // Closed rings from a Triangle .poly file: its segments chained into loops (every vertex of the shared

@@ -229,6 +229,7 @@ class WellSpacedEngine {
   // A batch of fresh operations computed on every thread, then committed in batch order.
   void execute_batch_in_parallel();
   void release_executed(OpId o);
+  void unlink_from_vertex(OpId o);
   void request_fill(VertexId w, int rank, bool crowded);
   // Whether a neighbour of the dispatched vertex other than w (in w.neighbours) lies nearer w than
   // rho^rank: then a fill of w at that rank would do nothing (see engine.cpp).
