@@ -347,7 +347,9 @@ TEST(SizeControl, RandomEditsUnderEveryTermEqualAFreshRunAfterEach) {
         << "after edit " << made << " (" << last << ")";
   }
   EXPECT_EQ(made, edits);
-  EXPECT_GE(size_edits, 2);
+  if (edits >= 16) {  // the sanitizer build's 5 edits may draw none
+    EXPECT_GE(size_edits, 2);
+  }
   EXPECT_THROW(session.set_polygon_size(7, 1000), InputError);
   EXPECT_THROW(session.set_polygon_size(0, -1), ParameterError);
 }
