@@ -269,15 +269,16 @@ QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransfo
   if constexpr (D == 2) {
     if (!mesh.domain().empty()) {
       // Elements below the bound: those the shore's constraints made (their circumcircle holds a mesh point
-      // hidden behind the shore, so they are not Delaunay) and the others. Few: each is checked against
-      // every point.
-      // The points in an R-tree (built at the first element below the bound): a fine mesh near a
-      // detailed shore has thousands of them, each checked against a million points otherwise.
+      // hidden behind the shore, so they are not Delaunay) and the others. The points in an R-tree (built
+      // at the first element below the bound): a fine mesh near a detailed shore has thousands of them,
+      // each checked against a million points otherwise.
       std::optional<bgi::rtree<BPoint, bgi::quadratic<16>>> index;
+      std::vector<std::pair<ElementCorners<2>, ElementShape<2>>> below;  // the elements below the bound
       for (const auto& e : elements) {
         const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
         const ElementShape<2> shape = element_shape<2>(c);
         if (shape.radius_edge <= rho) continue;
+        below.emplace_back(c, shape);
         if (!index) {
           std::vector<BPoint> all;
           all.reserve(mesh.points().size());
@@ -318,10 +319,7 @@ QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransfo
       };
       for (const auto& [p, angle] : ring_angle) q.sharp_corners += angle > 0 && angle < sixty;
       double worst_elsewhere = std::numeric_limits<double>::infinity();
-      for (const auto& e : elements) {
-        const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
-        const ElementShape<2> shape = element_shape<2>(c);
-        if (shape.radius_edge <= rho) continue;
+      for (const auto& [c, shape] : below) {
         if (sharp(c[0]) || sharp(c[1]) || sharp(c[2])) {
           ++q.below_bound_at_sharp_corners;
         } else if (const auto a = angles_of(c); *std::min_element(a.begin(), a.end()) < worst_elsewhere) {
