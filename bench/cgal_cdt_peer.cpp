@@ -1,7 +1,7 @@
 // Peer for the conforming water mesh benchmark (bench/superior_conforming.py, issue 33): CGAL's constrained
 // Delaunay refinement of the same polygon shoremesh meshes.
 //
-//   cgal_cdt_peer RING_FILE [--lonlat] [--projection utm|local] [--write-segments FILE]
+//   cgal_cdt_peer RING_FILE [--lonlat] [--projection utm|local] [--write-segments FILE] [--write-poly FILE]
 //
 // The ring file is read by shoremesh's own reader (io::read_input), so lon/lat rings are projected to metres
 // exactly as `shoremesh mesh --lonlat` projects them. The rings become the constraints of a
@@ -14,6 +14,10 @@
 // triangles have their smallest angle below 20.7 degrees, and the water area against the polygons' area.
 // With --write-segments the projected shore segments are written (x1 y1 x2 y2 per line, shortest round-trip
 // decimals) for the benchmark script's own conformity check of shoremesh's exported mesh.
+// With --write-poly the same projected rings are written as a Triangle .poly (vertices, segments, and one hole
+// seed per island: the centroid of a land face of the CDT inside the outer shore, one per connected land
+// region), so that a Triangle binary built by the user from Shewchuk's public source can mesh the very same
+// polygon in the benchmark (Triangle is not shipped: its license).
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_mesh_face_base_2.h>
 #include <CGAL/Delaunay_mesh_size_criteria_2.h>
@@ -140,10 +144,50 @@ std::string round_trip(double x) {
   return std::string(buf, end);
 }
 
+// The polygon as a Triangle .poly. Hole seeds: faces not reached from the infinite face without crossing a
+// constraint are inside the outer shore; those not in the water are land (islands), one seed per connected
+// land region (flooded across unconstrained edges), at the centroid of its first face.
+bool write_poly(const Cdt& cdt, const std::vector<Point>& points,
+                const std::vector<std::pair<std::size_t, std::size_t>>& edges, const std::string& path) {
+  std::unordered_set<Face_handle> reached;
+  auto flood = [&](Face_handle start) {
+    std::vector<Face_handle> stack{start};
+    reached.insert(start);
+    while (!stack.empty()) {
+      const Face_handle f = stack.back();
+      stack.pop_back();
+      for (int i = 0; i < 3; ++i) {
+        const Face_handle n = f->neighbor(i);
+        if (cdt.is_constrained({f, i}) || reached.count(n)) continue;
+        reached.insert(n);
+        stack.push_back(n);
+      }
+    }
+  };
+  flood(cdt.infinite_face());
+  std::vector<Point> seeds;
+  for (Face_handle f : cdt.finite_face_handles()) {
+    if (f->is_in_domain() || reached.count(f)) continue;
+    seeds.push_back(CGAL::centroid(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()));
+    flood(f);
+  }
+  std::ofstream out(path);
+  out << points.size() << " 2 0 0\n";
+  for (std::size_t i = 0; i < points.size(); ++i)
+    out << i + 1 << ' ' << round_trip(points[i].x()) << ' ' << round_trip(points[i].y()) << '\n';
+  out << edges.size() << " 0\n";
+  for (std::size_t k = 0; k < edges.size(); ++k)
+    out << k + 1 << ' ' << edges[k].first + 1 << ' ' << edges[k].second + 1 << '\n';
+  out << seeds.size() << '\n';
+  for (std::size_t k = 0; k < seeds.size(); ++k)
+    out << k + 1 << ' ' << round_trip(seeds[k].x()) << ' ' << round_trip(seeds[k].y()) << '\n';
+  return static_cast<bool>(out);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string path, segments_out;
+  std::string path, segments_out, poly_out;
   shoremesh::io::InputOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -159,15 +203,17 @@ int main(int argc, char** argv) {
           p == "local" ? shoremesh::io::ProjectionChoice::LocalTransverseMercator : shoremesh::io::ProjectionChoice::Utm;
     } else if (a == "--write-segments" && i + 1 < argc) {
       segments_out = argv[++i];
+    } else if (a == "--write-poly" && i + 1 < argc) {
+      poly_out = argv[++i];
     } else if (path.empty() && !a.empty() && a[0] != '-') {
       path = a;
     } else {
-      std::cerr << "usage: cgal_cdt_peer RING_FILE [--lonlat] [--projection utm|local] [--write-segments FILE]\n";
+      std::cerr << "usage: cgal_cdt_peer RING_FILE [--lonlat] [--projection utm|local] [--write-segments FILE] [--write-poly FILE]\n";
       return 2;
     }
   }
   if (path.empty()) {
-    std::cerr << "usage: cgal_cdt_peer RING_FILE [--lonlat] [--projection utm|local] [--write-segments FILE]\n";
+    std::cerr << "usage: cgal_cdt_peer RING_FILE [--lonlat] [--projection utm|local] [--write-segments FILE] [--write-poly FILE]\n";
     return 2;
   }
 
@@ -230,6 +276,13 @@ int main(int argc, char** argv) {
   const auto t1 = Clock::now();
   mark_domains(cdt);
   const auto t2 = Clock::now();
+  if (!poly_out.empty()) {
+    if (!write_poly(cdt, points, edges, poly_out)) {
+      std::cerr << "cgal_cdt_peer: cannot write " << poly_out << "\n";
+      return 1;
+    }
+    return 0;
+  }
   CGAL::refine_Delaunay_mesh_2(cdt, Criteria(0.125, 0), /*domain_specified=*/true);
   const auto t3 = Clock::now();
   const double c3 = cpu_seconds();

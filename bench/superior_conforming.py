@@ -12,6 +12,11 @@ and the CGAL peer (bench/cgal_cdt_peer.cpp) as
 
     taskset -c CPU /usr/bin/time -v cgal_cdt_peer RINGS.csv --lonlat
 
+and, with --triangle PATH (a binary the user built from Shewchuk's public triangle.c: it is not shipped, its
+license is not ours), Triangle on the same projected polygon written by the peer as a .poly (--write-poly):
+
+    taskset -c CPU /usr/bin/time -v triangle -pq20.7 -Q WORK/superior.poly
+
 Wall time and peak RSS come from /usr/bin/time (the whole process: reading, projecting, meshing, writing for
 shoremesh; reading and projecting included for the peer too, whose own line also gives the CGAL-only time).
 shoremesh's summary lines (quality, shoreline, 'at the shore') are parsed; independently, the exported .msh
@@ -22,7 +27,7 @@ walk, within rounding of the line).
 
 Usage:
   bench/superior_conforming.py --tool base=/path/shoremesh --tool new=/path/shoremesh \
-      --peer BUILD/bench/cgal_cdt_peer [--repeats 3] [--cpu 1] [--work DIR]
+      --peer BUILD/bench/cgal_cdt_peer [--triangle PATH] [--repeats 3] [--cpu 1] [--work DIR]
 """
 import argparse
 import math
@@ -139,8 +144,24 @@ def read_msh(path):
     return node, tris
 
 
+def read_triangle(prefix):
+    """Triangle's PREFIX.node and PREFIX.ele (first attribute-free columns), in read_msh's form."""
+    def rows(path):
+        with open(path) as f:
+            out = [l.split("#", 1)[0].split() for l in f]
+        return [r for r in out if r]
+    nodes = rows(prefix + ".node")
+    node = {int(r[0]): (r[1], r[2]) for r in nodes[1:1 + int(nodes[0][0])]}
+    eles = rows(prefix + ".ele")
+    tris = [tuple(int(v) for v in r[1:4]) for r in eles[1:1 + int(eles[0][0])]]
+    return node, tris
+
+
 def analyse_mesh(msh, segments_path):
-    node, tris = read_msh(msh)
+    return analyse_elements(*read_msh(msh), segments_path)
+
+
+def analyse_elements(node, tris, segments_path):
     xy = {t: (float(c[0]), float(c[1])) for t, c in node.items()}
     used = set()
     below, min_angle = 0, 180.0
@@ -215,6 +236,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--tool", action="append", default=[], help="LABEL=PATH of a shoremesh binary (repeatable)")
     ap.add_argument("--peer", help="path of cgal_cdt_peer")
+    ap.add_argument("--triangle", help="path of a Triangle binary (needs --peer, which writes the .poly)")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--cpu", type=int, default=1)
     ap.add_argument("--work", default="/tmp/superior_conforming")
@@ -236,6 +258,14 @@ def main():
         r = subprocess.run([args.peer, ring_file, "--lonlat", "--write-segments", segments], capture_output=True, text=True)
         if r.returncode != 0:
             sys.exit(f"peer failed writing the segments: {r.stderr}")
+    triangle_runs = []
+    poly = os.path.join(args.work, "superior.poly")
+    if args.triangle:
+        if not args.peer:
+            sys.exit("--triangle needs --peer (the peer writes the projected polygon)")
+        r = subprocess.run([args.peer, ring_file, "--lonlat", "--write-poly", poly], capture_output=True, text=True)
+        if r.returncode != 0:
+            sys.exit(f"peer failed writing the .poly: {r.stderr}")
     for rep in range(args.repeats):
         for label, path in tools:
             out = os.path.join(args.work, f"{label}.msh")
@@ -253,6 +283,11 @@ def main():
             print(f"[{rep + 1}/{args.repeats}] peer: rc={r['rc']} wall={r['wall_s']:.2f}s cpu={r['cpu_s']:.2f}s "
                   f"rss={r['rss_mb']:.1f}MB load={r['load']:.2f} "
                   f"{r['line']}", flush=True)
+        if args.triangle:
+            r = run_timed([args.triangle, "-pq20.7", "-Q", poly], args.cpu)
+            triangle_runs.append(r)
+            print(f"[{rep + 1}/{args.repeats}] triangle: rc={r['rc']} wall={r['wall_s']:.2f}s cpu={r['cpu_s']:.2f}s "
+                  f"rss={r['rss_mb']:.1f}MB load={r['load']:.2f}", flush=True)
 
     print("\n## results")
     rows = []
@@ -290,6 +325,19 @@ def main():
                                        water_vertices=int(p["water_vertices"]), triangles=int(p["water_triangles"]),
                                        below_bound=int(p["below_20.7deg"]), min_angle=float(p["min_angle_deg"]),
                                        segments=int(p["segments"]), segments_covered=int(p["segments_mesh_edges"]))))
+
+    if triangle_runs:
+        ok = [r for r in triangle_runs if r["rc"] == 0]
+        print(f"### triangle: {args.triangle}\ncommand: {triangle_runs[0]['cmd']}")
+        if ok:
+            m = analyse_elements(*read_triangle(poly[:-len(".poly")] + ".1"), segments)
+            print(f"triangle's mesh: {m}")
+            rows.append(("triangle -pq20.7", dict(wall=statistics.median(r["wall_s"] for r in ok),
+                                                 cpu=statistics.median(r["cpu_s"] for r in ok),
+                                                 rss=statistics.median(r["rss_mb"] for r in ok),
+                                                 walls=[r["wall_s"] for r in ok], rsss=[r["rss_mb"] for r in ok], **m)))
+        else:
+            rows.append(("triangle -pq20.7", None))
 
     print("\n| run | median wall s (3 runs) | median CPU s | peak RSS MB (median) | water vertices | water triangles "
           "| shore segments that are mesh edges (exported mesh) | triangles below 20.7° | smallest angle |")
