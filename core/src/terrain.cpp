@@ -102,9 +102,11 @@ void for_each_sample(const HeightGrid& g, const std::array<Point2, 3>& p, const 
     }
 }
 
-TriangleError measure(const HeightGrid& g, const std::array<Point2, 3>& p, const std::array<double, 3>& h) {
+// Only the samples at or above `from` count (the land of a land-and-water TIN).
+TriangleError measure(const HeightGrid& g, const std::array<Point2, 3>& p, const std::array<double, 3>& h, double from) {
   TriangleError e;
   for_each_sample(g, p, h, [&](std::size_t i, double zi) {
+    if (!(g.z[i] >= from)) return;
     const double err = std::abs(g.z[i] - zi);
     if (err > e.error || (err == e.error && e.sample != kNoSample && i < e.sample)) e.error = err, e.sample = i;
   });
@@ -148,10 +150,14 @@ struct TerrainSession::Impl {
   TerrainUpdate build;
   std::size_t rounds = 0;
 
+  // A land-and-water TIN: the options' rings instead of the rectangle.
+  bool custom() const { return !options.domain.empty(); }
+
   Point2 position(std::size_t s) const {
     return grid.position(static_cast<int>(s % grid.width), static_cast<int>(s / grid.width));
   }
   bool on_boundary(std::size_t s) const {
+    if (custom()) return false;  // samples are loose points inside the rings
     const int c = static_cast<int>(s % grid.width), r = static_cast<int>(s / grid.width);
     return c == 0 || r == 0 || c == grid.width - 1 || r == grid.height - 1;
   }
@@ -175,6 +181,7 @@ struct TerrainSession::Impl {
 
   // The grid's rectangle through the boundary samples that are inputs and the boundary's splits, in order.
   Domain2 rectangle() const {
+    if (custom()) return options.domain;
     std::vector<std::pair<double, Point2>> ring;
     auto take = [&](int c, int r) {
       const std::size_t s = grid.index(c, r);
@@ -191,6 +198,9 @@ struct TerrainSession::Impl {
   }
 
   bool same_boundary_line(const Point2& a, const Point2& b) const {
+    // The rings' own canonical splits (ShoreRefinement) make them mesh edges; Ruppert's halving here is
+    // the rectangle's (it ends at right angles, not at a traced contour's sharp corners).
+    if (custom()) return false;
     const Point2 lo = grid.position(0, 0), hi = grid.position(grid.width - 1, grid.height - 1);
     return (a[0] == b[0] && (a[0] == lo[0] || a[0] == hi[0])) || (a[1] == b[1] && (a[1] == lo[1] || a[1] == hi[1]));
   }
@@ -236,7 +246,8 @@ struct TerrainSession::Impl {
   // Ruppert's rule, which ends for the rectangle's right angles).
   void measure_triangle(const ElementCorners<2>& key, TerrainUpdate& u) {
     TriangleState st;
-    st.error = measure(grid, {key[0], key[1], key[2]}, {node_height(key[0]), node_height(key[1]), node_height(key[2])});
+    st.error = measure(grid, {key[0], key[1], key[2]}, {node_height(key[0]), node_height(key[1]), node_height(key[2])},
+                       options.bound_from);
     ++u.triangles_measured;
     for (int k = 0; k < 3; ++k) {
       const Point2 &a = key[(k + 1) % 3], &b = key[(k + 2) % 3], &c = key[k];
@@ -290,7 +301,12 @@ struct TerrainSession::Impl {
     for (std::size_t s : samples)
       if (!on_boundary(s)) loose.push_back(position(s));
     refinement.emplace(rect, loose, RefinementRule::for_box(box.side));
-    std::vector<Point2> inputs = rect.rings[0].points;
+    std::vector<Point2> inputs;
+    for (const Ring& ring : rect.rings) inputs.insert(inputs.end(), ring.points.begin(), ring.points.end());
+    if (custom()) {  // lines and rings may share vertices: each point once
+      std::sort(inputs.begin(), inputs.end());
+      inputs.erase(std::unique(inputs.begin(), inputs.end()), inputs.end());
+    }
     inputs.insert(inputs.end(), loose.begin(), loose.end());
     for (const Point2& p : refinement->split_points()) inputs.push_back(p);
     for (std::size_t s : samples) sample_at.emplace(position(s), s);
@@ -395,8 +411,15 @@ struct TerrainSession::Impl {
 };
 
 TerrainSession::TerrainSession(HeightGrid grid, const TerrainOptions& options) : impl_(std::make_unique<Impl>()) {
-  if (!(options.max_error > 0) || !std::isfinite(options.max_error))
+  const bool custom = !options.domain.empty();
+  if (!(options.max_error > 0) || (!std::isfinite(options.max_error) && !custom))
     throw ParameterError("the maximum error must be a finite number above 0 (got " + readable(options.max_error) + ")");
+  if (custom && options.seed_fraction != 0)
+    throw ParameterError("seeds are for the rectangle's TIN, not for a TIN inside rings");
+  if (std::isnan(options.bound_from)) throw ParameterError("the height the error bound applies from is NaN");
+  if (custom)
+    if (const auto defect = find_ring_defect(options.domain, true))
+      throw InputError("the TIN's rings and lines: " + defect->describe());
   if (!(options.seed_fraction >= 0 && options.seed_fraction <= 1))
     throw ParameterError("the seeds' fraction of the maximum error must lie in [0, 1] (got " +
                          readable(options.seed_fraction) + ")");
@@ -419,13 +442,15 @@ TerrainSession::TerrainSession(HeightGrid grid, const TerrainOptions& options) :
   m.options = options;
   const auto t0 = Clock::now();
   m.seeds.build(m.grid, options.seed_fraction * options.max_error);
-  for (std::size_t s : m.corners()) m.samples.insert(s);
+  if (!custom)
+    for (std::size_t s : m.corners()) m.samples.insert(s);
   for (std::size_t s : m.seeds.sorted()) m.samples.insert(s);
   m.build.seeds_added = m.seeds.size();
   m.build.seed_ms = ms_since(t0);
   const std::array<std::size_t, 4> corners = m.corners();
   std::vector<Point2> corner_points;
   for (std::size_t s : corners) corner_points.push_back(m.position(s));
+  for (const Ring& ring : m.options.domain.rings) corner_points.insert(corner_points.end(), ring.points.begin(), ring.points.end());
   m.box = BoxTransform<2>::fit(corner_points);
   m.build_engine(m.build);
   m.run_rounds(m.build);
@@ -439,6 +464,7 @@ TerrainUpdate TerrainSession::patch(int col, int row, int w, int h, std::span<co
                                     std::span<const std::uint8_t> valid) {
   Impl& m = *impl_;
   HeightGrid& g = m.grid;
+  if (m.custom()) throw ParameterError("a TIN inside rings (land and water) takes no patches");
   if (w <= 0 || h <= 0 || col < 0 || row < 0 || col > g.width - w || row > g.height - h)
     throw InputError("the patch [" + std::to_string(col) + ", " + std::to_string(col + w) + ") x [" + std::to_string(row) +
                      ", " + std::to_string(row + h) + ") does not lie in the grid of " + std::to_string(g.width) + " x " +
@@ -534,7 +560,8 @@ TerrainError TerrainSession::error() const {
   TerrainError e;
   double sum = 0;
   for (std::size_t i = 0; i < g.z.size(); ++i) {
-    if (!g.is_valid(i)) continue;
+    if (!g.is_valid(i) || !(g.z[i] >= m.options.bound_from)) continue;
+    if (exact[i] < 0 && m.custom()) continue;  // outside the rings
     ++e.samples;
     const double x = exact[i] < 0 ? std::numeric_limits<double>::infinity() : exact[i];  // outside every triangle
     if (x > e.max || e.samples == 1) e.max = x, e.worst_sample = i;
