@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -131,6 +132,11 @@ struct TerrainSession::Impl {
   // Midpoints of boundary edges that a TIN vertex encroached (inside the edge's diametral circle), made
   // in the rounds like the picks: ring points that are not samples.
   std::set<Point2> boundary_splits;
+  // With a domain (custom()): its rings with the boundary splits in them, and every constrained edge of
+  // the mesh (a subsegment of the refined rings) with the ring and the segment of `current` it lies on.
+  Domain2 current;
+  std::map<std::pair<Point2, Point2>, std::pair<std::size_t, std::size_t>> constrained;
+  std::map<Point2, std::pair<Point2, Point2>> split_edge;  // a boundary split: the edge it halves
   BoxTransform<2> box;
   std::optional<ShoreRefinement> refinement;
   std::optional<DynamicWellSpaced<2>> ws;
@@ -181,7 +187,7 @@ struct TerrainSession::Impl {
 
   // The grid's rectangle through the boundary samples that are inputs and the boundary's splits, in order.
   Domain2 rectangle() const {
-    if (custom()) return options.domain;
+    if (custom()) return current;
     std::vector<std::pair<double, Point2>> ring;
     auto take = [&](int c, int r) {
       const std::size_t s = grid.index(c, r);
@@ -198,11 +204,48 @@ struct TerrainSession::Impl {
   }
 
   bool same_boundary_line(const Point2& a, const Point2& b) const {
-    // The rings' own canonical splits (ShoreRefinement) make them mesh edges; Ruppert's halving here is
-    // the rectangle's (it ends at right angles, not at a traced contour's sharp corners).
-    if (custom()) return false;
+    if (custom()) return constrained.count(std::minmax(a, b)) != 0;
     const Point2 lo = grid.position(0, 0), hi = grid.position(grid.width - 1, grid.height - 1);
     return (a[0] == b[0] && (a[0] == lo[0] || a[0] == hi[0])) || (a[1] == b[1] && (a[1] == lo[1] || a[1] == hi[1]));
+  }
+
+  // The refined rings' consecutive points are the mesh's constrained edges; each lies on the segment of
+  // `current` whose vertices the walk passed last (the refinement only inserts points into segments).
+  void index_constrained() {
+    constrained.clear();
+    const Domain2& refined = refinement->refined();
+    for (std::size_t k = 0; k < refined.rings.size() && k < current.rings.size(); ++k) {
+      const Ring& r = refined.rings[k];
+      const std::vector<Point2>& vertices = current.rings[k].points;
+      if (r.points.size() < 2 || vertices.empty()) continue;
+      std::size_t j = 0;
+      for (std::size_t i = 0; i < r.segment_count(); ++i) {
+        const Point2& a = r.points[i];
+        const Point2& b = r.points[(i + 1) % r.points.size()];
+        if (j + 1 < vertices.size() && a == vertices[j + 1]) ++j;
+        constrained.emplace(std::minmax(a, b), std::make_pair(k, j));
+      }
+    }
+  }
+
+  // Boundary splits go into `current`, each after the vertex that starts its segment, in order along it.
+  void insert_splits(const std::vector<Point2>& splits) {
+    std::map<std::pair<std::size_t, std::size_t>, std::vector<std::pair<double, Point2>>> by_segment;
+    for (const Point2& m : splits) {
+      const auto edge = split_edge.find(m);
+      if (edge == split_edge.end()) continue;
+      const auto at = constrained.find(std::minmax(edge->second.first, edge->second.second));
+      if (at == constrained.end()) continue;
+      const Point2& start = current.rings[at->second.first].points[at->second.second];
+      by_segment[at->second].push_back({std::hypot(m[0] - start[0], m[1] - start[1]), m});
+    }
+    for (auto it = by_segment.rbegin(); it != by_segment.rend(); ++it) {  // later segments first
+      std::sort(it->second.begin(), it->second.end());
+      std::vector<Point2>& ring = current.rings[it->first.first].points;
+      std::vector<Point2> mids;
+      for (const auto& [d, m] : it->second) mids.push_back(m);
+      ring.insert(ring.begin() + static_cast<std::ptrdiff_t>(it->first.second) + 1, mids.begin(), mids.end());
+    }
   }
 
   double node_height(const Point2& p) const {
@@ -252,13 +295,18 @@ struct TerrainSession::Impl {
     for (int k = 0; k < 3; ++k) {
       const Point2 &a = key[(k + 1) % 3], &b = key[(k + 2) % 3], &c = key[k];
       if (!same_boundary_line(a, b)) continue;
+      // Inside rings, the refinement already sees ring points and picks: only Steiner points encroach here.
+      if (custom() && input_id.count(c)) continue;
       // c in the diametral circle of ab: an obtuse angle at c (CGAL's exact predicate).
       const bool encroached = CGAL::angle(Kernel::Point_2(a[0], a[1]), Kernel::Point_2(c[0], c[1]),
                                           Kernel::Point_2(b[0], b[1])) == CGAL::OBTUSE;
       const Point2 mid{0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
       const Point2 gm = grid.to_grid(mid), ga = grid.to_grid(a);
       // No split below 1/1024 of a cell: the engine resolves it, but no DEM error needs it.
-      if (encroached && std::hypot(gm[0] - ga[0], gm[1] - ga[1]) > 1.0 / 1024) st.splits.push_back(mid);
+      if (encroached && std::hypot(gm[0] - ga[0], gm[1] - ga[1]) > 1.0 / 1024) {
+        st.splits.push_back(mid);
+        if (custom()) split_edge.insert_or_assign(mid, std::make_pair(a, b));
+      }
     }
     if (st.error.error > options.max_error || !st.splits.empty()) flagged.insert(key);
     else flagged.erase(key);
@@ -301,6 +349,7 @@ struct TerrainSession::Impl {
     for (std::size_t s : samples)
       if (!on_boundary(s)) loose.push_back(position(s));
     refinement.emplace(rect, loose, RefinementRule::for_box(box.side));
+    if (custom()) index_constrained();
     std::vector<Point2> inputs;
     for (const Ring& ring : rect.rings) inputs.insert(inputs.end(), ring.points.begin(), ring.points.end());
     if (custom()) {  // lines and rings may share vertices: each point once
@@ -335,6 +384,7 @@ struct TerrainSession::Impl {
     std::vector<Point2> loose_added, loose_removed, gone(splits_removed), come(splits_added);
     for (const Point2& p : splits_removed) boundary_splits.erase(p);
     for (const Point2& p : splits_added) boundary_splits.insert(p);
+    if (custom()) insert_splits(splits_added);
     for (std::size_t s : removed) {
       samples.erase(s);
       const Point2 p = position(s);
@@ -350,6 +400,7 @@ struct TerrainSession::Impl {
       if (!on_boundary(s)) loose_added.push_back(p);
     }
     const SplitChange splits = refinement->update(rectangle(), loose_removed, loose_added);
+    if (custom()) index_constrained();
     gone.insert(gone.end(), splits.removed.begin(), splits.removed.end());
     come.insert(come.end(), splits.added.begin(), splits.added.end());
     // A point that goes and comes (a split where a sample now is) keeps its id.
@@ -388,8 +439,10 @@ struct TerrainSession::Impl {
       const auto t0 = Clock::now();
       std::vector<std::size_t> round = picks_of_round(splits);
       u.error_ms += ms_since(t0);
-      // A midpoint at a sample (to rounding: it halves an edge between samples) is that sample.
+      // A midpoint at a sample (to rounding: it halves an edge between samples) is that sample (on the
+      // rectangle, whose ring takes its input samples; inside rings a split stays a ring point).
       std::erase_if(splits, [&](const Point2& p) {
+        if (custom()) return false;
         const Point2 g = grid.to_grid(p);
         const double c = std::round(g[0]), r = std::round(g[1]);
         if (std::abs(g[0] - c) > 1e-6 || std::abs(g[1] - r) > 1e-6) return false;
@@ -440,6 +493,7 @@ TerrainSession::TerrainSession(HeightGrid grid, const TerrainOptions& options) :
   Impl& m = *impl_;
   m.grid = std::move(grid);
   m.options = options;
+  m.current = options.domain;
   const auto t0 = Clock::now();
   m.seeds.build(m.grid, options.seed_fraction * options.max_error);
   if (!custom)
@@ -592,6 +646,8 @@ void TerrainSession::check_valid() const {
   copy.grid = m.grid;
   copy.options = m.options;
   copy.sample_at = m.sample_at;
+  copy.input_id = m.input_id;
+  copy.constrained = m.constrained;
   for (const auto& key : a) {
     TerrainUpdate u;
     copy.measure_triangle(key, u);
