@@ -14,6 +14,7 @@
 #include <map>
 #include <set>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -142,7 +143,24 @@ ShoreLines shoreline_lines(const Domain2& shore, const Domain2& domain, double c
       out.lines.push_back(std::move(b));
       continue;
     }
-    // Runs of clear segments, starting after a gap so that none wraps.
+    // Runs of clear segments, starting after a gap so that none wraps. A run goes on into the segments
+    // beside it as far as the clearance holds (bisection), so that it stops about `clearance` from the
+    // domain's ring rather than a whole segment before.
+    auto clip = [&](const Point2& v, const Point2& w) -> std::optional<Point2> {
+      auto at = [&](double t) { return Point2{v[0] + t * (w[0] - v[0]), v[1] + t * (w[1] - v[1])}; };
+      auto ok = [&](double t) {
+        const Point2 p = at(t);
+        return nearest_within(bp(p), clearance) >= clearance &&
+               nearest_within(BSegment(bp(v), bp(p)), clearance) >= 0.5 * clearance;
+      };
+      double lo = 0, hi = 1;
+      for (int i = 0; i < 30; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (ok(mid) ? lo : hi) = mid;
+      }
+      if (lo * std::hypot(w[0] - v[0], w[1] - v[1]) < 0.1 * clearance) return std::nullopt;
+      return at(lo);
+    };
     const std::size_t start = static_cast<std::size_t>(first_gap - segment_clear.begin());
     Ring line{{}, RingRole::Line};
     auto flush = [&] {
@@ -150,13 +168,19 @@ ShoreLines shoreline_lines(const Domain2& shore, const Domain2& domain, double c
       line.points.clear();
     };
     for (std::size_t i = 1; i <= n; ++i) {
-      const std::size_t k = (start + i) % n;
+      const std::size_t k = (start + i) % n, next = (k + 1) % n, previous = (k + n - 1) % n;
       if (!segment_clear[k]) {
+        if (!line.points.empty())
+          if (const auto p = clip(r.points[k], r.points[next])) line.points.push_back(*p);
         flush();
         continue;
       }
-      if (line.points.empty()) line.points.push_back(r.points[k]);
-      line.points.push_back(r.points[(k + 1) % n]);
+      if (line.points.empty()) {
+        if (!segment_clear[previous])
+          if (const auto p = clip(r.points[k], r.points[previous])) line.points.push_back(*p);
+        line.points.push_back(r.points[k]);
+      }
+      line.points.push_back(r.points[next]);
     }
     flush();
   }
