@@ -248,11 +248,14 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
         ->check(above_zero(true));
   }
   add_quiet_option(cmd, a.quiet);
-  cmd->callback([&a, several] {
+  cmd->callback([&a, several, cmd] {
     if (a.files.empty() && (!several || a.dem.empty()))
       throw CLI::RequiredError(several ? "an input file or --dem" : "input");
     if (!a.dem.empty() && !a.depth_from.empty())
       throw CLI::ValidationError("--depth-from", "--dem is the depth source already; give one of them");
+    if ((a.land_up_to || a.max_error) && cmd->get_name() != "mesh")
+      throw CLI::ValidationError(a.land_up_to ? "--land-up-to" : "--max-error",
+                                 "is for `mesh` (one land-and-water mesh of a DEM), not for `" + cmd->get_name() + "`");
     if (a.land_up_to && a.dem.empty())
       throw CLI::ValidationError("--land-up-to", "meshes a DEM's land and water: give --dem FILE");
     if (a.max_error && !a.land_up_to)

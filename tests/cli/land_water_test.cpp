@@ -318,6 +318,9 @@ TEST(LandWater, BadInputNamesTheOption) {
   run = shoremesh(dir, "mesh --dem " + quote(kSalish) + " --max-error 5 -o x.obj");
   EXPECT_NE(run.code, 0);
   EXPECT_NE(run.err.find("--max-error"), std::string::npos) << run.err;
+  run = shoremesh(dir, "edit --dem " + quote(kSalish) + " --land-up-to 10 --edits -", "stats\n");
+  EXPECT_NE(run.code, 0);
+  EXPECT_NE(run.err.find("--land-up-to"), std::string::npos) << run.err;
   run = shoremesh(dir, "mesh --dem " + quote(kSalish) + " --land-up-to -2000 -o x.obj");
   EXPECT_NE(run.code, 0);
   EXPECT_NE(run.err.find("--land-up-to"), std::string::npos) << run.err;
