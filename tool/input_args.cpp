@@ -228,6 +228,12 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
                     "at --shoreline-level, water below; mesh nodes get their depths from it")
         ->check(CLI::ExistingFile);
     dem->add_option("--shoreline-level", a.shoreline_level, "--dem: height of the shoreline in metres (default 0)");
+    dem->add_option("--land-up-to", a.land_up_to,
+                    "--dem: one mesh of the water and of the land below this height (metres, above "
+                    "--shoreline-level), the shoreline a chain of mesh edges inside it, heights on every node");
+    dem->add_option("--max-error", a.max_error,
+                    "--land-up-to: refine the land until the mesh is within this height (metres) of every DEM "
+                    "sample on land");
     dem->add_option("--depth-from", a.depth_from, "A DEM giving the depths at mesh nodes beside other inputs")
         ->check(CLI::ExistingFile);
     dem->add_option("--min-depth", a.min_depth, "Depths below this value (metres, positive down) are raised to it");
@@ -242,11 +248,18 @@ void add_input_options(CLI::App* cmd, InputArgs& a, bool several) {
         ->check(above_zero(true));
   }
   add_quiet_option(cmd, a.quiet);
-  cmd->callback([&a, several] {
+  cmd->callback([&a, several, cmd] {
     if (a.files.empty() && (!several || a.dem.empty()))
       throw CLI::RequiredError(several ? "an input file or --dem" : "input");
     if (!a.dem.empty() && !a.depth_from.empty())
       throw CLI::ValidationError("--depth-from", "--dem is the depth source already; give one of them");
+    if ((a.land_up_to || a.max_error) && cmd->get_name() != "mesh")
+      throw CLI::ValidationError(a.land_up_to ? "--land-up-to" : "--max-error",
+                                 "is for `mesh` (one land-and-water mesh of a DEM), not for `" + cmd->get_name() + "`");
+    if (a.land_up_to && a.dem.empty())
+      throw CLI::ValidationError("--land-up-to", "meshes a DEM's land and water: give --dem FILE");
+    if (a.max_error && !a.land_up_to)
+      throw CLI::ValidationError("--max-error", "bounds the error on land: give --land-up-to Z (and --dem FILE)");
     if (a.open_boundary_distance && a.open_boundary.empty())
       throw CLI::ValidationError("--open-boundary-distance", "applies to the lines of --open-boundary FILE; give one");
   });

@@ -32,6 +32,8 @@ struct InputArgs {
   std::string projection = "local";  // local | utm
   std::string dem;                 // a DEM traced at shoreline_level, and the depth source
   double shoreline_level = 0;
+  std::optional<double> land_up_to;  // --dem: mesh the land below this height too (land_water.cpp)
+  std::optional<double> max_error;   // --land-up-to: vertical error bound on land
   std::string depth_from;          // a DEM giving depths beside other inputs
   std::optional<double> min_depth;
   std::string open_boundary;       // lines along which fort.14's boundary is open (beside the data's edges)

@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "input_args.hpp"
+#include "land_water.hpp"
 #include "pipeline.hpp"
 #include "progress.hpp"
 #include "shoremesh/error.hpp"
@@ -142,6 +143,14 @@ Command add_mesh_command(CLI::App& app) {
   return [opt]() {
     Progress progress(!opt->in.quiet && Progress::stderr_is_terminal(), opt->in.files.size() + 4);
     opt->in.three_d = opt->engine.dim == 3;
+    if (opt->in.land_up_to) {
+      LandWaterRequest req{opt->in, opt->output, opt->format, opt->preview, opt->engine.rho, std::nullopt};
+      if (opt->size.any()) req.other_options = "size control (--max-size and the other size options)";
+      else if (!opt->engine.box.empty()) req.other_options = "--box";
+      else if (opt->engine.dim == 3) req.other_options = "--dim 3";
+      else if (opt->engine.keep_hull) req.other_options = "--keep-hull";
+      return run_land_water(req, progress);
+    }
     const io::InputSet set = read_user_inputs(opt->in, progress);
     const int dim = opt->engine.dim != 0 ? opt->engine.dim : set.dimension;
     return dim == 3 ? run_mesh<3>(*opt, set, progress) : run_mesh<2>(*opt, set, progress);

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -102,9 +103,11 @@ void for_each_sample(const HeightGrid& g, const std::array<Point2, 3>& p, const 
     }
 }
 
-TriangleError measure(const HeightGrid& g, const std::array<Point2, 3>& p, const std::array<double, 3>& h) {
+// Only the samples at or above `from` count (the land of a land-and-water TIN).
+TriangleError measure(const HeightGrid& g, const std::array<Point2, 3>& p, const std::array<double, 3>& h, double from) {
   TriangleError e;
   for_each_sample(g, p, h, [&](std::size_t i, double zi) {
+    if (!(g.z[i] >= from)) return;
     const double err = std::abs(g.z[i] - zi);
     if (err > e.error || (err == e.error && e.sample != kNoSample && i < e.sample)) e.error = err, e.sample = i;
   });
@@ -129,6 +132,11 @@ struct TerrainSession::Impl {
   // Midpoints of boundary edges that a TIN vertex encroached (inside the edge's diametral circle), made
   // in the rounds like the picks: ring points that are not samples.
   std::set<Point2> boundary_splits;
+  // With a domain (custom()): its rings with the boundary splits in them, and every constrained edge of
+  // the mesh (a subsegment of the refined rings) with the ring and the segment of `current` it lies on.
+  Domain2 current;
+  std::map<std::pair<Point2, Point2>, std::pair<std::size_t, std::size_t>> constrained;
+  std::map<Point2, std::pair<Point2, Point2>> split_edge;  // a boundary split: the edge it halves
   BoxTransform<2> box;
   std::optional<ShoreRefinement> refinement;
   std::optional<DynamicWellSpaced<2>> ws;
@@ -148,10 +156,14 @@ struct TerrainSession::Impl {
   TerrainUpdate build;
   std::size_t rounds = 0;
 
+  // A land-and-water TIN: the options' rings instead of the rectangle.
+  bool custom() const { return !options.domain.empty(); }
+
   Point2 position(std::size_t s) const {
     return grid.position(static_cast<int>(s % grid.width), static_cast<int>(s / grid.width));
   }
   bool on_boundary(std::size_t s) const {
+    if (custom()) return false;  // samples are loose points inside the rings
     const int c = static_cast<int>(s % grid.width), r = static_cast<int>(s / grid.width);
     return c == 0 || r == 0 || c == grid.width - 1 || r == grid.height - 1;
   }
@@ -175,6 +187,7 @@ struct TerrainSession::Impl {
 
   // The grid's rectangle through the boundary samples that are inputs and the boundary's splits, in order.
   Domain2 rectangle() const {
+    if (custom()) return current;
     std::vector<std::pair<double, Point2>> ring;
     auto take = [&](int c, int r) {
       const std::size_t s = grid.index(c, r);
@@ -191,8 +204,48 @@ struct TerrainSession::Impl {
   }
 
   bool same_boundary_line(const Point2& a, const Point2& b) const {
+    if (custom()) return constrained.count(std::minmax(a, b)) != 0;
     const Point2 lo = grid.position(0, 0), hi = grid.position(grid.width - 1, grid.height - 1);
     return (a[0] == b[0] && (a[0] == lo[0] || a[0] == hi[0])) || (a[1] == b[1] && (a[1] == lo[1] || a[1] == hi[1]));
+  }
+
+  // The refined rings' consecutive points are the mesh's constrained edges; each lies on the segment of
+  // `current` whose vertices the walk passed last (the refinement only inserts points into segments).
+  void index_constrained() {
+    constrained.clear();
+    const Domain2& refined = refinement->refined();
+    for (std::size_t k = 0; k < refined.rings.size() && k < current.rings.size(); ++k) {
+      const Ring& r = refined.rings[k];
+      const std::vector<Point2>& vertices = current.rings[k].points;
+      if (r.points.size() < 2 || vertices.empty()) continue;
+      std::size_t j = 0;
+      for (std::size_t i = 0; i < r.segment_count(); ++i) {
+        const Point2& a = r.points[i];
+        const Point2& b = r.points[(i + 1) % r.points.size()];
+        if (j + 1 < vertices.size() && a == vertices[j + 1]) ++j;
+        constrained.emplace(std::minmax(a, b), std::make_pair(k, j));
+      }
+    }
+  }
+
+  // Boundary splits go into `current`, each after the vertex that starts its segment, in order along it.
+  void insert_splits(const std::vector<Point2>& splits) {
+    std::map<std::pair<std::size_t, std::size_t>, std::vector<std::pair<double, Point2>>> by_segment;
+    for (const Point2& m : splits) {
+      const auto edge = split_edge.find(m);
+      if (edge == split_edge.end()) continue;
+      const auto at = constrained.find(std::minmax(edge->second.first, edge->second.second));
+      if (at == constrained.end()) continue;
+      const Point2& start = current.rings[at->second.first].points[at->second.second];
+      by_segment[at->second].push_back({std::hypot(m[0] - start[0], m[1] - start[1]), m});
+    }
+    for (auto it = by_segment.rbegin(); it != by_segment.rend(); ++it) {  // later segments first
+      std::sort(it->second.begin(), it->second.end());
+      std::vector<Point2>& ring = current.rings[it->first.first].points;
+      std::vector<Point2> mids;
+      for (const auto& [d, m] : it->second) mids.push_back(m);
+      ring.insert(ring.begin() + static_cast<std::ptrdiff_t>(it->first.second) + 1, mids.begin(), mids.end());
+    }
   }
 
   double node_height(const Point2& p) const {
@@ -236,18 +289,24 @@ struct TerrainSession::Impl {
   // Ruppert's rule, which ends for the rectangle's right angles).
   void measure_triangle(const ElementCorners<2>& key, TerrainUpdate& u) {
     TriangleState st;
-    st.error = measure(grid, {key[0], key[1], key[2]}, {node_height(key[0]), node_height(key[1]), node_height(key[2])});
+    st.error = measure(grid, {key[0], key[1], key[2]}, {node_height(key[0]), node_height(key[1]), node_height(key[2])},
+                       options.bound_from);
     ++u.triangles_measured;
     for (int k = 0; k < 3; ++k) {
       const Point2 &a = key[(k + 1) % 3], &b = key[(k + 2) % 3], &c = key[k];
       if (!same_boundary_line(a, b)) continue;
+      // Inside rings, the refinement already sees ring points and picks: only Steiner points encroach here.
+      if (custom() && input_id.count(c)) continue;
       // c in the diametral circle of ab: an obtuse angle at c (CGAL's exact predicate).
       const bool encroached = CGAL::angle(Kernel::Point_2(a[0], a[1]), Kernel::Point_2(c[0], c[1]),
                                           Kernel::Point_2(b[0], b[1])) == CGAL::OBTUSE;
       const Point2 mid{0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
       const Point2 gm = grid.to_grid(mid), ga = grid.to_grid(a);
       // No split below 1/1024 of a cell: the engine resolves it, but no DEM error needs it.
-      if (encroached && std::hypot(gm[0] - ga[0], gm[1] - ga[1]) > 1.0 / 1024) st.splits.push_back(mid);
+      if (encroached && std::hypot(gm[0] - ga[0], gm[1] - ga[1]) > 1.0 / 1024) {
+        st.splits.push_back(mid);
+        if (custom()) split_edge.insert_or_assign(mid, std::make_pair(a, b));
+      }
     }
     if (st.error.error > options.max_error || !st.splits.empty()) flagged.insert(key);
     else flagged.erase(key);
@@ -290,7 +349,13 @@ struct TerrainSession::Impl {
     for (std::size_t s : samples)
       if (!on_boundary(s)) loose.push_back(position(s));
     refinement.emplace(rect, loose, RefinementRule::for_box(box.side));
-    std::vector<Point2> inputs = rect.rings[0].points;
+    if (custom()) index_constrained();
+    std::vector<Point2> inputs;
+    for (const Ring& ring : rect.rings) inputs.insert(inputs.end(), ring.points.begin(), ring.points.end());
+    if (custom()) {  // lines and rings may share vertices: each point once
+      std::sort(inputs.begin(), inputs.end());
+      inputs.erase(std::unique(inputs.begin(), inputs.end()), inputs.end());
+    }
     inputs.insert(inputs.end(), loose.begin(), loose.end());
     for (const Point2& p : refinement->split_points()) inputs.push_back(p);
     for (std::size_t s : samples) sample_at.emplace(position(s), s);
@@ -319,6 +384,7 @@ struct TerrainSession::Impl {
     std::vector<Point2> loose_added, loose_removed, gone(splits_removed), come(splits_added);
     for (const Point2& p : splits_removed) boundary_splits.erase(p);
     for (const Point2& p : splits_added) boundary_splits.insert(p);
+    if (custom()) insert_splits(splits_added);
     for (std::size_t s : removed) {
       samples.erase(s);
       const Point2 p = position(s);
@@ -334,6 +400,7 @@ struct TerrainSession::Impl {
       if (!on_boundary(s)) loose_added.push_back(p);
     }
     const SplitChange splits = refinement->update(rectangle(), loose_removed, loose_added);
+    if (custom()) index_constrained();
     gone.insert(gone.end(), splits.removed.begin(), splits.removed.end());
     come.insert(come.end(), splits.added.begin(), splits.added.end());
     // A point that goes and comes (a split where a sample now is) keeps its id.
@@ -372,8 +439,10 @@ struct TerrainSession::Impl {
       const auto t0 = Clock::now();
       std::vector<std::size_t> round = picks_of_round(splits);
       u.error_ms += ms_since(t0);
-      // A midpoint at a sample (to rounding: it halves an edge between samples) is that sample.
+      // A midpoint at a sample (to rounding: it halves an edge between samples) is that sample (on the
+      // rectangle, whose ring takes its input samples; inside rings a split stays a ring point).
       std::erase_if(splits, [&](const Point2& p) {
+        if (custom()) return false;
         const Point2 g = grid.to_grid(p);
         const double c = std::round(g[0]), r = std::round(g[1]);
         if (std::abs(g[0] - c) > 1e-6 || std::abs(g[1] - r) > 1e-6) return false;
@@ -395,8 +464,15 @@ struct TerrainSession::Impl {
 };
 
 TerrainSession::TerrainSession(HeightGrid grid, const TerrainOptions& options) : impl_(std::make_unique<Impl>()) {
-  if (!(options.max_error > 0) || !std::isfinite(options.max_error))
+  const bool custom = !options.domain.empty();
+  if (!(options.max_error > 0) || (!std::isfinite(options.max_error) && !custom))
     throw ParameterError("the maximum error must be a finite number above 0 (got " + readable(options.max_error) + ")");
+  if (custom && options.seed_fraction != 0)
+    throw ParameterError("seeds are for the rectangle's TIN, not for a TIN inside rings");
+  if (std::isnan(options.bound_from)) throw ParameterError("the height the error bound applies from is NaN");
+  if (custom)
+    if (const auto defect = find_ring_defect(options.domain, true))
+      throw InputError("the TIN's rings and lines: " + defect->describe());
   if (!(options.seed_fraction >= 0 && options.seed_fraction <= 1))
     throw ParameterError("the seeds' fraction of the maximum error must lie in [0, 1] (got " +
                          readable(options.seed_fraction) + ")");
@@ -417,15 +493,18 @@ TerrainSession::TerrainSession(HeightGrid grid, const TerrainOptions& options) :
   Impl& m = *impl_;
   m.grid = std::move(grid);
   m.options = options;
+  m.current = options.domain;
   const auto t0 = Clock::now();
   m.seeds.build(m.grid, options.seed_fraction * options.max_error);
-  for (std::size_t s : m.corners()) m.samples.insert(s);
+  if (!custom)
+    for (std::size_t s : m.corners()) m.samples.insert(s);
   for (std::size_t s : m.seeds.sorted()) m.samples.insert(s);
   m.build.seeds_added = m.seeds.size();
   m.build.seed_ms = ms_since(t0);
   const std::array<std::size_t, 4> corners = m.corners();
   std::vector<Point2> corner_points;
   for (std::size_t s : corners) corner_points.push_back(m.position(s));
+  for (const Ring& ring : m.options.domain.rings) corner_points.insert(corner_points.end(), ring.points.begin(), ring.points.end());
   m.box = BoxTransform<2>::fit(corner_points);
   m.build_engine(m.build);
   m.run_rounds(m.build);
@@ -439,6 +518,7 @@ TerrainUpdate TerrainSession::patch(int col, int row, int w, int h, std::span<co
                                     std::span<const std::uint8_t> valid) {
   Impl& m = *impl_;
   HeightGrid& g = m.grid;
+  if (m.custom()) throw ParameterError("a TIN inside rings (land and water) takes no patches");
   if (w <= 0 || h <= 0 || col < 0 || row < 0 || col > g.width - w || row > g.height - h)
     throw InputError("the patch [" + std::to_string(col) + ", " + std::to_string(col + w) + ") x [" + std::to_string(row) +
                      ", " + std::to_string(row + h) + ") does not lie in the grid of " + std::to_string(g.width) + " x " +
@@ -534,7 +614,8 @@ TerrainError TerrainSession::error() const {
   TerrainError e;
   double sum = 0;
   for (std::size_t i = 0; i < g.z.size(); ++i) {
-    if (!g.is_valid(i)) continue;
+    if (!g.is_valid(i) || !(g.z[i] >= m.options.bound_from)) continue;
+    if (exact[i] < 0 && m.custom()) continue;  // outside the rings
     ++e.samples;
     const double x = exact[i] < 0 ? std::numeric_limits<double>::infinity() : exact[i];  // outside every triangle
     if (x > e.max || e.samples == 1) e.max = x, e.worst_sample = i;
@@ -565,6 +646,8 @@ void TerrainSession::check_valid() const {
   copy.grid = m.grid;
   copy.options = m.options;
   copy.sample_at = m.sample_at;
+  copy.input_id = m.input_id;
+  copy.constrained = m.constrained;
   for (const auto& key : a) {
     TerrainUpdate u;
     copy.measure_triangle(key, u);

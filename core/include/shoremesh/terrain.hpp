@@ -22,10 +22,12 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <span>
 #include <vector>
 
+#include "shoremesh/domain.hpp"
 #include "shoremesh/mesh_element.hpp"
 #include "shoremesh/parameters.hpp"
 #include "shoremesh/point.hpp"
@@ -57,6 +59,15 @@ struct TerrainOptions {
   // Seeds make a patch local (they are re-decided only near it, the picks are replayed), for more
   // triangles: on the Salish Sea DEM 0.5 gives 2 to 2.6 times the triangles of 0 (bench/RESULTS.md).
   double seed_fraction = 0;
+  // Land and water in one TIN (`mesh --dem --land-up-to`, docs/terrain.md): instead of the grid's rectangle
+  // the TIN covers the water of these rings (even-odd rule), their lines (the shoreline) chains of edges
+  // inside it, all in the grid's plane; rings and lines may share vertices. Empty: the rectangle. With a
+  // domain, max_error may be infinite (no greedy rounds: the mesh of the rings alone), seeds are refused,
+  // and patch() is refused.
+  Domain2 domain;
+  // The error bound holds at the valid samples at or above this height (the land of a land-and-water TIN);
+  // samples below it are neither measured nor picked.
+  double bound_from = -std::numeric_limits<double>::infinity();
 };
 
 // The error of the TIN measured sample by sample (valid samples only).
@@ -106,7 +117,8 @@ class TerrainSession {
   const std::vector<PointKind>& kinds() const;       // Input: a sample (seed, pick, corner); else Steiner
   const std::vector<Element<2>>& triangles() const;
 
-  // Measures every valid sample against the TIN (O(samples)).
+  // Measures every valid sample at or above bound_from against the TIN (O(samples)). With a domain,
+  // samples outside every triangle (outside the domain) are skipped; without one they count as infinite.
   TerrainError error() const;
   std::size_t seed_count() const;
   std::size_t pick_count() const;
