@@ -10,6 +10,8 @@
 #include <limits>
 #include <numbers>
 
+#include "ring_geometry.hpp"
+#include "shoremesh/engine/predicates.hpp"
 #include "shoremesh/error.hpp"
 #include "shoremesh/mesh_water.hpp"
 
@@ -249,38 +251,65 @@ void SizeField::compute() {
   build_pyramid();
 }
 
-// Water at the nodes, for the estimates and the summary only (without closed rings: everywhere): the
-// even-odd rule along each row of nodes, from the crossings of the ring edges with it.
+// Water at the nodes, for the estimates and the summary only (without closed rings: everywhere): exactly
+// WaterTest::in_water at every node, by its rule (even-odd over the edges that cross the node's row half-open,
+// a node on an edge is on the ring, not in the water) with its exact orientation tests, but along each row
+// of nodes at once: an edge crossing the row has its crossing strictly right of the nodes 0 .. f - 1, f
+// found from a double estimate and settled by orient2d (the test is monotone along the row).
 void SizeField::water_mask() {
   const std::size_t w = n_ + 1;
   const bool any = std::any_of(rings_.rings.begin(), rings_.rings.end(),
-                               [](const Ring& r) { return r.closed() && r.points.size() >= 3; });
+                               [](const Ring& r) { return r.closed() && !r.points.empty(); });
   water_.assign(w * w, any ? 0 : 1);
   if (!any) return;
-  std::vector<std::vector<double>> crossings(w);
+  auto x_of = [&](std::size_t i) { return box_.origin[0] + static_cast<double>(i) * cell_; };
+  auto y_of = [&](std::size_t j) { return box_.origin[1] + static_cast<double>(j) * cell_; };
+  // Per row: toggle[f] flips the parity of the nodes left of f; on_ring marks nodes on an edge.
+  std::vector<std::vector<std::uint8_t>> toggle(w);
+  std::vector<std::uint8_t> on_ring(w * w, 0);
+  auto row_range = [&](double y0, double y1) {
+    const double lo = std::floor((y0 - box_.origin[1]) / cell_) - 1, hi = std::ceil((y1 - box_.origin[1]) / cell_) + 1;
+    return std::pair{static_cast<std::size_t>(std::clamp(lo, 0.0, double(n_))),
+                     static_cast<std::size_t>(std::clamp(hi, 0.0, double(n_)))};
+  };
   for (const Ring& ring : rings_.rings) {
     if (!ring.closed()) continue;
     for (std::size_t k = 0; k < ring.points.size(); ++k) {
       const Point2& a = ring.points[k];
       const Point2& b = ring.points[(k + 1) % ring.points.size()];
-      if (a[1] == b[1]) continue;
-      const double ya = (a[1] - box_.origin[1]) / cell_, yb = (b[1] - box_.origin[1]) / cell_;
-      const double lo = std::max(0.0, std::ceil(std::min(ya, yb))), hi = std::min(double(n_), std::floor(std::max(ya, yb)));
-      for (double j = lo; j <= hi; ++j) {
-        const double y = box_.origin[1] + j * cell_;
-        if ((a[1] > y) == (b[1] > y)) continue;  // half-open: a vertex on the row counts once
-        crossings[static_cast<std::size_t>(j)].push_back(a[0] + (y - a[1]) * (b[0] - a[0]) / (b[1] - a[1]));
+      const auto [j0, j1] = row_range(std::min(a[1], b[1]), std::max(a[1], b[1]));
+      for (std::size_t j = j0; j <= j1; ++j) {
+        const double y = y_of(j);
+        if ((a[1] > y) == (b[1] > y)) {
+          if (a[1] == y && b[1] == y) {  // a horizontal edge on the row: the nodes on it
+            const double x0 = std::min(a[0], b[0]), x1 = std::max(a[0], b[0]);
+            const auto lo = static_cast<std::size_t>(std::clamp(std::floor((x0 - box_.origin[0]) / cell_) - 1, 0.0, double(n_)));
+            const auto hi = static_cast<std::size_t>(std::clamp(std::ceil((x1 - box_.origin[0]) / cell_) + 1, 0.0, double(n_)));
+            for (std::size_t i = lo; i <= hi; ++i)
+              if (x0 <= x_of(i) && x_of(i) <= x1) on_ring[node(i, j)] = 1;
+          }
+          continue;
+        }
+        const Point2& down = a[1] < b[1] ? a : b;
+        const Point2& up = a[1] < b[1] ? b : a;
+        // Node i is strictly left of the upward edge: the crossing is strictly right of it.
+        auto left = [&](std::size_t i) { return detail::orient(down, up, Point2{x_of(i), y}) > 0; };
+        const double estimate = (a[0] + (y - a[1]) * (b[0] - a[0]) / (b[1] - a[1]) - box_.origin[0]) / cell_;
+        auto f = std::isnan(estimate) ? 0 : static_cast<std::size_t>(std::clamp(std::ceil(estimate), 0.0, double(w)));
+        while (f > 0 && !left(f - 1)) --f;
+        while (f < w && left(f)) ++f;
+        if (f < w && detail::orient(down, up, Point2{x_of(f), y}) == 0) on_ring[node(f, j)] = 1;
+        if (toggle[j].empty()) toggle[j].assign(w + 1, 0);
+        toggle[j][f] ^= 1;
       }
     }
   }
   for (std::size_t j = 0; j < w; ++j) {
-    auto& xs = crossings[j];
-    std::sort(xs.begin(), xs.end());
-    std::size_t passed = 0;
-    for (std::size_t i = 0; i < w; ++i) {
-      const double x = box_.origin[0] + static_cast<double>(i) * cell_;
-      while (passed < xs.size() && xs[passed] <= x) ++passed;
-      water_[node(i, j)] = (xs.size() - passed) % 2;
+    if (toggle[j].empty()) continue;
+    std::uint8_t parity = 0;
+    for (std::size_t i = w; i-- > 0;) {
+      parity ^= toggle[j][i + 1];  // the crossings right of node i
+      water_[node(i, j)] = parity && !on_ring[node(i, j)];
     }
   }
 }
@@ -405,6 +434,40 @@ using SegmentEntry = std::pair<BBox, std::uint32_t>;
 
 }  // namespace
 
+bool seed_clear_of_segment(const Point2& p, const Point2& a, const Point2& b, double near, double gamma) {
+  thread_local engine::PredicateCounters counters;
+  const engine::RoundingGuard guard;
+  // Closer than `near` to the segment: to an end when the projection falls outside it, else to its line.
+  auto dot_sign = [&](const Point2& o, const Point2& q) {  // sign((p - o) . (q - o))
+    return engine::filtered_sign(counters, [&](auto zero) {
+      using NT = decltype(zero);
+      return (NT(p[0]) - NT(o[0])) * (NT(q[0]) - NT(o[0])) + (NT(p[1]) - NT(o[1])) * (NT(q[1]) - NT(o[1]));
+    });
+  };
+  auto nearer_than = [&](const Point2& o) {  // |p - o| < near
+    return engine::filtered_sign(counters, [&](auto zero) {
+             using NT = decltype(zero);
+             return engine::squared_distance<NT, 2>(p, o) - NT(near) * NT(near);
+           }) < 0;
+  };
+  bool near_segment = false;
+  if (dot_sign(a, b) <= 0) near_segment = nearer_than(a);
+  else if (dot_sign(b, a) <= 0) near_segment = nearer_than(b);
+  else
+    near_segment = engine::filtered_sign(counters, [&](auto zero) {
+                     using NT = decltype(zero);
+                     const NT cross = (NT(b[0]) - NT(a[0])) * (NT(p[1]) - NT(a[1])) - (NT(b[1]) - NT(a[1])) * (NT(p[0]) - NT(a[0]));
+                     return cross * cross - NT(near) * NT(near) * engine::squared_distance<NT, 2>(a, b);
+                   }) < 0;
+  if (near_segment) return false;
+  // Strictly inside the diametral circle grown by gamma: |2p - a - b|^2 < gamma^2 |b - a|^2.
+  return engine::filtered_sign(counters, [&](auto zero) {
+           using NT = decltype(zero);
+           const NT dx = NT(2) * NT(p[0]) - NT(a[0]) - NT(b[0]), dy = NT(2) * NT(p[1]) - NT(a[1]) - NT(b[1]);
+           return dx * dx + dy * dy - NT(gamma) * NT(gamma) * engine::squared_distance<NT, 2>(a, b);
+         }) >= 0;
+}
+
 std::vector<Point2> size_seeds(const SizeField& field, const Domain2& refined, double gamma) {
   const BoxTransform<2>& box = field.box();
   // The root: the box, or with --max-size the least square of side kSeedFactor * max * 2^m that covers it,
@@ -435,10 +498,7 @@ std::vector<Point2> size_seeds(const SizeField& field, const Domain2& refined, d
     for (auto it = index.qbegin(bgi::intersects(BBox(BPoint(p[0] - near, p[1] - near), BPoint(p[0] + near, p[1] + near))));
          it != index.qend(); ++it) {
       const auto& [a, b] = segments[it->second];
-      if (dist_to_segment(p, a, b) < near) return false;
-      const double mx = 0.5 * (a[0] + b[0]) - p[0], my = 0.5 * (a[1] + b[1]) - p[1];
-      const double l2 = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
-      if (4 * (mx * mx + my * my) < gamma * gamma * l2) return false;
+      if (!seed_clear_of_segment(p, a, b, near, gamma)) return false;
     }
     return true;
   };

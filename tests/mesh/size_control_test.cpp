@@ -11,6 +11,7 @@
 
 #include "mesh_test_util.hpp"
 #include "shoremesh/error.hpp"
+#include "shoremesh/mesh_water.hpp"
 #include "shoremesh/shore_session.hpp"
 #include "shoremesh/size_function.hpp"
 #include "shoremesh/well_spaced.hpp"
@@ -129,6 +130,93 @@ TEST(SizeFunction, BadSizesAreRefusedNamingTheTerm) {
   sampled.max_size = 100;
   sampled.sampled.push_back({"--size-raster r.tif", [](const Point2&) { return 0.0; }});
   EXPECT_NE(message(sampled).find("--size-raster r.tif: size 0 at"), std::string::npos) << message(sampled);
+}
+
+// The water mask of the estimates and the summary is WaterTest's exact answer at every node, also where a
+// ring passes through nodes (the box's square: on the ring, not water) or a hair beside them (an edge one
+// ulp off a node, an edge one ulp off the horizontal along a row of nodes). Plain doubles (the crossing's x
+// against the node's) put the square's nodes in the water.
+TEST(SizeFunction, WaterMaskIsTheExactWaterTestAtEveryNode) {
+  const BoxTransform<2> box{{0, 0}, 1024};
+  Domain2 rings{{Ring{{{0, 0}, {1024, 0}, {1024, 1024}, {0, 1024}}, RingRole::Shore},
+                 Ring{{{64, 64}, {256, 160}, {64, 256}}, RingRole::Shore},  // an edge through nodes
+                 // the first edge a hair off the line through the nodes (512, 512), (640, 576), (768, 640)
+                 Ring{{{512, 512}, {std::nextafter(768.0, 0.0), 640}, {512, 640}}, RingRole::Shore},
+                 // an edge one ulp off the row y = 800, from a node
+                 Ring{{{512, 800}, {900, std::nextafter(800.0, 1e9)}, {900, 900}, {512, 900}}, RingRole::Shore}}};
+  SizeTerms t;
+  t.max_size = 64;  // a grid of 32 x 32 cells of 32
+  const SizeField field(t, box, rings);
+  ASSERT_EQ(field.cells(), 32u);
+  const WaterTest exact(rings);
+  const std::size_t w = field.cells() + 1;
+  std::size_t water = 0, on_ring = 0;
+  for (std::size_t v = 0; v < w * w; ++v) {
+    const Point2 p{box.origin[0] + double(v % w) * 32, box.origin[1] + double(v / w) * 32};
+    ASSERT_EQ(field.water()[v] != 0, exact.in_water(p)) << "node " << p[0] << ", " << p[1];
+    water += field.water()[v];
+    on_ring += exact.classify(p) == WaterSide::OnRing;
+  }
+  EXPECT_GT(water, w * w / 2);
+  EXPECT_GT(on_ring, 4 * 32u);  // the square's nodes and the island's
+}
+
+// The seeds' test against a shore segment is exact: a point at distance exactly `near` from a segment (the
+// doubles' projection gives 0.9999999999999999 for 1) is clear, one a hair nearer is not; on the grown
+// diametral circle is clear, a hair inside is not.
+TEST(SizeSeeds, ClearOfShoreDecidesExactly) {
+  EXPECT_TRUE(seed_clear_of_segment({1, 2}, {0, 0}, {4, 3}, 1.0, 0.0));
+  EXPECT_FALSE(seed_clear_of_segment({1, 2}, {0, 0}, {4, 3}, std::nextafter(1.0, 2.0), 0.0));
+  EXPECT_TRUE(seed_clear_of_segment({100007, 300014}, {100000, 300000}, {100028, 300021}, 7.0, 0.0));
+  EXPECT_FALSE(seed_clear_of_segment({100007, std::nextafter(300014.0, 0.0)}, {100000, 300000}, {100028, 300021}, 7.0, 0.0));
+  // The end of the segment decides beyond it.
+  EXPECT_TRUE(seed_clear_of_segment({-3, -4}, {0, 0}, {4, 3}, 5.0, 0.0));
+  EXPECT_FALSE(seed_clear_of_segment({-3, std::nextafter(-4.0, 0.0)}, {0, 0}, {4, 3}, 5.0, 0.0));
+  // The diametral circle of (0,0)-(4,0) grown by 1.25: radius 2.5 about (2, 0).
+  EXPECT_TRUE(seed_clear_of_segment({2, 2.5}, {0, 0}, {4, 0}, 0.5, 1.25));
+  EXPECT_FALSE(seed_clear_of_segment({2, std::nextafter(2.5, 0.0)}, {0, 0}, {4, 0}, 0.5, 1.25));
+}
+
+// In size_seeds: a seed candidate exactly a quarter of its leaf from the corner of an island is kept; the
+// island moved one ulp nearer, the seed goes (and its leaf's quarters fill in).
+TEST(SizeSeeds, ACandidateExactlyAQuarterLeafFromTheShoreIsKept) {
+  const double side = 100000, H = 8000;
+  // The shore as its refinement would leave it: segments of 4 km (a segment's grown diametral circle
+  // keeps seeds away, so the square's four sides alone would leave none).
+  Domain2 lake{{Ring{{}, RingRole::Shore}}};
+  for (int k = 0; k < 100; ++k) {
+    const double t = 4000.0 * (k % 25);
+    const std::array<Point2, 4> at{Point2{t, 0}, Point2{side, t}, Point2{side - t, side}, Point2{0, side - t}};
+    lake.rings[0].points.push_back(at[static_cast<std::size_t>(k / 25)]);
+  }
+  const BoxTransform<2> box = BoxTransform<2>::fit(session_input(lake).points);
+  SizeTerms t;
+  t.max_size = H;
+  const SizeField field(t, box, lake);
+  const std::vector<Point2> open = size_seeds(field, lake);
+  ASSERT_GT(open.size(), 100u);
+  // The seed nearest the middle; where H binds its leaf's side is kSeedFactor * H.
+  const Point2 p = *std::min_element(open.begin(), open.end(), [&](const Point2& a, const Point2& b) {
+    return std::hypot(a[0] - side / 2, a[1] - side / 2) < std::hypot(b[0] - side / 2, b[1] - side / 2);
+  });
+  const double near = 0.25 * (kSeedFactor * H);
+  auto with_island = [&](double x) {
+    // A triangle with its corner (x, p_y) right of p; its edges leave that corner away from p, short
+    // enough that p is outside their grown diametral circles.
+    const Point2 a{x, p[1]};
+    Domain2 d = lake;
+    d.rings.push_back(Ring{{a, {a[0], a[1] + near}, {a[0] + near, a[1] + 0.5 * near}}, RingRole::Shore});
+    return d;
+  };
+  const double x = p[0] + near;
+  ASSERT_EQ(x - p[0], near);  // the corner is exactly `near` away
+  const Domain2 exactly = with_island(x);
+  const std::vector<Point2> kept = size_seeds(SizeField(t, box, exactly), exactly);
+  EXPECT_TRUE(std::binary_search(kept.begin(), kept.end(), p));
+  const Domain2 nearer = with_island(std::nextafter(x, p[0]));
+  const std::vector<Point2> dropped = size_seeds(SizeField(t, box, nearer), nearer);
+  EXPECT_FALSE(std::binary_search(dropped.begin(), dropped.end(), p));
+  EXPECT_GT(dropped.size(), kept.size() - 1);  // the quarters of p's leaf
 }
 
 // limgrad's contract: the graded h is G-Lipschitz between grid neighbours, never above the ungraded one,
