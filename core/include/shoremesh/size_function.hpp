@@ -123,6 +123,15 @@ inline constexpr int kSeedRetries = 2;
 // (RefinementRule::max_length).
 inline constexpr double kShoreFactor = 0.7;
 std::vector<Point2> size_seeds(const SizeField& field, const Domain2& refined, double gamma = 1.25);
+// The seeds after a change of h (old_field to field) or of the refined rings (old_refined to refined),
+// recomputing only the quadtree's nodes the change reaches (docs/sizing.md): equal to
+// size_seeds(field, refined, gamma). `old_seeds` are size_seeds(old_field, old_refined, gamma).
+struct SeedUpdate {
+  std::size_t visited = 0, recomputed = 0, removed = 0, added = 0;  // nodes walked, subtrees redone, seeds
+};
+std::vector<Point2> update_size_seeds(const SizeField& old_field, const std::vector<Point2>& old_seeds,
+                                      const Domain2& old_refined, const SizeField& field, const Domain2& refined,
+                                      double gamma = 1.25, SeedUpdate* stats = nullptr);
 // The seeds' test against one refined segment ab, exact (the engine's filtered predicates): p is at least
 // `near` from the segment and not strictly inside its diametral circle grown by gamma.
 bool seed_clear_of_segment(const Point2& p, const Point2& a, const Point2& b, double near, double gamma);
