@@ -644,7 +644,7 @@ std::vector<Point2> update_size_seeds(const SizeField& old_field, const std::vec
   const std::size_t w = field.cells() + 1;
   const double cell = field.box().side / static_cast<double>(field.cells());
   std::optional<Rect> h_changed;
-  for (std::size_t v = 0; v < w * w; ++v) {
+  for (std::size_t v = 0; &old_field != &field && v < w * w; ++v) {
     if (old_field.nodes()[v] == field.nodes()[v] ||
         (std::isnan(old_field.nodes()[v]) && std::isnan(field.nodes()[v])))
       continue;
