@@ -307,6 +307,7 @@ struct ShoreSession<D>::Impl {
       const auto old_size = size;
       std::optional<ShoreRefinement> old_refinement;
       const Domain2 rings_before = refinement ? refinement->rings() : Domain2{};
+      const Domain2 refined_before = refinement ? refinement->refined() : Domain2{};
       const Domain2 rings_after = rings ? *rings : rings_before;
       bool h_changed = new_size != nullptr;
       if (!new_size && rings && size->depends_on_rings()) {
@@ -335,7 +336,9 @@ struct ShoreSession<D>::Impl {
         }
       }
       if (new_size) size = new_size;
-      const std::vector<Point2> new_seeds = size_seeds(*size, refinement ? refinement->refined() : Domain2{});
+      // Only the quadtree's nodes that the change of h or of the refined rings reaches (update_size_seeds).
+      const std::vector<Point2> new_seeds =
+          update_size_seeds(*old_size, seeds, refined_before, *size, refinement ? refinement->refined() : Domain2{});
       std::vector<Point2> seeds_removed, seeds_added;
       std::set_difference(seeds.begin(), seeds.end(), new_seeds.begin(), new_seeds.end(), std::back_inserter(seeds_removed));
       std::set_difference(new_seeds.begin(), new_seeds.end(), seeds.begin(), seeds.end(), std::back_inserter(seeds_added));

@@ -9,7 +9,11 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <optional>
+#include <unordered_map>
 
+#include "ring_geometry.hpp"
+#include "shoremesh/engine/predicates.hpp"
 #include "shoremesh/error.hpp"
 #include "shoremesh/mesh_water.hpp"
 
@@ -249,38 +253,65 @@ void SizeField::compute() {
   build_pyramid();
 }
 
-// Water at the nodes, for the estimates and the summary only (without closed rings: everywhere): the
-// even-odd rule along each row of nodes, from the crossings of the ring edges with it.
+// Water at the nodes, for the estimates and the summary only (without closed rings: everywhere): exactly
+// WaterTest::in_water at every node, by its rule (even-odd over the edges that cross the node's row half-open,
+// a node on an edge is on the ring, not in the water) with its exact orientation tests, but along each row
+// of nodes at once: an edge crossing the row has its crossing strictly right of the nodes 0 .. f - 1, f
+// found from a double estimate and settled by orient2d (the test is monotone along the row).
 void SizeField::water_mask() {
   const std::size_t w = n_ + 1;
   const bool any = std::any_of(rings_.rings.begin(), rings_.rings.end(),
-                               [](const Ring& r) { return r.closed() && r.points.size() >= 3; });
+                               [](const Ring& r) { return r.closed() && !r.points.empty(); });
   water_.assign(w * w, any ? 0 : 1);
   if (!any) return;
-  std::vector<std::vector<double>> crossings(w);
+  auto x_of = [&](std::size_t i) { return box_.origin[0] + static_cast<double>(i) * cell_; };
+  auto y_of = [&](std::size_t j) { return box_.origin[1] + static_cast<double>(j) * cell_; };
+  // Per row: toggle[f] flips the parity of the nodes left of f; on_ring marks nodes on an edge.
+  std::vector<std::vector<std::uint8_t>> toggle(w);
+  std::vector<std::uint8_t> on_ring(w * w, 0);
+  auto row_range = [&](double y0, double y1) {
+    const double lo = std::floor((y0 - box_.origin[1]) / cell_) - 1, hi = std::ceil((y1 - box_.origin[1]) / cell_) + 1;
+    return std::pair{static_cast<std::size_t>(std::clamp(lo, 0.0, double(n_))),
+                     static_cast<std::size_t>(std::clamp(hi, 0.0, double(n_)))};
+  };
   for (const Ring& ring : rings_.rings) {
     if (!ring.closed()) continue;
     for (std::size_t k = 0; k < ring.points.size(); ++k) {
       const Point2& a = ring.points[k];
       const Point2& b = ring.points[(k + 1) % ring.points.size()];
-      if (a[1] == b[1]) continue;
-      const double ya = (a[1] - box_.origin[1]) / cell_, yb = (b[1] - box_.origin[1]) / cell_;
-      const double lo = std::max(0.0, std::ceil(std::min(ya, yb))), hi = std::min(double(n_), std::floor(std::max(ya, yb)));
-      for (double j = lo; j <= hi; ++j) {
-        const double y = box_.origin[1] + j * cell_;
-        if ((a[1] > y) == (b[1] > y)) continue;  // half-open: a vertex on the row counts once
-        crossings[static_cast<std::size_t>(j)].push_back(a[0] + (y - a[1]) * (b[0] - a[0]) / (b[1] - a[1]));
+      const auto [j0, j1] = row_range(std::min(a[1], b[1]), std::max(a[1], b[1]));
+      for (std::size_t j = j0; j <= j1; ++j) {
+        const double y = y_of(j);
+        if ((a[1] > y) == (b[1] > y)) {
+          if (a[1] == y && b[1] == y) {  // a horizontal edge on the row: the nodes on it
+            const double x0 = std::min(a[0], b[0]), x1 = std::max(a[0], b[0]);
+            const auto lo = static_cast<std::size_t>(std::clamp(std::floor((x0 - box_.origin[0]) / cell_) - 1, 0.0, double(n_)));
+            const auto hi = static_cast<std::size_t>(std::clamp(std::ceil((x1 - box_.origin[0]) / cell_) + 1, 0.0, double(n_)));
+            for (std::size_t i = lo; i <= hi; ++i)
+              if (x0 <= x_of(i) && x_of(i) <= x1) on_ring[node(i, j)] = 1;
+          }
+          continue;
+        }
+        const Point2& down = a[1] < b[1] ? a : b;
+        const Point2& up = a[1] < b[1] ? b : a;
+        // Node i is strictly left of the upward edge: the crossing is strictly right of it.
+        auto left = [&](std::size_t i) { return detail::orient(down, up, Point2{x_of(i), y}) > 0; };
+        const double estimate = (a[0] + (y - a[1]) * (b[0] - a[0]) / (b[1] - a[1]) - box_.origin[0]) / cell_;
+        auto f = std::isnan(estimate) ? 0 : static_cast<std::size_t>(std::clamp(std::ceil(estimate), 0.0, double(w)));
+        while (f > 0 && !left(f - 1)) --f;
+        while (f < w && left(f)) ++f;
+        if (f < w && detail::orient(down, up, Point2{x_of(f), y}) == 0) on_ring[node(f, j)] = 1;
+        if (toggle[j].empty()) toggle[j].assign(w + 1, 0);
+        toggle[j][f] ^= 1;
       }
     }
   }
   for (std::size_t j = 0; j < w; ++j) {
-    auto& xs = crossings[j];
-    std::sort(xs.begin(), xs.end());
-    std::size_t passed = 0;
-    for (std::size_t i = 0; i < w; ++i) {
-      const double x = box_.origin[0] + static_cast<double>(i) * cell_;
-      while (passed < xs.size() && xs[passed] <= x) ++passed;
-      water_[node(i, j)] = (xs.size() - passed) % 2;
+    if (toggle[j].empty()) continue;
+    std::uint8_t parity = 0;
+    for (std::size_t i = w; i-- > 0;) {
+      parity ^= toggle[j][i + 1];  // the crossings right of node i
+      water_[node(i, j)] = parity && !on_ring[node(i, j)];
     }
   }
 }
@@ -405,82 +436,321 @@ using SegmentEntry = std::pair<BBox, std::uint32_t>;
 
 }  // namespace
 
-std::vector<Point2> size_seeds(const SizeField& field, const Domain2& refined, double gamma) {
-  const BoxTransform<2>& box = field.box();
-  // The root: the box, or with --max-size the least square of side kSeedFactor * max * 2^m that covers it,
-  // so that where the maximum binds the leaves are exactly that size (docs/sizing.md).
-  double root = box.side;
+bool seed_clear_of_segment(const Point2& p, const Point2& a, const Point2& b, double near, double gamma) {
+  thread_local engine::PredicateCounters counters;
+  const engine::RoundingGuard guard;
+  // Closer than `near` to the segment: to an end when the projection falls outside it, else to its line.
+  auto dot_sign = [&](const Point2& o, const Point2& q) {  // sign((p - o) . (q - o))
+    return engine::filtered_sign(counters, [&](auto zero) {
+      using NT = decltype(zero);
+      return (NT(p[0]) - NT(o[0])) * (NT(q[0]) - NT(o[0])) + (NT(p[1]) - NT(o[1])) * (NT(q[1]) - NT(o[1]));
+    });
+  };
+  auto nearer_than = [&](const Point2& o) {  // |p - o| < near
+    return engine::filtered_sign(counters, [&](auto zero) {
+             using NT = decltype(zero);
+             return engine::squared_distance<NT, 2>(p, o) - NT(near) * NT(near);
+           }) < 0;
+  };
+  bool near_segment = false;
+  if (dot_sign(a, b) <= 0) near_segment = nearer_than(a);
+  else if (dot_sign(b, a) <= 0) near_segment = nearer_than(b);
+  else
+    near_segment = engine::filtered_sign(counters, [&](auto zero) {
+                     using NT = decltype(zero);
+                     const NT cross = (NT(b[0]) - NT(a[0])) * (NT(p[1]) - NT(a[1])) - (NT(b[1]) - NT(a[1])) * (NT(p[0]) - NT(a[0]));
+                     return cross * cross - NT(near) * NT(near) * engine::squared_distance<NT, 2>(a, b);
+                   }) < 0;
+  if (near_segment) return false;
+  // Strictly inside the diametral circle grown by gamma: |2p - a - b|^2 < gamma^2 |b - a|^2.
+  return engine::filtered_sign(counters, [&](auto zero) {
+           using NT = decltype(zero);
+           const NT dx = NT(2) * NT(p[0]) - NT(a[0]) - NT(b[0]), dy = NT(2) * NT(p[1]) - NT(a[1]) - NT(b[1]);
+           return dx * dx + dy * dy - NT(gamma) * NT(gamma) * engine::squared_distance<NT, 2>(a, b);
+         }) >= 0;
+}
+
+namespace {
+
+// The quadtree's root side: the box, or with --max-size the least square of side kSeedFactor * max * 2^m
+// that covers it, so that where the maximum binds the leaves are exactly that size (docs/sizing.md).
+double seed_root(const SizeField& field) {
+  double root = field.box().side;
   if (const auto& max = field.terms().max_size) {
     root = kSeedFactor * *max;
-    while (root < box.side) root *= 2;
+    while (root < field.box().side) root *= 2;
   }
-  // The segments, with the region where a seed would be too near: the diametral circle grown by gamma.
-  std::vector<std::pair<Point2, Point2>> segments;
-  std::vector<SegmentEntry> entries;
-  for (const Ring& ring : refined.rings)
-    for (std::size_t k = 0; k < ring.segment_count(); ++k) {
-      const Point2& a = ring.points[k];
-      const Point2& b = ring.points[(k + 1) % ring.points.size()];
-      const double r = gamma * 0.5 * std::hypot(b[0] - a[0], b[1] - a[1]);
-      const Point2 m{0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
-      entries.push_back({BBox(BPoint(std::min({a[0], b[0], m[0] - r}), std::min({a[1], b[1], m[1] - r})),
-                              BPoint(std::max({a[0], b[0], m[0] + r}), std::max({a[1], b[1], m[1] + r}))),
-                         static_cast<std::uint32_t>(segments.size())});
-      segments.push_back({a, b});
-    }
-  const bgi::rtree<SegmentEntry, bgi::quadratic<16>> index(entries.begin(), entries.end());
-  const WaterTest water(refined);
-  auto clear_of_shore = [&](const Point2& p, double side) {
+  return root;
+}
+
+struct PointHash {
+  std::size_t operator()(const Point2& p) const {
+    return std::hash<double>{}(p[0] + 0.0) * 0x9E3779B97F4A7C15ull ^ std::hash<double>{}(p[1] + 0.0);
+  }
+};
+
+struct SeedNode {
+  int level;
+  std::uint64_t ix, iy;
+  int extra;  // levels below the size rule's leaf: a dropped seed's leaf is tried again in quarters
+};
+
+struct Rect {
+  double x0, y0, x1, y1;
+  bool meets(const Rect& o) const { return x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1; }
+};
+
+BBox bbox(const Rect& r) { return BBox(BPoint(r.x0, r.y0), BPoint(r.x1, r.y1)); }
+
+// The square of a node, grown by `by` on every side.
+Rect node_square(const SizeField& field, double root, const SeedNode& n, double by) {
+  const double side = std::ldexp(root, -n.level);
+  const double x = field.box().origin[0] + static_cast<double>(n.ix) * side, y = field.box().origin[1] + static_cast<double>(n.iy) * side;
+  return {x - by, y - by, x + side + by, y + side + by};
+}
+
+// Where a seed would be too near segment ab: its box grown by the diametral circle grown by gamma.
+Rect segment_reach(const Point2& a, const Point2& b, double gamma) {
+  const double r = gamma * 0.5 * std::hypot(b[0] - a[0], b[1] - a[1]);
+  const Point2 m{0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
+  return {std::min({a[0], b[0], m[0] - r}), std::min({a[1], b[1], m[1] - r}), std::max({a[0], b[0], m[0] + r}),
+          std::max({a[1], b[1], m[1] + r})};
+}
+
+// The refined rings as the seeds' tests read them: the water (exact WaterTest over every ring) and the
+// segments in an R-tree of their reach (only those whose reach meets `only`, when given).
+class SeedShore {
+ public:
+  SeedShore(const Domain2& refined, double gamma, const std::optional<Rect>& only = {}) : gamma_(gamma), water_(refined) {
+    std::vector<SegmentEntry> entries;
+    for (const Ring& ring : refined.rings)
+      for (std::size_t k = 0; k < ring.segment_count(); ++k) {
+        const Point2& a = ring.points[k];
+        const Point2& b = ring.points[(k + 1) % ring.points.size()];
+        const Rect reach = segment_reach(a, b, gamma);
+        if (only && !reach.meets(*only)) continue;
+        entries.push_back({bbox(reach), static_cast<std::uint32_t>(segments_.size())});
+        segments_.push_back({a, b});
+      }
+    index_ = bgi::rtree<SegmentEntry, bgi::quadratic<16>>(entries.begin(), entries.end());
+  }
+  bool in_water(const Point2& p) const { return water_.in_water(p); }
+  bool clear(const Point2& p, double side) const {
     const double near = 0.25 * side;
-    for (auto it = index.qbegin(bgi::intersects(BBox(BPoint(p[0] - near, p[1] - near), BPoint(p[0] + near, p[1] + near))));
-         it != index.qend(); ++it) {
-      const auto& [a, b] = segments[it->second];
-      if (dist_to_segment(p, a, b) < near) return false;
-      const double mx = 0.5 * (a[0] + b[0]) - p[0], my = 0.5 * (a[1] + b[1]) - p[1];
-      const double l2 = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
-      if (4 * (mx * mx + my * my) < gamma * gamma * l2) return false;
+    for (auto it = index_.qbegin(bgi::intersects(BBox(BPoint(p[0] - near, p[1] - near), BPoint(p[0] + near, p[1] + near))));
+         it != index_.qend(); ++it) {
+      const auto& [a, b] = segments_[it->second];
+      if (!seed_clear_of_segment(p, a, b, near, gamma_)) return false;
     }
     return true;
-  };
+  }
 
-  std::vector<Point2> seeds;
-  struct Node {
-    int level;
-    std::uint64_t ix, iy;
-    int extra;  // levels below the size rule's leaf: a dropped seed's leaf is tried again in quarters
-  };
-  std::vector<Node> work{{0, 0, 0, 0}};
+ private:
+  double gamma_;
+  WaterTest water_;
+  std::vector<std::pair<Point2, Point2>> segments_;
+  bgi::rtree<SegmentEntry, bgi::quadratic<16>> index_;
+};
+
+// The split rule of a node (retries aside): -1 no term sets a size there (no seed), 1 split, 0 a leaf.
+int seed_split(const SizeField& field, double root, const SeedNode& n) {
+  const double side = std::ldexp(root, -n.level);
+  const BoxTransform<2>& box = field.box();
+  const Point2 lo{box.origin[0] + static_cast<double>(n.ix) * side, box.origin[1] + static_cast<double>(n.iy) * side};
+  const double h = field.min_over({lo[0] - side, lo[1] - side}, 3 * side);
+  if (!std::isfinite(h)) return -1;
+  return side > kSeedFactor * h && n.level < 60 ? 1 : 0;
+}
+
+bool beyond_box(const SizeField& field, double root, const SeedNode& n) {
+  const double side = std::ldexp(root, -n.level);
+  const BoxTransform<2>& box = field.box();
+  return box.origin[0] + static_cast<double>(n.ix) * side >= box.origin[0] + box.side ||
+         box.origin[1] + static_cast<double>(n.iy) * side >= box.origin[1] + box.side;
+}
+
+void push_children(std::vector<SeedNode>& work, const SeedNode& n, int extra) {
+  for (std::uint64_t c = 0; c < 4; ++c) work.push_back({n.level + 1, 2 * n.ix + (c & 1), 2 * n.iy + (c >> 1), extra});
+}
+
+// The seeds of the subtrees at `work` (unsorted), appended to `seeds`.
+void walk_seeds(const SizeField& field, double root, const SeedShore& shore, std::vector<SeedNode> work,
+                std::vector<Point2>& seeds) {
+  const BoxTransform<2>& box = field.box();
   const std::size_t hard_cap = 4 * field.terms().point_cap;
   std::size_t visited = 0;
   while (!work.empty()) {
-    const Node n = work.back();
+    const SeedNode n = work.back();
     work.pop_back();
-    const double side = std::ldexp(root, -n.level);
-    const Point2 lo{box.origin[0] + static_cast<double>(n.ix) * side, box.origin[1] + static_cast<double>(n.iy) * side};
-    if (lo[0] >= box.origin[0] + box.side || lo[1] >= box.origin[1] + box.side) continue;  // beyond the box
+    if (beyond_box(field, root, n)) continue;
     if (++visited > hard_cap)
       throw InputError("the size function asks for more than " + std::to_string(hard_cap) + " quadtree cells");
-    auto split = [&](int extra) {
-      for (std::uint64_t c = 0; c < 4; ++c) work.push_back({n.level + 1, 2 * n.ix + (c & 1), 2 * n.iy + (c >> 1), extra});
-    };
     if (n.extra == 0) {
-      const double h = field.min_over({lo[0] - side, lo[1] - side}, 3 * side);
-      if (!std::isfinite(h)) continue;  // no term sets a size here
-      if (side > kSeedFactor * h && n.level < 60) {
-        split(0);
+      const int rule = seed_split(field, root, n);
+      if (rule < 0) continue;  // no term sets a size here
+      if (rule > 0) {
+        push_children(work, n, 0);
         continue;
       }
     }
+    const double side = std::ldexp(root, -n.level);
+    const Point2 lo{box.origin[0] + static_cast<double>(n.ix) * side, box.origin[1] + static_cast<double>(n.iy) * side};
     const auto [u, v] = jitter(n.level, n.ix, n.iy);
     const Point2 p{lo[0] + (0.5 + kSeedJitter * u) * side, lo[1] + (0.5 + kSeedJitter * v) * side};
-    if (box.contains(p) && water.in_water(p) && clear_of_shore(p, side)) {
+    if (box.contains(p) && shore.in_water(p) && shore.clear(p, side)) {
       seeds.push_back(p);
     } else if (n.extra < kSeedRetries && n.level < 60) {
-      split(n.extra + 1);  // near the shore: the leaf's quarters fill what it leaves
+      push_children(work, n, n.extra + 1);  // near the shore: the leaf's quarters fill what it leaves
     }
   }
+}
+
+// The segments of `a` not in `b` (as unordered pairs, counted), appended to `out`.
+void segments_not_in(const Domain2& a, const Domain2& b, std::vector<std::pair<Point2, Point2>>& out) {
+  auto key = [](const Point2& p, const Point2& q) { return p < q ? std::pair{p, q} : std::pair{q, p}; };
+  for (std::size_t r = 0; r < a.rings.size(); ++r) {
+    const Ring& ra = a.rings[r];
+    const Ring* rb = r < b.rings.size() ? &b.rings[r] : nullptr;
+    if (rb && rb->points == ra.points && rb->role == ra.role) continue;
+    std::vector<std::pair<Point2, Point2>> mine, theirs;
+    for (std::size_t k = 0; k < ra.segment_count(); ++k) mine.push_back(key(ra.points[k], ra.points[(k + 1) % ra.points.size()]));
+    if (rb)
+      for (std::size_t k = 0; k < rb->segment_count(); ++k) theirs.push_back(key(rb->points[k], rb->points[(k + 1) % rb->points.size()]));
+    std::sort(mine.begin(), mine.end());
+    std::sort(theirs.begin(), theirs.end());
+    std::set_difference(mine.begin(), mine.end(), theirs.begin(), theirs.end(), std::back_inserter(out));
+  }
+}
+
+}  // namespace
+
+std::vector<Point2> size_seeds(const SizeField& field, const Domain2& refined, double gamma) {
+  std::vector<Point2> seeds;
+  walk_seeds(field, seed_root(field), SeedShore(refined, gamma), {{0, 0, 0, 0}}, seeds);
   std::sort(seeds.begin(), seeds.end());
   return seeds;
+}
+
+std::vector<Point2> update_size_seeds(const SizeField& old_field, const std::vector<Point2>& old_seeds,
+                                      const Domain2& old_refined, const SizeField& field, const Domain2& refined,
+                                      double gamma, SeedUpdate* stats) {
+  const double root = seed_root(field);
+  if (old_field.cells() != field.cells() || !(old_field.box().origin == field.box().origin) ||
+      old_field.box().side != field.box().side || seed_root(old_field) != root) {
+    if (stats) *stats = {};
+    return size_seeds(field, refined, gamma);
+  }
+  // Where h changed: the box of the grid nodes whose value changed.
+  const std::size_t w = field.cells() + 1;
+  const double cell = field.box().side / static_cast<double>(field.cells());
+  std::optional<Rect> h_changed;
+  for (std::size_t v = 0; &old_field != &field && v < w * w; ++v) {
+    if (old_field.nodes()[v] == field.nodes()[v] ||
+        (std::isnan(old_field.nodes()[v]) && std::isnan(field.nodes()[v])))
+      continue;
+    const double x = field.box().origin[0] + static_cast<double>(v % w) * cell, y = field.box().origin[1] + static_cast<double>(v / w) * cell;
+    if (!h_changed) h_changed = Rect{x, y, x, y};
+    h_changed->x0 = std::min(h_changed->x0, x), h_changed->y0 = std::min(h_changed->y0, y);
+    h_changed->x1 = std::max(h_changed->x1, x), h_changed->y1 = std::max(h_changed->y1, y);
+  }
+  // Where the refined rings changed: each changed segment's reach (the seeds' distance tests), and per
+  // connected group of changed segments its bounding box (the water: the two domains' even-odd regions
+  // differ by the even-odd region of the changed segments, whose every group is a union of closed chains,
+  // empty outside its box).
+  std::vector<std::pair<Point2, Point2>> changed;
+  segments_not_in(old_refined, refined, changed);
+  segments_not_in(refined, old_refined, changed);
+  std::vector<SegmentEntry> reach_entries;
+  std::vector<Rect> water_boxes;
+  {
+    std::unordered_map<Point2, std::size_t, PointHash> group_of;
+    std::vector<std::size_t> parent;
+    auto find = [&](std::size_t x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    };
+    auto vertex = [&](const Point2& p) {
+      const auto [it, fresh] = group_of.emplace(p, parent.size());
+      if (fresh) parent.push_back(parent.size());
+      return it->second;
+    };
+    for (const auto& [a, b] : changed) {
+      const std::size_t x = find(vertex(a)), y = find(vertex(b));
+      parent[x] = y;
+      reach_entries.push_back({bbox(segment_reach(a, b, gamma)), 0});
+    }
+    std::unordered_map<std::size_t, Rect> boxes;
+    for (const auto& [a, b] : changed) {
+      const std::size_t g = find(group_of.at(a));
+      const Rect r{std::min(a[0], b[0]), std::min(a[1], b[1]), std::max(a[0], b[0]), std::max(a[1], b[1])};
+      const auto [it, fresh] = boxes.emplace(g, r);
+      if (!fresh) {
+        Rect& o = it->second;
+        o = {std::min(o.x0, r.x0), std::min(o.y0, r.y0), std::max(o.x1, r.x1), std::max(o.y1, r.y1)};
+      }
+    }
+    for (const auto& [g, r] : boxes) water_boxes.push_back(r);
+  }
+  const bgi::rtree<SegmentEntry, bgi::quadratic<16>> reach_index(reach_entries.begin(), reach_entries.end());
+  // A node's subtree reads h over its square grown by 3 sides and a few cells (min_over reads pyramid
+  // blocks up to half its box beyond it), the segments within a quarter side of its square and the water
+  // in it: when none of these changed, it is the same subtree with the same seeds.
+  auto dirty = [&](const SeedNode& n) {
+    const double side = std::ldexp(root, -n.level);
+    if (h_changed && h_changed->meets(node_square(field, root, n, 3 * side + 4 * cell))) return true;
+    const Rect near = node_square(field, root, n, 0.5 * side);
+    if (reach_index.qbegin(bgi::intersects(bbox(near))) != reach_index.qend()) return true;
+    const Rect square = node_square(field, root, n, 0);
+    return std::any_of(water_boxes.begin(), water_boxes.end(), [&](const Rect& r) { return r.meets(square); });
+  };
+  // Descend while a node is dirty and splits before and after; the nodes where that stops are recomputed
+  // whole (their old seeds go), the clean ones keep theirs.
+  std::vector<SeedNode> redo, work{{0, 0, 0, 0}};
+  std::size_t visited = 0;
+  while (!work.empty()) {
+    const SeedNode n = work.back();
+    work.pop_back();
+    ++visited;
+    if (beyond_box(field, root, n) || !dirty(n)) continue;
+    if (seed_split(field, root, n) == 1 && seed_split(old_field, root, n) == 1) {
+      push_children(work, n, 0);
+      continue;
+    }
+    redo.push_back(n);
+  }
+  std::vector<Point2> fresh;
+  if (!redo.empty()) {
+    Rect all = node_square(field, root, redo.front(), 0);
+    for (const SeedNode& n : redo) {
+      const Rect r = node_square(field, root, n, 0);
+      all = {std::min(all.x0, r.x0), std::min(all.y0, r.y0), std::max(all.x1, r.x1), std::max(all.y1, r.y1)};
+    }
+    const double margin = 0.5 * std::ldexp(root, -std::min_element(redo.begin(), redo.end(), [](auto& a, auto& b) {
+                                                  return a.level < b.level;
+                                                })->level);
+    walk_seeds(field, root, SeedShore(refined, gamma, Rect{all.x0 - margin, all.y0 - margin, all.x1 + margin, all.y1 + margin}),
+               redo, fresh);
+  }
+  // The old seeds outside the recomputed squares (a seed lies inside its leaf, strictly: the jitter keeps it
+  // off the leaf's sides), then the fresh ones.
+  std::vector<Point2> out;
+  out.reserve(old_seeds.size() + fresh.size());
+  std::vector<Rect> squares;
+  for (const SeedNode& n : redo) squares.push_back(node_square(field, root, n, 0));
+  std::vector<std::uint8_t> gone(old_seeds.size(), 0);
+  for (const Rect& r : squares) {
+    auto it = std::lower_bound(old_seeds.begin(), old_seeds.end(), Point2{r.x0, -kInf});
+    for (; it != old_seeds.end() && (*it)[0] <= r.x1; ++it)
+      if ((*it)[1] >= r.y0 && (*it)[1] <= r.y1) gone[static_cast<std::size_t>(it - old_seeds.begin())] = 1;
+  }
+  for (std::size_t i = 0; i < old_seeds.size(); ++i)
+    if (!gone[i]) out.push_back(old_seeds[i]);
+  const std::size_t kept = out.size();
+  std::sort(fresh.begin(), fresh.end());
+  out.insert(out.end(), fresh.begin(), fresh.end());
+  std::inplace_merge(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(kept), out.end());
+  if (stats) *stats = {visited, redo.size(), old_seeds.size() - kept, fresh.size()};
+  return out;
 }
 
 std::function<double(const Point2&, const Point2&)> shore_max_length(std::shared_ptr<const SizeField> field) {

@@ -4,10 +4,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <map>
+#include <numbers>
 #include <set>
 
 #include "cli_test_util.hpp"
+#include "dem_test_util.hpp"
 
 namespace shoremesh::cli_test {
 namespace {
@@ -147,6 +150,99 @@ TEST(SizeCommand, SizeEditLineEqualsAFreshRunWithTheNewSize) {
     return l;
   };
   EXPECT_EQ(sorted_lines("edited.csv"), sorted_lines("fresh.csv"));
+}
+
+// The depth, slope and raster terms change the mesh where and only where they bind. A synthetic bathymetry
+// (GeoTIFF, UTM 10N, 1 km cells, 160 x 80): a basin with a cliff shore, 2000 m deep, with a 100 m bank at
+// its west end (x < 20 km from its edge) and a ramp from 2000 m to 4000 m between 80 and 95 km. With
+// --max-size 4000 --min-size 1000: --size-from-depth 1000 gives h = T sqrt(g d) / 1000 = 1400 m on the bank
+// and above 4000 m at 2000 m (so it binds on the bank and along the shore, where the depth falls to 0);
+// --size-from-slope 60 gives 2 pi d / (60 |grad d|) = 0.785 d on the ramp (1571 .. 3142 m) and binds
+// there, at the bank's edge and along the shore, nowhere on the flat bottom; a raster of 1500 m sizes
+// covers 120 .. 140 x 30 .. 50 km and sets no size beyond it. Against a run with the
+// maximum alone, the triangles farther than 5 H (the seeds' and the engine's reach, as in
+// SizeControl.EachTermChangesTheMeshOnlyWhereItBinds) from every place a term binds are the same
+// triangles, and where it binds every longest edge is within 1 % of the term's h.
+TEST(SizeCommand, DepthSlopeAndRasterTermsChangeTheMeshWhereAndOnlyWhereTheyBind) {
+  TempDir dir;
+  const int W = 160, Hc = 80;
+  auto depth_at = [](int c) {  // by column
+    return c < 20 ? 100.0 : c < 80 ? 2000.0 : c < 95 ? 2000.0 + 2000.0 * (c - 80) / 15 : 4000.0;
+  };
+  std::vector<float> z;
+  for (int r = 0; r < Hc; ++r)
+    for (int c = 0; c < W; ++c)
+      z.push_back(r == 0 || c == 0 || r == Hc - 1 || c == W - 1 ? 10.0f : static_cast<float>(-depth_at(c)));
+  write_dem(dir / "basin.tif", W, Hc, z);
+  const double x0 = 400000, y0 = 5400000 - 1000.0 * Hc, H = 4000;
+  // And a raster of sizes, 1500 m over 120 .. 140 x 30 .. 50 km of the basin (nothing beyond it).
+  write_dem(dir / "sizes.tif", 20, 20, std::vector<float>(400, 1500.0f), std::nullopt,
+            {x0 + 120000, 1000, 0, y0 + 50000, 0, -1000});
+  auto run = [&](const std::string& options, const std::string& out) {
+    const RunResult r = shoremesh(dir, "mesh --dem basin.tif --max-size 4000 --min-size 1000 " + options + " -o " + out);
+    EXPECT_EQ(r.code, 0) << options << ": " << r.err;
+    return read_triangle_files(dir / out);
+  };
+  using Corners = std::array<Point2, 3>;
+  auto corners = [](const TriangleFiles& m) {
+    std::vector<Corners> out;
+    for (const auto& t : m.triangles) {
+      Corners c{m.nodes[t[0]], m.nodes[t[1]], m.nodes[t[2]]};
+      std::sort(c.begin(), c.end());
+      out.push_back(c);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  const auto base = corners(run("", "base.node"));
+  ASSERT_GT(base.size(), 500u);
+  // (u, v): km from the basin's south-west corner; the water is 1 .. 159 x 1 .. 79 km.
+  auto local = [&](const Point2& p) { return Point2{(p[0] - x0) / 1000, (p[1] - y0) / 1000}; };
+  struct Case {
+    std::string option;
+    std::vector<std::array<double, 2>> binds_u;  // the u ranges where the term binds off the shore
+    double inner_u0, inner_u1;                  // where the term's h is known: check the longest edges there
+    std::function<double(double)> h;             // h at u there
+  };
+  const double T = 44712;
+  const std::vector<Case> cases{
+      {"--size-from-depth 1000", {{0, 21}}, 3, 18, [&](double) { return T * std::sqrt(9.81 * 100) / 1000; }},
+      {"--size-from-slope 60", {{19, 22}, {79, 96}}, 82, 93,
+       [&](double u) { return 2 * std::numbers::pi * (2000 + 2000 * (u - 80.5) / 15) / (60 * 2000.0 / 15000); }},
+      {"--size-raster sizes.tif", {{120, 140}}, 123, 137, [](double) { return 1500.0; }},
+  };
+  const double reach = 5 * H / 1000, shore_band = 1.5;  // km
+  for (const Case& c : cases) {
+    const TriangleFiles mesh = run(c.option, "term.node");
+    const auto after = corners(mesh);
+    auto far = [&](const Corners& t) {
+      for (const Point2& p : t) {
+        const Point2 q = local(p);
+        if (std::min({q[0] - 1, 159 - q[0], q[1] - 1, 79 - q[1]}) < shore_band + reach) return false;
+        for (const auto& [u0, u1] : c.binds_u)
+          if (q[0] > u0 - reach && q[0] < u1 + reach) return false;
+      }
+      return true;
+    };
+    std::vector<Corners> b, a;
+    std::copy_if(base.begin(), base.end(), std::back_inserter(b), far);
+    std::copy_if(after.begin(), after.end(), std::back_inserter(a), far);
+    EXPECT_GT(b.size(), 30u) << c.option;
+    EXPECT_EQ(a, b) << c.option << ": the mesh changed far from where the term binds";
+    EXPECT_NE(after, base) << c.option << ": the term changed nothing";
+    std::size_t inside = 0;
+    for (const Corners& t : after) {
+      const Point2 g = local({(t[0][0] + t[1][0] + t[2][0]) / 3, (t[0][1] + t[1][1] + t[2][1]) / 3});
+      const bool raster = c.option.find("raster") != std::string::npos;
+      if (g[0] < c.inner_u0 || g[0] > c.inner_u1 || g[1] < (raster ? 33 : 3) || g[1] > (raster ? 47 : 77)) continue;
+      ++inside;
+      double longest = 0;
+      for (int i = 0; i < 3; ++i)
+        longest = std::max(longest, std::hypot(t[i][0] - t[(i + 1) % 3][0], t[i][1] - t[(i + 1) % 3][1]));
+      EXPECT_LE(longest, 1.01 * c.h(g[0])) << c.option << " at " << g[0] << ", " << g[1] << " km";
+    }
+    EXPECT_GT(inside, 50u) << c.option;
+  }
 }
 
 }  // namespace

@@ -82,6 +82,8 @@ class SizeField {
   int levels() const { return k_; }
   std::size_t cells() const { return n_; }
   const std::vector<double>& nodes() const { return h_; }  // (n + 1)^2, row-major from the box's origin
+  // Per node, as nodes(): in the water (WaterTest::in_water at the node, decided exactly).
+  const std::vector<std::uint8_t>& water() const { return water_; }
 
   bool operator==(const SizeField& o) const { return h_ == o.h_; }
 
@@ -121,6 +123,18 @@ inline constexpr int kSeedRetries = 2;
 // (RefinementRule::max_length).
 inline constexpr double kShoreFactor = 0.7;
 std::vector<Point2> size_seeds(const SizeField& field, const Domain2& refined, double gamma = 1.25);
+// The seeds after a change of h (old_field to field) or of the refined rings (old_refined to refined),
+// recomputing only the quadtree's nodes the change reaches (docs/sizing.md): equal to
+// size_seeds(field, refined, gamma). `old_seeds` are size_seeds(old_field, old_refined, gamma).
+struct SeedUpdate {
+  std::size_t visited = 0, recomputed = 0, removed = 0, added = 0;  // nodes walked, subtrees redone, seeds
+};
+std::vector<Point2> update_size_seeds(const SizeField& old_field, const std::vector<Point2>& old_seeds,
+                                      const Domain2& old_refined, const SizeField& field, const Domain2& refined,
+                                      double gamma = 1.25, SeedUpdate* stats = nullptr);
+// The seeds' test against one refined segment ab, exact (the engine's filtered predicates): p is at least
+// `near` from the segment and not strictly inside its diametral circle grown by gamma.
+bool seed_clear_of_segment(const Point2& p, const Point2& a, const Point2& b, double near, double gamma);
 
 // The rule's max_length for this field: kShoreFactor times the least h over the subsegment's bounding box.
 // The field is shared: the refinement that holds the rule keeps it alive.
