@@ -264,7 +264,11 @@ function refreshDots(ids) {  // in place: points that moved or whose selection c
   for (const id of touched) {
     if (!dotIndex.has(id) || !state.verts.has(id)) continue;
     const i = dotIndex.get(id);
+    const b = emptyBox();  // the point and its edge, before and after
+    for (let k = 0; k < 4; k += 2) growBox(b, seg.array[i * 4 + k], seg.array[i * 4 + k + 1]);
     writeDot(a.position.array, a.colour.array, a.big.array, seg.array, id, i);
+    for (let k = 0; k < 4; k += 2) growBox(b, seg.array[i * 4 + k], seg.array[i * 4 + k + 1]);
+    markBox(b);
     growDot(i);
     // Only these points' entries go to the GPU (a drag rewrites one point 171k times over otherwise).
     for (const attr of [a.position, a.colour, a.big]) attr.addUpdateRange(i * attr.itemSize, attr.itemSize);
@@ -274,8 +278,24 @@ function refreshDots(ids) {  // in place: points that moved or whose selection c
 }
 
 // ---- the view --------------------------------------------------------------------------------------------
-let dirty = true;
+// A frame redraws only what changed: the canvas keeps its pixels between frames (preserveDrawingBuffer),
+// so an edit redraws the screen rectangles of its triangles and points (scissored, with a camera of that
+// rectangle so that three.js culls every chunk outside it), and a pan by whole pixels shifts the last
+// frame (one copy into a texture and one full-screen triangle) and draws only the strips it uncovers.
+// A change of scale, size or colouring redraws everything. `fast` switches these off (?full=1), for
+// benchmarks and for tests that compare a frame with a full redraw.
+const params = new URLSearchParams(window.location.search);
+const fast = { partial: !params.has('full'), scroll: !params.has('full') };
+state.fast = fast;
+let dirty = true;     // the next frame redraws everything
+let boxes = [];       // else: these boxes of the mesh (relative to the origin, [x0, y0, x1, y1]) are redrawn
 function requestDraw() { dirty = true; }
+function markBox(b) { if (b && isFinite(b[0])) boxes.push(b); }
+const growBox = (b, x, y) => {
+  if (x < b[0]) b[0] = x; if (y < b[1]) b[1] = y;
+  if (x > b[2]) b[2] = x; if (y > b[3]) b[3] = y;
+};
+const emptyBox = () => [Infinity, Infinity, -Infinity, -Infinity];
 function resize() {
   renderer.setSize(view.clientWidth, view.clientHeight);
   requestDraw();
@@ -308,20 +328,158 @@ function fit() {
   if (!isFinite(lo[0])) { lo = [0, 0]; hi = [state.side, state.side]; }
   cam.cx = (lo[0] + hi[0]) / 2; cam.cy = (lo[1] + hi[1]) / 2;
   cam.scale = 1.05 * Math.max((hi[0] - lo[0]) / view.clientWidth, (hi[1] - lo[1]) / view.clientHeight) || 1;
-  requestDraw();
 }
 const frameWaiters = [];
-function frame() {
-  if (dirty) {
-    dirty = false;
-    updateCamera();
-    renderer.render(scene, camera);
-    ++state.frames;
-    for (const f of frameWaiters.splice(0)) f(performance.now());
+const drawnView = { cx: NaN, cy: NaN, scale: NaN, w: 0, h: 0 };  // the camera of the pixels on the canvas
+const subCamera = new THREE.OrthographicCamera(-1, 1, 1, -1, -1, 1);
+// The last frame's pixels, shifted: a copy of the canvas read back with texelFetch (exact, no filtering).
+const blit = {
+  texture: null,
+  shift: { value: new THREE.Vector2(0, 0) },
+  scene: new THREE.Scene(),
+};
+{
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array([-1, -1, 3, -1, -1, 3]), 2));
+  const material = new THREE.RawShaderMaterial({
+    glslVersion: THREE.GLSL3, depthTest: false, depthWrite: false,
+    uniforms: { uFrame: { value: null }, uShift: blit.shift },
+    vertexShader: 'in vec2 position; void main() { gl_Position = vec4(position, 0.0, 1.0); }',
+    fragmentShader: `precision highp float; precision highp sampler2D;
+      uniform sampler2D uFrame; uniform vec2 uShift; out vec4 outColor;
+      void main() {
+        ivec2 at = ivec2(floor(gl_FragCoord.xy - uShift));
+        ivec2 size = textureSize(uFrame, 0);
+        if (at.x < 0 || at.y < 0 || at.x >= size.x || at.y >= size.y) discard;  // uncovered: drawn next
+        outColor = texelFetch(uFrame, at, 0);
+      }`,
+  });
+  blit.material = material;
+  const quad = new THREE.Mesh(geometry, material);
+  quad.frustumCulled = false;
+  blit.scene.add(quad);
+}
+renderer.info.autoReset = false;  // a frame may be several renders: its counts are their sum
+// Redraws the rectangle (CSS pixels, top-left origin) of the view: scissored to it, through a camera of it
+// widened by the largest point's radius (a point whose centre is outside the viewport is not drawn at all).
+function renderRect(x, y, rw, rh, w, h) {
+  const m = 16;
+  const vx = x - m, vy = y - m, vw = rw + 2 * m, vh = rh + 2 * m;
+  subCamera.left = cam.cx + (vx - w / 2) * cam.scale;
+  subCamera.right = cam.cx + (vx + vw - w / 2) * cam.scale;
+  subCamera.top = cam.cy - (vy - h / 2) * cam.scale;
+  subCamera.bottom = cam.cy - (vy + vh - h / 2) * cam.scale;
+  subCamera.updateProjectionMatrix();
+  renderer.setViewport(vx, h - vy - vh, vw, vh);
+  renderer.setScissor(x, h - y - rh, rw, rh);
+  renderer.setScissorTest(true);
+  renderer.render(scene, subCamera);
+}
+// The boxes' rectangles on the screen (padded by a point's radius and a pixel of antialiasing), clipped to
+// the view, those that overlap or nearly so merged (each rectangle is a render of every chunk it meets);
+// null when they cover so much that one full frame is cheaper.
+function boxRects(w, h) {
+  let rects = [];
+  for (const b of boxes) {
+    const pad = 9;
+    const x0 = Math.max(0, Math.floor((b[0] - cam.cx) / cam.scale + w / 2) - pad);
+    const x1 = Math.min(w, Math.ceil((b[2] - cam.cx) / cam.scale + w / 2) + pad);
+    const y0 = Math.max(0, Math.floor(h / 2 - (b[3] - cam.cy) / cam.scale) - pad);
+    const y1 = Math.min(h, Math.ceil(h / 2 - (b[1] - cam.cy) / cam.scale) + pad);
+    if (x1 <= x0 || y1 <= y0) continue;
+    rects.push([x0, y0, x1, y1]);
   }
+  const area = (r) => (r[2] - r[0]) * (r[3] - r[1]);
+  for (let merged = true; merged;) {
+    merged = false;
+    for (let i = 0; i < rects.length && !merged; ++i) {
+      for (let j = i + 1; j < rects.length && !merged; ++j) {
+        const a = rects[i], b = rects[j];
+        const u = [Math.min(a[0], b[0]), Math.min(a[1], b[1]), Math.max(a[2], b[2]), Math.max(a[3], b[3])];
+        if (area(u) <= 1.5 * (area(a) + area(b)) + 4096) {
+          rects[i] = u;
+          rects.splice(j, 1);
+          merged = true;
+        }
+      }
+    }
+  }
+  if (rects.reduce((sum, r) => sum + area(r), 0) > 0.4 * w * h) return null;
+  return rects.map((r) => [r[0], r[1], r[2] - r[0], r[3] - r[1]]);
+}
+// What the last frame did: how ('full', 'partial', 'scroll' or 'none'), and three.js's counts summed over
+// its renders (draw calls, triangles, points, line segments: what the GPU was given, whatever the machine).
+state.drawn = null;
+function draw() {
+  const w = view.clientWidth, h = view.clientHeight, dpr = renderer.getPixelRatio();
+  updateCamera();
+  renderer.info.reset();
+  let how = 'full', pixels = w * h;  // pixels: how many the frame drew (CSS pixels), the shifted copy aside
+  const sameScale = drawnView.scale === cam.scale && drawnView.w === w && drawnView.h === h && Number.isInteger(dpr);
+  // The content's shift since the last frame, in CSS pixels (right, down).
+  const sx = (drawnView.cx - cam.cx) / cam.scale, sy = (cam.cy - drawnView.cy) / cam.scale;
+  const rx = Math.round(sx), ry = Math.round(sy);
+  const whole = Math.abs(sx - rx) < 1e-3 && Math.abs(sy - ry) < 1e-3;
+  let rects = null;
+  if (!dirty && sameScale && whole && fast.partial) rects = boxRects(w, h);
+  if (rects && rx === 0 && ry === 0) how = rects.length ? 'partial' : 'none';
+  else if (rects && fast.scroll && Math.abs(rx) < w / 2 && Math.abs(ry) < h / 2) how = 'scroll';
+  if (how === 'full') {
+    renderer.setScissorTest(false);
+    renderer.setViewport(0, 0, w, h);
+    renderer.render(scene, camera);
+  } else {
+    pixels = 0;
+    if (how === 'scroll') {
+      const tw = w * dpr, th = h * dpr;
+      if (!blit.texture || blit.texture.image.width !== tw || blit.texture.image.height !== th) {
+        if (blit.texture) blit.texture.dispose();
+        blit.texture = new THREE.FramebufferTexture(tw, th);
+        blit.texture.minFilter = blit.texture.magFilter = THREE.NearestFilter;
+        blit.material.uniforms.uFrame.value = blit.texture;
+      }
+      renderer.setScissorTest(false);
+      renderer.setViewport(0, 0, w, h);
+      renderer.copyFramebufferToTexture(blit.texture);
+      blit.shift.value.set(rx * dpr, -ry * dpr);
+      renderer.autoClear = false;
+      renderer.render(blit.scene, camera);
+      renderer.autoClear = true;
+      if (rx > 0) rects.push([0, 0, rx, h]); else if (rx < 0) rects.push([w + rx, 0, -rx, h]);
+      if (ry > 0) rects.push([0, 0, w, ry]); else if (ry < 0) rects.push([0, h + ry, w, -ry]);
+    }
+    for (const [x, y, rw, rh] of rects) { renderRect(x, y, rw, rh, w, h); pixels += rw * rh; }
+    renderer.setScissorTest(false);
+    renderer.setViewport(0, 0, w, h);
+  }
+  dirty = false;
+  boxes = [];
+  Object.assign(drawnView, { cx: cam.cx, cy: cam.cy, scale: cam.scale, w, h });
+  const r = renderer.info.render;
+  state.drawn = { how, calls: r.calls, triangles: r.triangles, points: r.points, lines: r.lines, pixels };
+}
+// Bench: draw each frame to the end (a pixel read back) so that frame times include the rasterizing.
+state.syncFrames = false;
+function frame() {
+  const viewMoved = cam.cx !== drawnView.cx || cam.cy !== drawnView.cy || cam.scale !== drawnView.scale ||
+                    view.clientWidth !== drawnView.w || view.clientHeight !== drawnView.h;
+  if (dirty || boxes.length || viewMoved) {
+    const start = performance.now();
+    draw();
+    const rendered = performance.now();
+    if (state.syncFrames) {
+      const gl = renderer.getContext();
+      gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, probe);
+    }
+    state.frameTiming = { start, renderMs: rendered - start, rasterMs: performance.now() - rendered };
+    ++state.frames;
+  }
+  const now = performance.now();
+  for (const f of frameWaiters.splice(0)) f(now);
   requestAnimationFrame(frame);
 }
-function nextFrame() { requestDraw(); return new Promise((resolve) => frameWaiters.push(resolve)); }
+const probe = new Uint8Array(4);
+function nextFrame() { return new Promise((resolve) => frameWaiters.push(resolve)); }
 
 // Screen (CSS pixels in the view) <-> mesh coordinates (absolute).
 function toWorld(px, py) {
@@ -379,16 +537,31 @@ async function load() {
 
 // One accepted edit's change, in version order (from the POST's answer or the event stream, whichever
 // comes first). A gap means changes were missed: reload everything.
+let flashBox = null;  // the last edit's triangles (highlighted)
 function applyChange(change) {
   if (change.version <= state.version) return false;
   if (change.version !== state.version + 1) { reload(); return false; }
   if (change.slots > capacity) allocate(change.slots);
   const written = [];
-  for (const s of change.cleared) { clearSlot(s); written.push(s); }
-  for (const a of change.added) { writeSlot(a[0], a.slice(1, 7), a.slice(7, 10), change.version); written.push(a[0]); }
+  // What to redraw: where the triangles went and came, where the last edit's highlight was, and any slot
+  // whose depths changed.
+  const box = emptyBox(), p = buffers.position.array;
+  const slotBox = (s, b) => { for (let k = 0; k < 6; k += 2) growBox(b, p[s * 6 + k], p[s * 6 + k + 1]); };
+  for (const s of change.cleared) { slotBox(s, box); clearSlot(s); written.push(s); }
+  for (const a of change.added) {
+    writeSlot(a[0], a.slice(1, 7), a.slice(7, 10), change.version);
+    slotBox(a[0], box);
+    written.push(a[0]);
+  }
+  markBox(flashBox);
+  markBox(box);
+  flashBox = box;
   for (const d of change.depths || []) {  // the added slots' depths, and slots whose nodes' depths changed
     buffers.depth.array.set([d[1], d[2], d[3]], d[0] * 3);
     written.push(d[0]);
+    const b = emptyBox();
+    slotBox(d[0], b);
+    markBox(b);
   }
   upload([...new Set(written)]);
   updateChunks();
@@ -414,13 +587,12 @@ function applyChange(change) {
       if (b && b.prev !== p.id) { b.prev = p.id; structural = true; }
     }
   }
-  if (structural) rebuildRings(); else refreshDots(change.inputs.map((p) => p.id));
+  if (structural) { rebuildRings(); requestDraw(); } else refreshDots(change.inputs.map((p) => p.id));
   Object.assign(state, { version: change.version, triangles: change.triangles, slots: Math.max(state.slots, change.slots) });
   uniforms.uVersion.value = change.version;
   ++state.redraws;
   $('changed').textContent = `${change.cleared.length} out, ${change.added.length} in`;
   showCounts(change.reply);
-  requestDraw();
   scheduleStats();
   return true;
 }
@@ -440,9 +612,26 @@ function setStatus(text, refused) {
 // while dragging (not a history entry, not `last`); `opts.since`: when the user asked for it (the mouse
 // release of a drag), for the time to the frame.
 // `opts.applied`: the edit was already sent and applied (the last move of a drag): {reply, roundTripMs}.
+// Where the time went (`state.last.profile`, for bench/editor_latency.cjs), from the Resource Timing entry of
+// the POST and the server's Server-Timing header: `server` the request on the server (`lock` of it waiting
+// for the session, `edit` running the line, `json` writing the answer), `network` the rest until the
+// answer's first byte, `download`, `parse` (JSON.parse), `apply` (the slots and buffers), `waitFrame`
+// (until the next animation frame), `render` (three.js's calls) and `raster` (the GPU finishing the frame:
+// measured only when state.syncFrames is set).
+performance.setResourceTimingBufferSize(100000);
+function postTiming() {
+  const entries = performance.getEntriesByType('resource').filter((e) => e.initiatorType === 'fetch' && /\/edit$/.test(e.name));
+  performance.clearResourceTimings();
+  const e = entries[entries.length - 1];
+  if (!e) return {};
+  const server = {};
+  for (const t of e.serverTiming || []) server[t.name] = t.duration;
+  return { requestStart: e.requestStart, responseStart: e.responseStart, responseEnd: e.responseEnd, server,
+           bytes: e.encodedBodySize };
+}
 async function send(line, opts = {}) {
   const t0 = performance.now();
-  let reply, t1;
+  let reply, t1, profile = {};
   if (opts.applied) {
     reply = opts.applied.reply;
     t1 = t0 + opts.applied.roundTripMs;
@@ -450,11 +639,24 @@ async function send(line, opts = {}) {
     ++posting;
     const res = await fetch('edit', { method: 'POST', body: line, headers: { 'Content-Type': 'text/plain' } })
       .finally(() => { --posting; });
-    const out = await res.json();
+    const text = await res.text();
+    const tText = performance.now();
+    const out = JSON.parse(text);
+    const tParse = performance.now();
     if (!res.ok) { setStatus(`${line}: ${out.error}`, true); return { ok: false, error: out.error }; }
     t1 = performance.now();
     for (const c of out.changes) applyChange(c);
+    const tApply = performance.now();
     reply = out.replies[0];
+    const rt = postTiming();
+    const serverMs = rt.server ? rt.server.total : undefined;
+    profile = {
+      fetchStart: t0, bytes: rt.bytes ?? text.length, server: serverMs, lock: rt.server?.lock, edit: rt.server?.edit,
+      json: rt.server?.json,
+      network: rt.responseStart !== undefined ? rt.responseStart - t0 - (serverMs ?? 0) : undefined,
+      download: rt.responseEnd !== undefined ? rt.responseEnd - rt.responseStart : undefined,
+      toText: tText - t0, parse: tParse - tText, apply: tApply - tParse, applied: tApply,
+    };
   }
   if (opts.live) {
     if (reply.ok) ++state.liveMoves;
@@ -466,7 +668,13 @@ async function send(line, opts = {}) {
   }
   const t2 = await nextFrame();
   const since = opts.since ?? t0;
-  state.last = { line, ok: reply.ok, serverMs: reply.ms, roundTripMs: t1 - t0, frameMs: t2 - since, reply };
+  const f = state.frameTiming;
+  if (f && profile.applied !== undefined && f.start >= profile.applied) {
+    Object.assign(profile, { waitFrame: f.start - profile.applied, render: f.renderMs, raster: f.rasterMs,
+                             since: profile.fetchStart - since });
+  }
+  profile.drawn = state.drawn;  // the last frame drawn (the live move's, when the final move went before)
+  state.last = { line, ok: reply.ok, serverMs: reply.ms, roundTripMs: t1 - t0, frameMs: t2 - since, reply, profile };
   if (reply.ok) {
     ++state.edits;
     $('edit-count').textContent = state.edits;
@@ -610,7 +818,6 @@ function select(id) {
   $('selected').textContent = !v ? 'none' : v.ring === undefined ? `point ${id}`
     : `point ${id} of ${v.role || 'ring'} ${v.ring + 1}`;
   refreshDots([old, id].filter((x) => x !== null));
-  requestDraw();
 }
 
 // A drag moves the point on the server while the mouse moves, one move in flight at a time (the next
@@ -657,10 +864,11 @@ view.addEventListener('pointermove', (e) => {
     followCursor();
     liveMove(press);
   } else {
-    cam.cx = press.cx - (px - press.px) * cam.scale;
-    cam.cy = press.cy + (py - press.py) * cam.scale;
+    // By whole device pixels, so that a frame shifts the last one's pixels (see draw()).
+    const dpr = renderer.getPixelRatio();
+    cam.cx = press.cx - (Math.round((px - press.px) * dpr) / dpr) * cam.scale;
+    cam.cy = press.cy + (Math.round((py - press.py) * dpr) / dpr) * cam.scale;
   }
-  requestDraw();
 });
 async function release(p, px, py) {
   const since = performance.now();
@@ -707,7 +915,6 @@ view.addEventListener('wheel', (e) => {
   cam.scale *= Math.exp(e.deltaY * 0.0015);
   const [nx, ny] = toWorld(px, py);
   cam.cx += wx - nx; cam.cy += wy - ny;
-  requestDraw();
 }, { passive: false });
 function startDrawing(kind) {
   drawing = { kind, xy: [] };
@@ -773,10 +980,10 @@ async function loadStats() {
   $('angles').textContent = `${s.min_angle.toFixed(2)}°–${s.max_angle.toFixed(2)}°`;
   $('shoreline').textContent = s.shore_segments === undefined ? 'no rings'
     : s.shore_conforming ? `conforming (${s.shore_segments})` : `${s.shore_covered} of ${s.shore_segments} segments`;
+  if (uniforms.uBound.value !== s.min_angle_bound) requestDraw();  // the colours change everywhere
   uniforms.uBound.value = s.min_angle_bound;
   state.stats = s;
   showLegend();
-  requestDraw();
 }
 function showLegend() {
   const mode = uniforms.uColour.value;
@@ -803,9 +1010,9 @@ state.pan = (dx, dy) => { cam.cx += dx * cam.scale; cam.cy -= dy * cam.scale; re
 state.fit = () => { fit(); return nextFrame(); };
 // Profiling (bench/): one frame drawn and read back (a pixel: the draw must have run), in ms; and layers
 // switched off.
-const probe = new Uint8Array(4);
 state.profileFrame = () => {
   updateCamera();
+  renderer.info.reset();
   const t = performance.now();
   renderer.render(scene, camera);
   const gl = renderer.getContext();
@@ -817,6 +1024,7 @@ state.profileFrame = () => {
 state.layers = ({ dots: d = true, corners: c = true, triangles: t = true }) => {
   for (const k of chunks) { k.mesh.visible = t && isFinite(k.lo[0]); k.corners.visible = c && k.mesh.visible; }
   layerMask = { d, c, t };
+  requestDraw();
 };
 // What the page draws, for tests: each triangle's corners (float32, relative to the origin) as sorted
 // text, the triangles sorted; and each drawn node's depth (by its float32 place).
@@ -834,7 +1042,9 @@ state.drawnDepths = () => {
   return [...at.values()].sort((a, b) => a - b);
 };
 state.undoLast = undo;
-state.setColour = (mode) => { uniforms.uColour.value = mode; $('colour').value = String(mode); showLegend(); return nextFrame(); };
+state.setColour = (mode) => { uniforms.uColour.value = mode; $('colour').value = String(mode); showLegend(); requestDraw(); return nextFrame(); };
+// For tests: the next frame redraws everything (to compare with what the partial frames left).
+state.redrawAll = () => { requestDraw(); return nextFrame(); };
 state.redoLast = redo;
 
 window.addEventListener('resize', resize);
