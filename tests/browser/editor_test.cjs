@@ -121,7 +121,16 @@ async function main() {
       assert.ok(zoomedFull.how === 'full' && d.pixels < zoomedFull.pixels / 4, `${d.pixels} pixels, ${zoomedFull.pixels} in a full frame`);
       assert.ok(d.triangles <= zoomedFull.triangles, `${d.triangles} triangles in the edit's frame, ${zoomedFull.triangles} in a full one`);
     });
-    await h.dragShorePoint(page, 900, -1, { steps: 8, pause: 40 });
+    const second = await h.dragShorePoint(page, 900, -1, { steps: 8, pause: 40 });
+    const lastBoxes = await page.evaluate(() => window.shoremesh.lastEditBoxes());
+    check("the edit's frame redrew every triangle the edit wrote (those on the screen)", () => {
+      const rects = second.profile.drawn.rects;
+      assert.ok(lastBoxes.length > 0);
+      for (const [x0, y0, x1, y1] of lastBoxes) {
+        assert.ok(rects.some(([x, y, w, h]) => x0 >= x && y0 >= y && x1 <= x + w && y1 <= y + h),
+                  `triangle box ${[x0, y0, x1, y1]} outside the redrawn rectangles ${JSON.stringify(rects)}`);
+      }
+    });
     const afterDrag = await differsFromFullRedraw(page);
     check('after a drag drawn in partial frames the canvas is what a full redraw draws', () =>
       assert.ok(afterDrag.differ <= 20, `${afterDrag.differ} of ${afterDrag.pixels} pixels differ`));

@@ -414,7 +414,7 @@ function draw() {
   const w = view.clientWidth, h = view.clientHeight, dpr = renderer.getPixelRatio();
   updateCamera();
   renderer.info.reset();
-  let how = 'full', pixels = w * h;  // pixels: how many the frame drew (CSS pixels), the shifted copy aside
+  let how = 'full', pixels = w * h, drawnRects = [[0, 0, w, h]];  // pixels: how many the frame drew (CSS pixels), the shifted copy aside
   const sameScale = drawnView.scale === cam.scale && drawnView.w === w && drawnView.h === h && Number.isInteger(dpr);
   // The content's shift since the last frame, in CSS pixels (right, down).
   const sx = (drawnView.cx - cam.cx) / cam.scale, sy = (cam.cy - drawnView.cy) / cam.scale;
@@ -449,6 +449,7 @@ function draw() {
       if (ry > 0) rects.push([0, 0, w, ry]); else if (ry < 0) rects.push([0, h + ry, w, -ry]);
     }
     for (const [x, y, rw, rh] of rects) { renderRect(x, y, rw, rh, w, h); pixels += rw * rh; }
+    drawnRects = rects;
     renderer.setScissorTest(false);
     renderer.setViewport(0, 0, w, h);
   }
@@ -456,7 +457,7 @@ function draw() {
   boxes = [];
   Object.assign(drawnView, { cx: cam.cx, cy: cam.cy, scale: cam.scale, w, h });
   const r = renderer.info.render;
-  state.drawn = { how, calls: r.calls, triangles: r.triangles, points: r.points, lines: r.lines, pixels };
+  state.drawn = { how, calls: r.calls, triangles: r.triangles, points: r.points, lines: r.lines, pixels, rects: drawnRects };
 }
 // Bench: draw each frame to the end (a pixel read back) so that frame times include the rasterizing.
 state.syncFrames = false;
@@ -1035,6 +1036,18 @@ state.drawnTriangles = () => {
     out.push([0, 1, 2].map((k) => `${p[s * 6 + 2 * k]} ${p[s * 6 + 2 * k + 1]}`).sort().join('|'));
   }
   return out.sort();
+};
+// The screen boxes (CSS pixels: x0, y0, x1, y1, clipped to the view) of the triangles the last edit wrote.
+state.lastEditBoxes = () => {
+  const p = buffers.position.array, out = [], w = view.clientWidth, h = view.clientHeight;
+  for (let s = 0; s < state.slots; ++s) {
+    if (buffers.kind.array[s * 3] === 255 || buffers.changed.array[s * 3] !== state.version) continue;
+    const xs = [0, 2, 4].map((k) => toScreen(p[s * 6 + k] + state.origin[0], p[s * 6 + k + 1] + state.origin[1]));
+    const b = [Math.max(0, Math.min(...xs.map((q) => q[0]))), Math.max(0, Math.min(...xs.map((q) => q[1]))),
+               Math.min(w, Math.max(...xs.map((q) => q[0]))), Math.min(h, Math.max(...xs.map((q) => q[1])))];
+    if (b[0] < b[2] && b[1] < b[3]) out.push(b);
+  }
+  return out;
 };
 state.drawnDepths = () => {
   const p = buffers.position.array, d = buffers.depth.array, at = new Map();
