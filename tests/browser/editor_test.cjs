@@ -123,8 +123,10 @@ async function main() {
     });
     const second = await h.dragShorePoint(page, 900, -1, { steps: 8, pause: 40 });
     const lastBoxes = await page.evaluate(() => window.shoremesh.lastEditBoxes());
+    const changeFrame = await page.evaluate(() => window.shoremesh.changeFrame);
     check("the edit's frame redrew every triangle the edit wrote (those on the screen)", () => {
-      const rects = second.profile.drawn.rects;
+      assert.ok(second.ok && changeFrame.drawn, JSON.stringify(changeFrame));
+      const rects = changeFrame.drawn.rects;
       assert.ok(lastBoxes.length > 0);
       for (const [x0, y0, x1, y1] of lastBoxes) {
         assert.ok(rects.some(([x, y, w, h]) => x0 >= x && y0 >= y && x1 <= x + w && y1 <= y + h),
@@ -159,6 +161,21 @@ async function main() {
     check('after panning the canvas is what a full redraw draws, and shows the mesh', () => {
       assert.ok(panDiff.differ <= 20, `${panDiff.differ} of ${panDiff.pixels} pixels differ`);
       assert.ok(panDiff.painted > 0.1, `only ${(panDiff.painted * 100).toFixed(1)} % of the canvas is drawn`);
+    });
+    // Zooming with the wheel: the frame before is drawn scaled (one triangle), and once the wheel rests the
+    // view is drawn in full.
+    const zoomed = await page.evaluate(async () => {
+      const s = window.shoremesh, frames = [];
+      for (const f of [0.8, 0.8, 0.9]) { await s.zoom(f); frames.push(s.drawn); }
+      await new Promise((r) => setTimeout(r, s.zoomRest + 100));
+      await s.nextFrame();
+      return { frames, rested: s.drawn };
+    });
+    const zoomDiff = await differsFromFullRedraw(page);
+    check('a wheel zoom draws the last frame scaled, and the full view once the wheel rests', () => {
+      for (const d of zoomed.frames) assert.ok(d.how === 'zoom' && d.calls === 1 && d.triangles === 1, JSON.stringify(d));
+      assert.strictEqual(zoomed.rested.how, 'full');
+      assert.ok(zoomDiff.differ === 0 && zoomDiff.painted > 0.1, JSON.stringify(zoomDiff));
     });
     await page.evaluate(async (id) => {  // back where the drag was; the last frame a pan frame, checked below
       const s = window.shoremesh, v = s.verts.get(id), a = s.verts.get(v.prev);

@@ -330,6 +330,7 @@ function fit() {
   cam.scale = 1.05 * Math.max((hi[0] - lo[0]) / view.clientWidth, (hi[1] - lo[1]) / view.clientHeight) || 1;
 }
 const frameWaiters = [];
+let zooming = false;  // the camera's scale changed by the wheel (or state.zoom) since the last frame
 const drawnView = { cx: NaN, cy: NaN, scale: NaN, w: 0, h: 0 };  // the camera of the pixels on the canvas
 const subCamera = new THREE.OrthographicCamera(-1, 1, 1, -1, -1, 1);
 // The last frame's pixels, shifted: a copy of the canvas read back with texelFetch (exact, no filtering).
@@ -359,6 +360,31 @@ const blit = {
   quad.frustumCulled = false;
   blit.scene.add(quad);
 }
+// While the wheel turns, the frame before it is drawn scaled (a preview, filtered), and the view is drawn in
+// full once the wheel has rested for kZoomRest ms: zooming a million triangles costs one textured triangle a
+// frame and one full frame at the end. Jumps (fit, zoomTo) draw in full at once.
+const kZoomRest = 200;
+const zoom = { texture: null, view: null, timer: null, map: { value: new THREE.Vector4() }, scene: new THREE.Scene() };
+{
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array([-1, -1, 3, -1, -1, 3]), 2));
+  zoom.material = new THREE.RawShaderMaterial({
+    glslVersion: THREE.GLSL3, depthTest: false, depthWrite: false,
+    uniforms: { uFrame: { value: null }, uMap: zoom.map },
+    vertexShader: 'in vec2 position; void main() { gl_Position = vec4(position, 0.0, 1.0); }',
+    fragmentShader: `precision highp float; precision highp sampler2D;
+      uniform sampler2D uFrame; uniform vec4 uMap; out vec4 outColor;
+      void main() {  // this pixel's place in the preview's frame (device pixels): uMap.xy * here + uMap.zw
+        vec2 at = uMap.xy * gl_FragCoord.xy + uMap.zw, size = vec2(textureSize(uFrame, 0));
+        if (at.x < 0.0 || at.y < 0.0 || at.x >= size.x || at.y >= size.y) discard;
+        outColor = texture(uFrame, at / size);
+      }`,
+  });
+  const quad = new THREE.Mesh(geometry, zoom.material);
+  quad.frustumCulled = false;
+  zoom.scene.add(quad);
+}
+let previewing = false;  // the canvas holds a zoom preview, not the view: the next frame other than one is full
 renderer.info.autoReset = false;  // a frame may be several renders: its counts are their sum
 // Redraws the rectangle (CSS pixels, top-left origin) of the view: scissored to it, through a camera of it
 // widened by the largest point's radius (a point whose centre is outside the viewport is not drawn at all).
@@ -424,10 +450,36 @@ function draw() {
   if (!dirty && sameScale && whole && fast.partial) rects = boxRects(w, h);
   if (rects && rx === 0 && ry === 0) how = rects.length ? 'partial' : 'none';
   else if (rects && fast.scroll && Math.abs(rx) < w / 2 && Math.abs(ry) < h / 2) how = 'scroll';
-  if (how === 'full') {
+  if (how === 'full' && !dirty && fast.scroll && zooming && drawnView.w === w && drawnView.h === h) how = 'zoom';
+  zooming = false;
+  if (previewing && how !== 'zoom') how = 'full';
+  if (how === 'zoom') {
+    const tw = w * dpr, th = h * dpr;
+    renderer.setScissorTest(false);
+    renderer.setViewport(0, 0, w, h);
+    if (!previewing) {  // the canvas holds the view: it is the preview's source
+      if (!zoom.texture || zoom.texture.image.width !== tw || zoom.texture.image.height !== th) {
+        if (zoom.texture) zoom.texture.dispose();
+        zoom.texture = new THREE.FramebufferTexture(tw, th);
+        zoom.texture.minFilter = zoom.texture.magFilter = THREE.LinearFilter;
+        zoom.material.uniforms.uFrame.value = zoom.texture;
+      }
+      renderer.copyFramebufferToTexture(zoom.texture);
+      zoom.view = { ...drawnView };
+      previewing = true;
+    }
+    const o = zoom.view, k = cam.scale / o.scale;
+    zoom.map.value.set(k, k, (cam.cx - o.cx) / o.scale * dpr + (w / 2) * dpr * (1 - k),
+                       (cam.cy - o.cy) / o.scale * dpr + (h / 2) * dpr * (1 - k));
+    renderer.render(zoom.scene, camera);  // cleared to the background first: what the preview lacks
+    clearTimeout(zoom.timer);
+    zoom.timer = setTimeout(requestDraw, kZoomRest);
+  } else if (how === 'full') {
     renderer.setScissorTest(false);
     renderer.setViewport(0, 0, w, h);
     renderer.render(scene, camera);
+    previewing = false;
+    clearTimeout(zoom.timer);
   } else {
     pixels = 0;
     if (how === 'scroll') {
@@ -458,6 +510,7 @@ function draw() {
   Object.assign(drawnView, { cx: cam.cx, cy: cam.cy, scale: cam.scale, w, h });
   const r = renderer.info.render;
   state.drawn = { how, calls: r.calls, triangles: r.triangles, points: r.points, lines: r.lines, pixels, rects: drawnRects };
+  if (changeFrame && changeFrame.version === state.version && !changeFrame.drawn) changeFrame.drawn = state.drawn;
 }
 // Bench: draw each frame to the end (a pixel read back) so that frame times include the rasterizing.
 state.syncFrames = false;
@@ -539,6 +592,7 @@ async function load() {
 // One accepted edit's change, in version order (from the POST's answer or the event stream, whichever
 // comes first). A gap means changes were missed: reload everything.
 let flashBox = null;  // the last edit's triangles (highlighted)
+let changeFrame = null;  // the last change's version and the first frame drawn after it (for tests and benches)
 function applyChange(change) {
   if (change.version <= state.version) return false;
   if (change.version !== state.version + 1) { reload(); return false; }
@@ -591,6 +645,8 @@ function applyChange(change) {
   if (structural) { rebuildRings(); requestDraw(); } else refreshDots(change.inputs.map((p) => p.id));
   Object.assign(state, { version: change.version, triangles: change.triangles, slots: Math.max(state.slots, change.slots) });
   uniforms.uVersion.value = change.version;
+  changeFrame = { version: change.version, drawn: null };
+  state.changeFrame = changeFrame;
   ++state.redraws;
   $('changed').textContent = `${change.cleared.length} out, ${change.added.length} in`;
   showCounts(change.reply);
@@ -674,7 +730,7 @@ async function send(line, opts = {}) {
     Object.assign(profile, { waitFrame: f.start - profile.applied, render: f.renderMs, raster: f.rasterMs,
                              since: profile.fetchStart - since });
   }
-  profile.drawn = state.drawn;  // the last frame drawn (the live move's, when the final move went before)
+  profile.drawn = changeFrame && changeFrame.drawn;  // the frame that showed the change (a live move's, when it was the final move)
   state.last = { line, ok: reply.ok, serverMs: reply.ms, roundTripMs: t1 - t0, frameMs: t2 - since, reply, profile };
   if (reply.ok) {
     ++state.edits;
@@ -916,6 +972,7 @@ view.addEventListener('wheel', (e) => {
   cam.scale *= Math.exp(e.deltaY * 0.0015);
   const [nx, ny] = toWorld(px, py);
   cam.cx += wx - nx; cam.cy += wy - ny;
+  zooming = true;
 }, { passive: false });
 function startDrawing(kind) {
   drawing = { kind, xy: [] };
@@ -940,7 +997,7 @@ window.addEventListener('keydown', (e) => {
   else if (k === 'r') removeRingOfSelected();
   else if (k === 'enter' && drawing) finishDrawing();
   else if (k === 'escape') { drawing = null; setStatus('', false); }
-  else if (k === 'f') fit();
+  else if (k === 'f') { fit(); requestDraw(); }
 });
 $('remove').onclick = () => removeSelected();
 $('undo').onclick = () => undo();
@@ -1004,11 +1061,16 @@ state.screenOf = (id) => { const v = state.verts.get(id); return toScreen(v.x, v
 state.zoomTo = (id, unitsPerPixel) => {
   const v = state.verts.get(id);
   cam.cx = v.x - state.origin[0]; cam.cy = v.y - state.origin[1]; cam.scale = unitsPerPixel;
+  requestDraw();
   return nextFrame();
 };
 state.nextFrame = nextFrame;
 state.pan = (dx, dy) => { cam.cx += dx * cam.scale; cam.cy -= dy * cam.scale; return nextFrame(); };  // CSS pixels
-state.fit = () => { fit(); return nextFrame(); };
+state.fit = () => { fit(); requestDraw(); return nextFrame(); };
+// A wheel step about the view's centre (factor > 1: out), drawn as the wheel draws it; and the time until
+// the full frame after the wheel rested.
+state.zoom = (factor) => { cam.scale *= factor; zooming = true; return nextFrame(); };
+state.zoomRest = kZoomRest;
 // Profiling (bench/): one frame drawn and read back (a pixel: the draw must have run), in ms; and layers
 // switched off.
 state.profileFrame = () => {
