@@ -105,10 +105,37 @@ async function main() {
       console.log(`| ${name} | ${stat(r.times)} | ${stat(d.map((x) => x.calls))} | ${stat(d.map((x) => x.triangles))} | ` +
                   `${stat(d.map((x) => x.points))} | ${stat(d.map((x) => x.lines))} | ${[...new Set(d.map((x) => x.how))].join(', ')} |`);
     };
-    console.log('\n| pan frame | ms | draw calls | triangles | points | line segments | how |\n|---|---|---|---|---|---|---|');
+    console.log('\n| frame | ms | draw calls | triangles | points | line segments | how |\n|---|---|---|---|---|---|---|');
     for (const mode of ['full', 'partial']) panRow(`zoomed in, ${mode}`, await pan(60, mode));
     await page.evaluate(() => window.shoremesh.fit());
     for (const mode of ['full', 'partial']) panRow(`all ${info.triangles} triangles in view, ${mode}`, await pan(60, mode));
+    // Twice as close: the mesh fills the view, so that every uncovered strip meets it.
+    await page.evaluate(async () => { await window.shoremesh.fit(); await window.shoremesh.zoomTo(null, 0.5); });
+    for (const mode of ['full', 'partial']) panRow(`twice as close as the whole mesh, ${mode}`, await pan(60, mode));
+    // Zooming with the wheel at the whole mesh: 30 steps in and out, back to back; then, for the partial
+    // page, the full frame drawn once the wheel rests (its scaled previews before).
+    const zoomRun = (n, mode) => page.evaluate(async (n, m) => {
+      const s = window.shoremesh;
+      Object.assign(s.fast, m);
+      await s.fit();
+      const times = [], drawn = [];
+      let t = performance.now();
+      for (let i = 0; i < n; ++i) {
+        const t1 = await s.zoom(i % 10 < 5 ? 0.9 : 1 / 0.9);
+        times.push(t1 - t);
+        drawn.push(s.drawn);
+        t = t1;
+      }
+      await new Promise((r) => setTimeout(r, s.zoomRest + 50));
+      const t0 = performance.now();
+      const t1 = await s.nextFrame();
+      return { times, drawn, rest: { ms: t1 - t0, drawn: s.drawn } };
+    }, n, modes[mode]);
+    for (const mode of ['full', 'partial']) {
+      const r = await zoomRun(30, mode);
+      panRow(`wheel zoom, whole mesh, ${mode}`, r);
+      if (mode === 'partial') panRow('  the full frame once the wheel rests', { times: [r.rest.ms], drawn: [r.rest.drawn] });
+    }
     // The same kind of edit posted from here with the browser closed (no page rendering on the same CPUs):
     // the last drag undone and redone.
     const op = await page.evaluate(() => window.shoremesh.undo[window.shoremesh.undo.length - 1].op);

@@ -109,8 +109,12 @@ const raw = (vertexShader, fragmentShader) =>
 // skips the chunks outside the view (the server numbers the first slots along a Z-order curve, so a chunk
 // covers one patch of water; a slot an edit reuses lies where the edit freed it). Zoomed in on an edit at a
 // million triangles, a frame draws a few chunks instead of all of them.
-const kChunk = 4096;
-let chunks = [], buffers = null, capacity = 0, layerMask = { d: true, c: true, t: true };
+// Partial frames (an edit's rectangle, a pan's strip) draw from a second set of chunks, of kFine slots, in a
+// scene of their own sharing the same buffers: a thin strip meets few of them, where it would meet every
+// large chunk in the view (a full frame would pay a draw call per small chunk).
+const kChunk = 4096, kFine = 256;
+const fineScene = new THREE.Scene();
+let chunks = [], fineChunks = [], buffers = null, capacity = 0, layerMask = { d: true, c: true, t: true };
 function allocate(slots) {
   capacity = Math.ceil(slots * 1.25) + 1024;
   const old = buffers;
@@ -124,34 +128,42 @@ function allocate(slots) {
   };
   if (old) for (const k in old) buffers[k].array.set(old[k].array);
   for (const c of chunks) { scene.remove(c.mesh, c.corners); c.mesh.geometry.dispose(); }
-  chunks = [];
+  for (const c of fineChunks) { fineScene.remove(c.mesh, c.corners); c.mesh.geometry.dispose(); }
   const triangles = raw(triVertex, triFragment), points = raw(cornerVertex, dotFragment);
-  for (let start = 0; start < capacity; start += kChunk) {
-    const geometry = new THREE.BufferGeometry();
-    for (const k in buffers) geometry.setAttribute(k, buffers[k]);  // shared: one GPU buffer per attribute
-    geometry.setDrawRange(start * 3, Math.min(kChunk, capacity - start) * 3);
-    geometry.boundingSphere = new THREE.Sphere();
-    const c = { mesh: new THREE.Mesh(geometry, triangles), corners: new THREE.Points(geometry, points),
-                lo: [Infinity, Infinity], hi: [-Infinity, -Infinity], moved: false };
-    c.mesh.renderOrder = 0; c.corners.renderOrder = 1;
-    c.mesh.visible = c.corners.visible = false;
-    chunks.push(c);
-    scene.add(c.mesh, c.corners);
-  }
+  const make = (size, into) => {
+    const out = [];
+    for (let start = 0; start < capacity; start += size) {
+      const geometry = new THREE.BufferGeometry();
+      for (const k in buffers) geometry.setAttribute(k, buffers[k]);  // shared: one GPU buffer per attribute
+      geometry.setDrawRange(start * 3, Math.min(size, capacity - start) * 3);
+      geometry.boundingSphere = new THREE.Sphere();
+      const c = { mesh: new THREE.Mesh(geometry, triangles), corners: new THREE.Points(geometry, points),
+                  lo: [Infinity, Infinity], hi: [-Infinity, -Infinity], moved: false };
+      c.mesh.renderOrder = 0; c.corners.renderOrder = 1;
+      c.mesh.visible = c.corners.visible = false;
+      out.push(c);
+      into.add(c.mesh, c.corners);
+    }
+    return out;
+  };
+  chunks = make(kChunk, scene);
+  fineChunks = make(kFine, fineScene);
   if (old) for (let s = 0; s < state.slots; ++s) if (buffers.kind.array[s * 3] !== 255) grow(s);
   updateChunks();
 }
 function grow(s) {  // chunk bounds only grow: a slot cleared leaves its chunk's bounds as they were
-  const c = chunks[Math.floor(s / kChunk)], p = buffers.position.array;
-  for (let k = 0; k < 3; ++k) {
-    const x = p[s * 6 + 2 * k], y = p[s * 6 + 2 * k + 1];
-    if (x < c.lo[0]) c.lo[0] = x; if (y < c.lo[1]) c.lo[1] = y;
-    if (x > c.hi[0]) c.hi[0] = x; if (y > c.hi[1]) c.hi[1] = y;
+  const p = buffers.position.array;
+  for (const c of [chunks[Math.floor(s / kChunk)], fineChunks[Math.floor(s / kFine)]]) {
+    for (let k = 0; k < 3; ++k) {
+      const x = p[s * 6 + 2 * k], y = p[s * 6 + 2 * k + 1];
+      if (x < c.lo[0]) c.lo[0] = x; if (y < c.lo[1]) c.lo[1] = y;
+      if (x > c.hi[0]) c.hi[0] = x; if (y > c.hi[1]) c.hi[1] = y;
+    }
+    c.moved = true;
   }
-  c.moved = true;
 }
 function updateChunks() {
-  for (const c of chunks) {
+  for (const c of [...chunks, ...fineChunks]) {
     if (!c.moved) continue;
     c.moved = false;
     const sphere = c.mesh.geometry.boundingSphere;
@@ -203,7 +215,7 @@ function upload(slots) {  // only the slots written: one bufferSubData range per
 // The shore points (draggable) and loose points, and the shoreline: rebuilt when points come or go,
 // written in place when one moves. Drawn in chunks of kChunk points (in ring order, so a chunk is a
 // stretch of shore) culled by the view like the triangles.
-let dots = null, lines = null, dotChunks = [], dotIndex = new Map();
+let dots = null, lines = null, dotChunks = [], fineDotChunks = [], dotIndex = new Map();
 function rebuildRings() {
   const ids = [...state.verts.keys()];
   dotIndex = new Map(ids.map((id, i) => [id, i]));
@@ -211,35 +223,43 @@ function rebuildRings() {
   const seg = new Float32Array(ids.length * 4);
   ids.forEach((id, i) => writeDot(pos, colour, big, seg, id, i));
   for (const c of dotChunks) { scene.remove(c.points, c.segs); c.points.geometry.dispose(); c.segs.geometry.dispose(); }
+  for (const c of fineDotChunks) { fineScene.remove(c.points, c.segs); c.points.geometry.dispose(); c.segs.geometry.dispose(); }
   dots = { attributes: { position: new THREE.BufferAttribute(pos, 2), colour: new THREE.BufferAttribute(colour, 3),
                          big: new THREE.BufferAttribute(big, 1) } };
   lines = { position: new THREE.BufferAttribute(seg, 2) };
-  dotChunks = [];
   const dotMaterial = raw(dotVertex, dotFragment), lineMaterial = raw(lineVertex, lineFragment);
-  for (let start = 0; start < ids.length; start += kChunk) {
-    const n = Math.min(kChunk, ids.length - start), sphere = new THREE.Sphere();
-    const pg = new THREE.BufferGeometry(), lg = new THREE.BufferGeometry();
-    for (const k in dots.attributes) pg.setAttribute(k, dots.attributes[k]);
-    lg.setAttribute('position', lines.position);
-    pg.setDrawRange(start, n); lg.setDrawRange(start * 2, n * 2);
-    pg.boundingSphere = lg.boundingSphere = sphere;
-    const c = { points: new THREE.Points(pg, dotMaterial), segs: new THREE.LineSegments(lg, lineMaterial),
-                lo: [Infinity, Infinity], hi: [-Infinity, -Infinity], sphere };
-    c.segs.renderOrder = 2; c.points.renderOrder = 3;
-    dotChunks.push(c);
-    for (let i = start; i < start + n; ++i) growDot(i);
-    scene.add(c.segs, c.points);
-  }
+  const make = (size, into) => {
+    const out = [];
+    for (let start = 0; start < ids.length; start += size) {
+      const n = Math.min(size, ids.length - start), sphere = new THREE.Sphere();
+      const pg = new THREE.BufferGeometry(), lg = new THREE.BufferGeometry();
+      for (const k in dots.attributes) pg.setAttribute(k, dots.attributes[k]);
+      lg.setAttribute('position', lines.position);
+      pg.setDrawRange(start, n); lg.setDrawRange(start * 2, n * 2);
+      pg.boundingSphere = lg.boundingSphere = sphere;
+      const c = { points: new THREE.Points(pg, dotMaterial), segs: new THREE.LineSegments(lg, lineMaterial),
+                  lo: [Infinity, Infinity], hi: [-Infinity, -Infinity], sphere };
+      c.segs.renderOrder = 2; c.points.renderOrder = 3;
+      out.push(c);
+      into.add(c.segs, c.points);
+    }
+    return out;
+  };
+  dotChunks = make(kChunk, scene);
+  fineDotChunks = make(kFine, fineScene);
+  for (let i = 0; i < ids.length; ++i) growDot(i);
 }
-function growDot(i) {  // a point's chunk's bounds take in its edge (both ends)
-  const c = dotChunks[Math.floor(i / kChunk)], seg = lines.position.array;
-  for (let k = 0; k < 4; k += 2) {
-    const x = seg[i * 4 + k], y = seg[i * 4 + k + 1];
-    if (x < c.lo[0]) c.lo[0] = x; if (y < c.lo[1]) c.lo[1] = y;
-    if (x > c.hi[0]) c.hi[0] = x; if (y > c.hi[1]) c.hi[1] = y;
+function growDot(i) {  // a point's chunks' bounds take in its edge (both ends)
+  const seg = lines.position.array;
+  for (const c of [dotChunks[Math.floor(i / kChunk)], fineDotChunks[Math.floor(i / kFine)]]) {
+    for (let k = 0; k < 4; k += 2) {
+      const x = seg[i * 4 + k], y = seg[i * 4 + k + 1];
+      if (x < c.lo[0]) c.lo[0] = x; if (y < c.lo[1]) c.lo[1] = y;
+      if (x > c.hi[0]) c.hi[0] = x; if (y > c.hi[1]) c.hi[1] = y;
+    }
+    c.sphere.center.set((c.lo[0] + c.hi[0]) / 2, (c.lo[1] + c.hi[1]) / 2, 0);
+    c.sphere.radius = Math.hypot(c.hi[0] - c.lo[0], c.hi[1] - c.lo[1]) / 2;
   }
-  c.sphere.center.set((c.lo[0] + c.hi[0]) / 2, (c.lo[1] + c.hi[1]) / 2, 0);
-  c.sphere.radius = Math.hypot(c.hi[0] - c.lo[0], c.hi[1] - c.lo[1]) / 2;
 }
 function writeDot(pos, colour, big, seg, id, i) {
   const v = state.verts.get(id);
@@ -308,9 +328,10 @@ function updateCamera() {
   // Split and Steiner points are drawn only once they are big enough to see (their pass costs a vertex
   // per triangle corner).
   for (const c of chunks) c.corners.visible = c.mesh.visible && layerMask.c && uniforms.uPointSize.value > 0.5;
+  for (const c of fineChunks) c.corners.visible = c.mesh.visible && layerMask.c && uniforms.uPointSize.value > 0.5;
   // Shore points too dense to pick one out (zoomed out on a large shore) are left to the shoreline.
   const showDots = layerMask.d && (uniforms.uPointSize.value > 0.5 || state.verts.size < 20000);
-  for (const c of dotChunks) { c.points.visible = showDots; c.segs.visible = layerMask.d; }
+  for (const c of [...dotChunks, ...fineDotChunks]) { c.points.visible = showDots; c.segs.visible = layerMask.d; }
   // The scale bar: a round length near 120 pixels.
   const target = 120 * cam.scale, p = Math.pow(10, Math.floor(Math.log10(target)));
   const len = [5, 2, 1].map((m) => m * p).find((l) => l <= target) || p;
@@ -399,7 +420,7 @@ function renderRect(x, y, rw, rh, w, h) {
   renderer.setViewport(vx, h - vy - vh, vw, vh);
   renderer.setScissor(x, h - y - rh, rw, rh);
   renderer.setScissorTest(true);
-  renderer.render(scene, subCamera);
+  renderer.render(fineScene, subCamera);
 }
 // The boxes' rectangles on the screen (padded by a point's radius and a pixel of antialiasing), clipped to
 // the view, those that overlap or nearly so merged (each rectangle is a render of every chunk it meets);
@@ -1058,9 +1079,12 @@ function showLegend() {
 
 // For tests and scripts: a point's place on the screen, and a view centred on it.
 state.screenOf = (id) => { const v = state.verts.get(id); return toScreen(v.x, v.y); };
-state.zoomTo = (id, unitsPerPixel) => {
-  const v = state.verts.get(id);
-  cam.cx = v.x - state.origin[0]; cam.cy = v.y - state.origin[1]; cam.scale = unitsPerPixel;
+state.zoomTo = (id, unitsPerPixel) => {  // id null: the view's centre, unitsPerPixel times the scale
+  if (id === null) cam.scale *= unitsPerPixel;
+  else {
+    const v = state.verts.get(id);
+    cam.cx = v.x - state.origin[0]; cam.cy = v.y - state.origin[1]; cam.scale = unitsPerPixel;
+  }
   requestDraw();
   return nextFrame();
 };
@@ -1085,7 +1109,7 @@ state.profileFrame = () => {
   return ms;
 };
 state.layers = ({ dots: d = true, corners: c = true, triangles: t = true }) => {
-  for (const k of chunks) { k.mesh.visible = t && isFinite(k.lo[0]); k.corners.visible = c && k.mesh.visible; }
+  for (const k of [...chunks, ...fineChunks]) { k.mesh.visible = t && isFinite(k.lo[0]); k.corners.visible = c && k.mesh.visible; }
   layerMask = { d, c, t };
   requestDraw();
 };
