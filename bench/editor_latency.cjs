@@ -55,12 +55,13 @@ async function main() {
     }
     console.log(`${rows.full.length + rows.partial.length} drags accepted, ${refused} refused; ` +
                 `moves sent while dragging: ${await page.evaluate(() => window.shoremesh.liveMoves)}`);
-    console.log('medians (p95) in ms; the split is of the drags whose final move was posted after the release');
+    console.log('medians (p95) in ms; the split is of the final move\'s POST, sent after the release or (most drags) while dragging');
     const split = [
       ['release to the updated frame', (r) => r.frameMs],
       ['server: edit `ms` (engine + mesh)', (r) => r.serverMs],
       ['final POST round trip (page)', (r) => r.roundTripMs],
-      ['  release to the final POST (in-flight move)', (r) => r.profile.since],
+      ['  the final move posted, from the release (< 0: before it, while dragging)', (r) => r.profile.since],
+      ['  its answer applied, from the release', (r) => r.profile.answered],
       ['  server: request total', (r) => r.profile.server],
       ['    waiting for the session lock', (r) => r.profile.lock],
       ['    edit + slot bookkeeping', (r) => r.profile.edit],
@@ -77,13 +78,15 @@ async function main() {
       ['frame: triangles given to WebGL', (r) => r.profile.drawn?.triangles],
       ['frame: points', (r) => r.profile.drawn?.points],
     ];
-    const posted = (xs) => xs.filter((r) => r.profile && r.profile.since !== undefined);
-    console.log(`| | full redraw (${rows.full.length}; ${posted(rows.full).length} posted) | partial (${rows.partial.length}; ${posted(rows.partial).length} posted) |`);
+    const posted = (xs) => xs.filter((r) => r.profile && r.profile.server !== undefined);
+    const after = (xs) => xs.filter((r) => r.profile && r.profile.since >= 0).length;
+    console.log(`| | full redraw (${rows.full.length}; ${after(rows.full)} posted after the release) | partial (${rows.partial.length}; ${after(rows.partial)}) |`);
     console.log('|---|---|---|');
     for (const [name, f] of split) {
       const pick = (xs) => (name.startsWith(' ') || name.startsWith('answer') || name.startsWith('frame:') ? posted(xs) : xs).map(f);
       console.log(`| ${name} | ${stat(pick(rows.full))} | ${stat(pick(rows.partial))} |`);
     }
+    if (process.env.SHOREMESH_BENCH_DRAGS_ONLY) { await browser.close(); return; }
     // Panning: frames drawn back to back, each after the view moved 7 pixels (the time between them is what
     // the page can draw: Chromium paces requestAnimationFrame to the compositor), each drawn to the end.
     const pan = (n, mode) => page.evaluate(async (n, m) => {

@@ -710,9 +710,10 @@ function postTiming() {
 async function send(line, opts = {}) {
   const t0 = performance.now();
   let reply, t1, profile = {};
-  if (opts.applied) {
+  if (opts.applied) {  // the live move's POST and its profile
     reply = opts.applied.reply;
     t1 = t0 + opts.applied.roundTripMs;
+    profile = { ...opts.applied.profile };
   } else {
     ++posting;
     const res = await fetch('edit', { method: 'POST', body: line, headers: { 'Content-Type': 'text/plain' } })
@@ -737,6 +738,7 @@ async function send(line, opts = {}) {
     };
   }
   if (opts.live) {
+    state.liveProfile = profile;
     if (reply.ok) ++state.liveMoves;
     followCursor();
     $('live-count').textContent = state.liveMoves;
@@ -748,8 +750,8 @@ async function send(line, opts = {}) {
   const since = opts.since ?? t0;
   const f = state.frameTiming;
   if (f && profile.applied !== undefined && f.start >= profile.applied) {
-    Object.assign(profile, { waitFrame: f.start - profile.applied, render: f.renderMs, raster: f.rasterMs,
-                             since: profile.fetchStart - since });
+    Object.assign(profile, { waitFrame: f.start - Math.max(profile.applied, since), render: f.renderMs, raster: f.rasterMs,
+                             since: profile.fetchStart - since, answered: profile.applied - since });
   }
   profile.drawn = changeFrame && changeFrame.drawn;  // the frame that showed the change (a live move's, when it was the final move)
   state.last = { line, ok: reply.ok, serverMs: reply.ms, roundTripMs: t1 - t0, frameMs: t2 - since, reply, profile };
@@ -917,7 +919,7 @@ function liveMove(p) {
   p.sent = to;
   const t0 = performance.now();
   p.inflight = send(`move ${p.hit} ${num(to[0])} ${num(to[1])}`, { live: true }).then((reply) => {
-    if (reply.ok) { p.applied = to; p.appliedReply = { reply, roundTripMs: performance.now() - t0 }; }
+    if (reply.ok) { p.applied = to; p.appliedReply = { reply, roundTripMs: performance.now() - t0, profile: state.liveProfile }; }
     p.inflight = null;
     liveMove(p);
   });
