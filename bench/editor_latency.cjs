@@ -57,11 +57,12 @@ async function main() {
                 `moves sent while dragging: ${await page.evaluate(() => window.shoremesh.liveMoves)}`);
     console.log('medians (p95) in ms; the split is of the final move\'s POST, sent after the release or (most drags) while dragging');
     const split = [
-      ['release to the updated frame', (r) => r.frameMs],
+      ['release to the updated frame (the page\'s answer to the final move shown)', (r) => r.frameMs],
+      ['release to the end of the change\'s own frame (< 0: before the release)', (r) => r.profile.changeFrame],
+      ['  the change applied, from the release (POST answer or event stream)', (r) => r.profile.changeApplied],
       ['server: edit `ms` (engine + mesh)', (r) => r.serverMs],
       ['final POST round trip (page)', (r) => r.roundTripMs],
       ['  the final move posted, from the release (< 0: before it, while dragging)', (r) => r.profile.since],
-      ['  its answer applied, from the release', (r) => r.profile.answered],
       ['  server: request total', (r) => r.profile.server],
       ['    waiting for the session lock', (r) => r.profile.lock],
       ['    edit + slot bookkeeping', (r) => r.profile.edit],
@@ -70,7 +71,7 @@ async function main() {
       ['  download', (r) => r.profile.download],
       ['  JSON.parse', (r) => r.profile.parse],
       ['  apply (slots, buffers)', (r) => r.profile.apply],
-      ['  wait for the animation frame', (r) => r.profile.waitFrame],
+      ['  applied to the change\'s frame: wait for the animation frame', (r) => r.profile.waitFrame],
       ['  render (three.js calls)', (r) => r.profile.render],
       ['  raster (to the end of the frame)', (r) => r.profile.raster],
       ['answer bytes', (r) => r.profile.bytes],
@@ -90,6 +91,8 @@ async function main() {
     const hows = (xs) => Object.entries(xs.reduce((m, r) => { const k = r.profile.drawn?.how ?? '?'; m[k] = (m[k] || 0) + 1; return m; }, {}))
       .map(([k, v]) => `${k} ${v}`).join(', ');
     console.log(`| the change's frame | ${hows(rows.full)} | ${hows(rows.partial)} |`);
+    const vias = (xs) => `${xs.filter((r) => r.profile.via === 'events').length} by the event stream first`;
+    console.log(`| the change came | ${vias(rows.full)} | ${vias(rows.partial)} |`);
     if (process.env.SHOREMESH_BENCH_DRAGS_ONLY) { await browser.close(); return; }
     // Panning: frames drawn back to back, each after the view moved 7 pixels (the time between them is what
     // the page can draw: Chromium paces requestAnimationFrame to the compositor), each drawn to the end.

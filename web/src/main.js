@@ -531,7 +531,6 @@ function draw() {
   Object.assign(drawnView, { cx: cam.cx, cy: cam.cy, scale: cam.scale, w, h });
   const r = renderer.info.render;
   state.drawn = { how, calls: r.calls, triangles: r.triangles, points: r.points, lines: r.lines, pixels, rects: drawnRects };
-  if (changeFrame && changeFrame.version === state.version && !changeFrame.drawn) changeFrame.drawn = state.drawn;
 }
 // Bench: draw each frame to the end (a pixel read back) so that frame times include the rasterizing.
 state.syncFrames = false;
@@ -547,6 +546,9 @@ function frame() {
       gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, probe);
     }
     state.frameTiming = { start, renderMs: rendered - start, rasterMs: performance.now() - rendered };
+    if (changeFrame && changeFrame.version === state.version && !changeFrame.drawn) {
+      Object.assign(changeFrame, { drawn: state.drawn, start, end: performance.now(), ...state.frameTiming });
+    }
     ++state.frames;
   }
   const now = performance.now();
@@ -613,8 +615,10 @@ async function load() {
 // One accepted edit's change, in version order (from the POST's answer or the event stream, whichever
 // comes first). A gap means changes were missed: reload everything.
 let flashBox = null;  // the last edit's triangles (highlighted)
-let changeFrame = null;  // the last change's version and the first frame drawn after it (for tests and benches)
-function applyChange(change) {
+// The last change: its version, when and how it came (the POST's answer or the event stream, whichever was
+// first), and the first frame drawn after it (for tests and benches).
+let changeFrame = null;
+function applyChange(change, via = 'post') {
   if (change.version <= state.version) return false;
   if (change.version !== state.version + 1) { reload(); return false; }
   if (change.slots > capacity) allocate(change.slots);
@@ -666,7 +670,7 @@ function applyChange(change) {
   if (structural) { rebuildRings(); requestDraw(); } else refreshDots(change.inputs.map((p) => p.id));
   Object.assign(state, { version: change.version, triangles: change.triangles, slots: Math.max(state.slots, change.slots) });
   uniforms.uVersion.value = change.version;
-  changeFrame = { version: change.version, drawn: null };
+  changeFrame = { version: change.version, via, applied: performance.now(), drawn: null };
   state.changeFrame = changeFrame;
   ++state.redraws;
   $('changed').textContent = `${change.cleared.length} out, ${change.added.length} in`;
@@ -748,12 +752,15 @@ async function send(line, opts = {}) {
   }
   const t2 = await nextFrame();
   const since = opts.since ?? t0;
-  const f = state.frameTiming;
-  if (f && profile.applied !== undefined && f.start >= profile.applied) {
-    Object.assign(profile, { waitFrame: f.start - Math.max(profile.applied, since), render: f.renderMs, raster: f.rasterMs,
-                             since: profile.fetchStart - since, answered: profile.applied - since });
+  // The change's own frame (it may have come by the event stream before the POST's answer, and for a drag
+  // whose final move went while dragging, before the release: times from the release then negative).
+  const cf = changeFrame;
+  if (profile.fetchStart !== undefined) profile.since = profile.fetchStart - since;
+  if (cf && cf.drawn && reply.ok) {
+    Object.assign(profile, { via: cf.via, changeApplied: cf.applied - since, waitFrame: cf.start - cf.applied,
+                             render: cf.renderMs, raster: cf.rasterMs, changeFrame: cf.end - since });
   }
-  profile.drawn = changeFrame && changeFrame.drawn;  // the frame that showed the change (a live move's, when it was the final move)
+  profile.drawn = cf && cf.drawn;
   state.last = { line, ok: reply.ok, serverMs: reply.ms, roundTripMs: t1 - t0, frameMs: t2 - since, reply, profile };
   if (reply.ok) {
     ++state.edits;
@@ -1154,7 +1161,7 @@ requestAnimationFrame(frame);
 load().then(() => {
   fit();
   const events = new EventSource('events');
-  events.addEventListener('change', (e) => applyChange(JSON.parse(e.data)));
+  events.addEventListener('change', (e) => applyChange(JSON.parse(e.data), 'events'));
   events.addEventListener('reload', () => reload());
   state.ready = true;
   return loadStats();
