@@ -1,8 +1,16 @@
-// The browser editor's edit latency as the page sees it: N mouse drags of shore points in headless
-// Chromium (the mesh moving while dragging), each timed by the page from the mouse release to the frame
-// drawn after the final move's answer; the final POST's round trip and the server's own time (the edit's
-// `ms`) beside them. Then the frame time while panning (60 frames, each a few pixels on): zoomed in as the
-// drags are, and with the whole mesh in view. Medians and 95th percentiles.
+// The browser editor's edit latency as the page sees it, and its frame time while panning: N mouse drags of
+// shore points in headless Chromium (the mesh moving while dragging), each timed by the page from the
+// mouse release to the frame drawn after the final move's answer, with where that time went (the page's
+// profile: Resource Timing of the POST with the server's Server-Timing header, JSON.parse, the buffer
+// writes, the wait for the animation frame, three.js's render and, frames being drawn to the end here
+// (state.syncFrames: a pixel read back), the rasterizing). Then 60 pan frames (each 7 pixels on), zoomed
+// in as the drags are and with the whole mesh in view, timed between frames, with the draw calls and
+// triangles/points/segments given to WebGL per frame (which do not depend on the machine).
+//
+// The drags alternate between the page's two ways of drawing (the same page, state.fast switched before
+// each drag): "full" (every frame redraws the view, as before) and "partial" (an edit redraws the screen
+// rectangles it touched; a pan shifts the last frame and draws the strips it uncovers), so that both see
+// the same load. Medians and 95th percentiles.
 //
 //   SHOREMESH_BINARY=build/tool/shoremesh SHOREMESH_NODE_MODULES=build/web/node_modules \
 //   SHOREMESH_CHROMIUM=/usr/bin/chromium node bench/editor_latency.cjs N INPUT [serve options...]
@@ -12,6 +20,13 @@ const fs = require('fs');
 const os = require('os');
 const path = require('path');
 const h = require('../tests/browser/editor_harness.cjs');
+
+const modes = { full: { partial: false, scroll: false }, partial: { partial: true, scroll: true } };
+const fmt = (x) => (x === undefined || Number.isNaN(x) ? '-' : x.toFixed(x < 10 ? 2 : 1));
+const stat = (xs) => {
+  const v = xs.filter((x) => typeof x === 'number' && isFinite(x));
+  return v.length ? `${fmt(h.median(v))} (${fmt(h.quantile(v, 0.95))})` : '-';
+};
 
 async function main() {
   const [n, ...serveArgs] = process.argv.slice(2);
@@ -28,34 +43,108 @@ async function main() {
     const info = await page.evaluate(() => ({ triangles: window.shoremesh.triangles, points: window.shoremesh.verts.size }));
     console.log(`server built in ${((built - t0) / 1000).toFixed(1)} s; page loaded ${info.triangles} triangles and ` +
                 `${info.points} input points in ${((loaded - built) / 1000).toFixed(1)} s`);
-    const rows = [];
+    await page.evaluate(() => { window.shoremesh.syncFrames = true; });
+    const rows = { full: [], partial: [] };
     let refused = 0;
     for (let i = 0; i < Number(n); ++i) {
+      const mode = i % 2 ? 'partial' : 'full';
+      await page.evaluate((m) => Object.assign(window.shoremesh.fast, m), modes[mode]);
       const e = await h.dragShorePoint(page, 101 + i * 997, i % 2 ? 1 : -1);
       if (!e.ok) { ++refused; continue; }
-      rows.push(e);
+      rows[mode].push(e);
     }
-    const show = (name, xs) => console.log(`${name}: median ${h.median(xs).toFixed(2)} ms, p95 ${h.quantile(xs, 0.95).toFixed(2)} ms`);
-    console.log(`${rows.length} drags accepted, ${refused} refused`);
-    show('server (edit ms)', rows.map((r) => r.serverMs));
-    show('POST round trip', rows.map((r) => r.roundTripMs));
-    show('release to the updated frame', rows.map((r) => r.frameMs));
-    console.log(`moves sent while dragging: ${await page.evaluate(() => window.shoremesh.liveMoves)}`);
+    console.log(`${rows.full.length + rows.partial.length} drags accepted, ${refused} refused; ` +
+                `moves sent while dragging: ${await page.evaluate(() => window.shoremesh.liveMoves)}`);
+    console.log('medians (p95) in ms; the split is of the final move\'s POST, sent after the release or (most drags) while dragging');
+    const split = [
+      ['release to the updated frame (the page\'s answer to the final move shown)', (r) => r.frameMs],
+      ['release to the end of the change\'s own frame (< 0: before the release)', (r) => r.profile.changeFrame],
+      ['  the change applied, from the release (POST answer or event stream)', (r) => r.profile.changeApplied],
+      ['server: edit `ms` (engine + mesh)', (r) => r.serverMs],
+      ['final POST round trip (page)', (r) => r.roundTripMs],
+      ['  the final move posted, from the release (< 0: before it, while dragging)', (r) => r.profile.since],
+      ['  server: request total', (r) => r.profile.server],
+      ['    waiting for the session lock', (r) => r.profile.lock],
+      ['    edit + slot bookkeeping', (r) => r.profile.edit],
+      ['    JSON of the answer', (r) => r.profile.json],
+      ['  network/queue to first byte', (r) => r.profile.network],
+      ['  download', (r) => r.profile.download],
+      ['  JSON.parse', (r) => r.profile.parse],
+      ['  apply (slots, buffers)', (r) => r.profile.apply],
+      ['  applied to the change\'s frame: wait for the animation frame', (r) => r.profile.waitFrame],
+      ['  render (three.js calls)', (r) => r.profile.render],
+      ['  raster (to the end of the frame)', (r) => r.profile.raster],
+      ['answer bytes', (r) => r.profile.bytes],
+      ['frame: draw calls', (r) => r.profile.drawn?.calls],
+      ['frame: triangles given to WebGL', (r) => r.profile.drawn?.triangles],
+      ['frame: points', (r) => r.profile.drawn?.points],
+      ['frame: pixels drawn', (r) => r.profile.drawn?.pixels],
+    ];
+    const posted = (xs) => xs.filter((r) => r.profile && r.profile.server !== undefined);
+    const after = (xs) => xs.filter((r) => r.profile && r.profile.since >= 0).length;
+    console.log(`| | full redraw (${rows.full.length}; ${after(rows.full)} posted after the release) | partial (${rows.partial.length}; ${after(rows.partial)}) |`);
+    console.log('|---|---|---|');
+    for (const [name, f] of split) {
+      const pick = (xs) => (name.startsWith(' ') || name.startsWith('answer') || name.startsWith('frame:') ? posted(xs) : xs).map(f);
+      console.log(`| ${name} | ${stat(pick(rows.full))} | ${stat(pick(rows.partial))} |`);
+    }
+    const hows = (xs) => Object.entries(xs.reduce((m, r) => { const k = r.profile.drawn?.how ?? '?'; m[k] = (m[k] || 0) + 1; return m; }, {}))
+      .map(([k, v]) => `${k} ${v}`).join(', ');
+    console.log(`| the change's frame | ${hows(rows.full)} | ${hows(rows.partial)} |`);
+    const vias = (xs) => `${xs.filter((r) => r.profile.via === 'events').length} by the event stream first`;
+    console.log(`| the change came | ${vias(rows.full)} | ${vias(rows.partial)} |`);
+    if (process.env.SHOREMESH_BENCH_DRAGS_ONLY) { await browser.close(); return; }
     // Panning: frames drawn back to back, each after the view moved 7 pixels (the time between them is what
-    // the page can draw: Chromium paces requestAnimationFrame to the compositor).
-    const pan = (n) => page.evaluate(async (n) => {
-      const s = window.shoremesh, times = [];
+    // the page can draw: Chromium paces requestAnimationFrame to the compositor), each drawn to the end.
+    const pan = (n, mode) => page.evaluate(async (n, m) => {
+      const s = window.shoremesh;
+      Object.assign(s.fast, m);
+      await s.redrawAll();
+      const times = [], drawn = [];
       let t = performance.now();
       for (let i = 0; i < n; ++i) {
         const t1 = await s.pan(i % 40 < 20 ? 7 : -7, 0);
         times.push(t1 - t);
+        drawn.push(s.drawn);
         t = t1;
       }
-      return times;
-    }, n);
-    show('frame while panning, zoomed in as the drags', await pan(60));
+      return { times, drawn };
+    }, n, modes[mode]);
+    const panRow = (name, r) => {
+      const d = r.drawn.filter(Boolean);
+      console.log(`| ${name} | ${stat(r.times)} | ${stat(d.map((x) => x.calls))} | ${stat(d.map((x) => x.triangles))} | ` +
+                  `${stat(d.map((x) => x.points))} | ${stat(d.map((x) => x.lines))} | ${[...new Set(d.map((x) => x.how))].join(', ')} |`);
+    };
+    console.log('\n| frame | ms | draw calls | triangles | points | line segments | how |\n|---|---|---|---|---|---|---|');
+    for (const mode of ['full', 'partial']) panRow(`zoomed in, ${mode}`, await pan(60, mode));
     await page.evaluate(() => window.shoremesh.fit());
-    show(`frame while panning, all ${info.triangles} triangles in view`, await pan(60));
+    for (const mode of ['full', 'partial']) panRow(`all ${info.triangles} triangles in view, ${mode}`, await pan(60, mode));
+    // Twice as close: the mesh fills the view, so that every uncovered strip meets it.
+    await page.evaluate(async () => { await window.shoremesh.fit(); await window.shoremesh.zoomTo(null, 0.5); });
+    for (const mode of ['full', 'partial']) panRow(`twice as close as the whole mesh, ${mode}`, await pan(60, mode));
+    // Zooming with the wheel at the whole mesh: 30 steps in and out, back to back; then, for the partial
+    // page, the full frame drawn once the wheel rests (its scaled previews before).
+    const zoomRun = (n, mode) => page.evaluate(async (n, m) => {
+      const s = window.shoremesh;
+      Object.assign(s.fast, m);
+      await s.fit();
+      const times = [], drawn = [];
+      let t = performance.now();
+      for (let i = 0; i < n; ++i) {
+        const t1 = await s.zoom(i % 10 < 5 ? 0.9 : 1 / 0.9);
+        times.push(t1 - t);
+        drawn.push(s.drawn);
+        t = t1;
+      }
+      await new Promise((r) => setTimeout(r, s.zoomRest + 50));
+      await s.nextFrame();  // the full frame was drawn when the wheel had rested: its own time
+      return { times, drawn, rest: { ms: s.frameTiming.renderMs + s.frameTiming.rasterMs, drawn: s.drawn } };
+    }, n, modes[mode]);
+    for (const mode of ['full', 'partial']) {
+      const r = await zoomRun(30, mode);
+      panRow(`wheel zoom, whole mesh, ${mode}`, r);
+      if (mode === 'partial') panRow('  the full frame once the wheel rests', { times: [r.rest.ms], drawn: [r.rest.drawn] });
+    }
     // The same kind of edit posted from here with the browser closed (no page rendering on the same CPUs):
     // the last drag undone and redone.
     const op = await page.evaluate(() => window.shoremesh.undo[window.shoremesh.undo.length - 1].op);
@@ -67,7 +156,7 @@ async function main() {
       const [r] = await h.post(server.url, lines[i % 2]);
       if (r.ok) direct.push(performance.now() - t);
     }
-    show('POST round trip from Node (no page)', direct);
+    console.log(`\nPOST round trip from Node (no page): ${stat(direct)}`);
   } finally {
     if (browser.connected) await browser.close();
     server.child.kill('SIGTERM');

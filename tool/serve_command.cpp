@@ -373,9 +373,12 @@ class EditServer {
     draw_.reset(session_.session());
   }
 
-  // Runs the edit lines of one request (1-based line numbers, like `edit --edits FILE`).
-  json run(const std::string& body) {
+  // Runs the edit lines of one request (1-based line numbers, like `edit --edits FILE`). `lock_ms`: how
+  // long it waited for the session (for the Server-Timing header).
+  json run(const std::string& body, double* lock_ms = nullptr) {
+    const auto asked = std::chrono::steady_clock::now();
     std::lock_guard lock(mutex_);
+    if (lock_ms) *lock_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - asked).count();
     json replies = json::array(), changes = json::array();
     std::istringstream in(body);
     std::size_t line_no = 0;
@@ -544,7 +547,11 @@ int run_serve(const ServeOptions& opt) {
   http.Post("/edit", [&](const httplib::Request& req, httplib::Response& res) {
     if (words_of(req.body).empty())
       return json_error(res, 400, "POST /edit takes edit lines in the body (as 'shoremesh edit --edits' reads them)");
-    const json out = editor.run(req.body);
+    using Ms = std::chrono::duration<double, std::milli>;
+    const auto start = std::chrono::steady_clock::now();
+    double lock_ms = 0;
+    const json out = editor.run(req.body, &lock_ms);
+    const auto ran = std::chrono::steady_clock::now();
     if (req.get_param_value("replies") == "lines") {
       std::string text;  // exactly what `shoremesh edit --json` prints for these lines
       for (const auto& r : out["replies"]) text += r.dump() + "\n";
@@ -552,6 +559,12 @@ int run_serve(const ServeOptions& opt) {
     } else {
       res.set_content(out.dump(), "application/json");
     }
+    // Where the request's time went on the server, for the page's profile (Resource Timing's serverTiming).
+    const auto done = std::chrono::steady_clock::now();
+    std::ostringstream timing;
+    timing << "lock;dur=" << lock_ms << ", edit;dur=" << Ms(ran - start).count() - lock_ms
+           << ", json;dur=" << Ms(done - ran).count() << ", total;dur=" << Ms(done - start).count();
+    res.set_header("Server-Timing", timing.str());
   });
   http.Get("/events", [&](const httplib::Request&, httplib::Response& res) {
     res.set_header("Cache-Control", "no-cache");

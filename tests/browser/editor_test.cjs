@@ -37,6 +37,29 @@ function fort14Depths(file) {
   const nodes = Number(lines[1].trim().split(/\s+/)[1]);
   return lines.slice(2, 2 + nodes).map((l) => Number(l.trim().split(/\s+/)[3])).sort((a, b) => a - b);
 }
+// The canvas as the page left it (partial frames: an edit's rectangles, a pan's shifted pixels and strips)
+// against a full redraw of the same view: the pixels that differ (by more than a rounding in any channel).
+async function differsFromFullRedraw(page) {
+  return page.evaluate(async () => {
+    const src = document.querySelector('#view canvas');
+    const grab = () => {
+      const c = document.createElement('canvas');
+      c.width = src.width; c.height = src.height;
+      const g = c.getContext('2d');
+      g.drawImage(src, 0, 0);
+      return g.getImageData(0, 0, c.width, c.height).data;
+    };
+    const left = grab();
+    await window.shoremesh.redrawAll();
+    const full = grab();
+    let differ = 0, painted = 0;
+    for (let i = 0; i < left.length; i += 4) {
+      if (Math.abs(left[i] - full[i]) + Math.abs(left[i + 1] - full[i + 1]) + Math.abs(left[i + 2] - full[i + 2]) > 24) ++differ;
+      if (Math.abs(left[i] - 0xe9) + Math.abs(left[i + 1] - 0xe4) + Math.abs(left[i + 2] - 0xd8) > 30) ++painted;
+    }
+    return { differ, pixels: left.length / 4, painted: painted / (left.length / 4) };
+  });
+}
 const ctrl = async (page, key) => {
   await page.keyboard.down('Control');
   await page.keyboard.press(key);
@@ -90,6 +113,76 @@ async function main() {
     check("the page's drawn triangles after the drag are the fresh run's, corner for corner",
           () => assert.deepStrictEqual(page1.drawn, asDrawn(fresh, page1.origin)));
 
+    // The drag's frames redrew only the rectangles the edits touched, and left what a full redraw draws.
+    const zoomedFull = await page.evaluate(async () => { await window.shoremesh.redrawAll(); return window.shoremesh.drawn; });
+    check("the drag's last frame redrew only the edit's rectangles: a few pixels, no more triangles than a full frame", () => {
+      const d = edit.profile.drawn;
+      assert.ok(d && d.how === 'partial', JSON.stringify(edit.profile));
+      assert.ok(zoomedFull.how === 'full' && d.pixels < zoomedFull.pixels / 4, `${d.pixels} pixels, ${zoomedFull.pixels} in a full frame`);
+      assert.ok(d.triangles <= zoomedFull.triangles, `${d.triangles} triangles in the edit's frame, ${zoomedFull.triangles} in a full one`);
+    });
+    const second = await h.dragShorePoint(page, 900, -1, { steps: 8, pause: 40 });
+    const lastBoxes = await page.evaluate(() => window.shoremesh.lastEditBoxes());
+    const changeFrame = await page.evaluate(() => window.shoremesh.changeFrame);
+    check("the edit's frame redrew every triangle the edit wrote (those on the screen)", () => {
+      assert.ok(second.ok && changeFrame.drawn, JSON.stringify(changeFrame));
+      const rects = changeFrame.drawn.rects;
+      assert.ok(lastBoxes.length > 0);
+      for (const [x0, y0, x1, y1] of lastBoxes) {
+        assert.ok(rects.some(([x, y, w, h]) => x0 >= x && y0 >= y && x1 <= x + w && y1 <= y + h),
+                  `triangle box ${[x0, y0, x1, y1]} outside the redrawn rectangles ${JSON.stringify(rects)}`);
+      }
+    });
+    const afterDrag = await differsFromFullRedraw(page);
+    check('after a drag drawn in partial frames the canvas is what a full redraw draws', () =>
+      assert.ok(afterDrag.differ <= 20, `${afterDrag.differ} of ${afterDrag.pixels} pixels differ`));
+    await ctrl(page, 'z');
+    await page.waitForFunction(() => window.shoremesh.edits === 3, { timeout: 60000 });
+    // Panning with the whole mesh in view: each frame shifts the last one's pixels and draws the strip it
+    // uncovers (a fraction of the draws and triangles of a full frame), and ends as a full redraw would.
+    const panned = await page.evaluate(async () => {
+      const s = window.shoremesh;
+      await s.fit();
+      await s.redrawAll();
+      const full = s.drawn, frames = [];
+      for (let i = 0; i < 12; ++i) { await s.pan(i < 6 ? 9 : -4, i % 3 === 0 ? 3 : 0); frames.push(s.drawn); }
+      return { full, frames };
+    });
+    const panDiff = await differsFromFullRedraw(page);
+    check('a pan frame shifts the last frame and draws only the uncovered strips', () => {
+      for (const d of panned.frames) {
+        assert.strictEqual(d.how, 'scroll', JSON.stringify(d));
+        // Every chunk this small mesh has meets a strip: no fewer triangles here (a large mesh's chunks are
+        // small on the screen, bench/RESULTS.md), but a tenth of the pixels (the copy's one triangle aside).
+        assert.ok(d.triangles <= panned.full.triangles + 1, `${d.triangles} triangles, ${panned.full.triangles} in a full frame`);
+        assert.ok(d.pixels < panned.full.pixels / 10, `${d.pixels} pixels drawn, ${panned.full.pixels} in a full frame`);
+      }
+    });
+    check('after panning the canvas is what a full redraw draws, and shows the mesh', () => {
+      assert.ok(panDiff.differ <= 20, `${panDiff.differ} of ${panDiff.pixels} pixels differ`);
+      assert.ok(panDiff.painted > 0.1, `only ${(panDiff.painted * 100).toFixed(1)} % of the canvas is drawn`);
+    });
+    // Zooming with the wheel: the frame before is drawn scaled (one triangle), and once the wheel rests the
+    // view is drawn in full.
+    const zoomed = await page.evaluate(async () => {
+      const s = window.shoremesh, frames = [];
+      for (const f of [0.8, 0.8, 0.9]) { await s.zoom(f); frames.push(s.drawn); }
+      await new Promise((r) => setTimeout(r, s.zoomRest + 100));
+      await s.nextFrame();
+      return { frames, rested: s.drawn };
+    });
+    const zoomDiff = await differsFromFullRedraw(page);
+    check('a wheel zoom draws the last frame scaled, and the full view once the wheel rests', () => {
+      for (const d of zoomed.frames) assert.ok(d.how === 'zoom' && d.calls === 1 && d.triangles === 1, JSON.stringify(d));
+      assert.strictEqual(zoomed.rested.how, 'full');
+      assert.ok(zoomDiff.differ === 0 && zoomDiff.painted > 0.1, JSON.stringify(zoomDiff));
+    });
+    await page.evaluate(async (id) => {  // back where the drag was; the last frame a pan frame, checked below
+      const s = window.shoremesh, v = s.verts.get(id), a = s.verts.get(v.prev);
+      await s.zoomTo(id, Math.hypot(a.x - v.x, a.y - v.y) / 150);
+      await s.pan(-30, -12);
+    }, edit.id);
+
     // The canvas: a drawn mesh, not a blank one (many pixels away from the background colour).
     await page.screenshot({ path: path.join(dir, 'editor.png') });
     const drawn = await page.evaluate(() => {
@@ -114,7 +207,7 @@ async function main() {
 
     // Undo with the keyboard: the inverse move, and the original export byte for byte.
     await ctrl(page, 'z');
-    await page.waitForFunction(() => window.shoremesh.edits === 2, { timeout: 60000 });
+    await page.waitForFunction(() => window.shoremesh.edits === 4, { timeout: 60000 });
     const undone = await page.evaluate(() => window.shoremesh.last);
     check('undo is the inverse move', () => assert.ok(undone.ok && undone.line.startsWith(`move ${edit.id} `), undone.line));
     await h.post(server.url, 'export undone.off');
@@ -141,12 +234,12 @@ async function main() {
       return last;
     };
     await page.mouse.click(edge.x, edge.y);
-    const added = await waitEdit(3);
+    const added = await waitEdit(5);
     const [px, py] = await page.evaluate((id) => window.shoremesh.screenOf(id), added.reply.id);
     await page.mouse.click(px, py);
     await page.keyboard.press('Delete');
-    await waitEdit(4);
-    for (const n of [5, 6]) {
+    await waitEdit(6);
+    for (const n of [7, 8]) {
       await ctrl(page, 'z');
       await waitEdit(n);
     }

@@ -210,6 +210,10 @@ TEST(ServeCommand, PostEditAnswersLikeEditJsonAndItsChangesRebuildTheMeshThatEqu
   const auto res = c.Post("/edit", edits, "text/plain");
   ASSERT_TRUE(res);
   ASSERT_EQ(res->status, 200) << res->body;
+  // The page's profile reads where the request's time went on the server (docs/editor.md, "Profile").
+  const std::string timing = res->get_header_value("Server-Timing");
+  for (const char* part : {"lock;dur=", "edit;dur=", "json;dur=", "total;dur="})
+    EXPECT_NE(timing.find(part), std::string::npos) << part << " in '" << timing << "'";
   const json out = json::parse(res->body);
   ASSERT_EQ(out["replies"].size(), expected.size() - 1) << out["replies"];
   for (std::size_t i = 0; i + 1 < expected.size(); ++i)

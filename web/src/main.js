@@ -109,8 +109,12 @@ const raw = (vertexShader, fragmentShader) =>
 // skips the chunks outside the view (the server numbers the first slots along a Z-order curve, so a chunk
 // covers one patch of water; a slot an edit reuses lies where the edit freed it). Zoomed in on an edit at a
 // million triangles, a frame draws a few chunks instead of all of them.
-const kChunk = 4096;
-let chunks = [], buffers = null, capacity = 0, layerMask = { d: true, c: true, t: true };
+// Partial frames (an edit's rectangle, a pan's strip) draw from a second set of chunks, of kFine slots, in a
+// scene of their own sharing the same buffers: a thin strip meets few of them, where it would meet every
+// large chunk in the view (a full frame would pay a draw call per small chunk).
+const kChunk = 4096, kFine = 256;
+const fineScene = new THREE.Scene();
+let chunks = [], fineChunks = [], buffers = null, capacity = 0, layerMask = { d: true, c: true, t: true };
 function allocate(slots) {
   capacity = Math.ceil(slots * 1.25) + 1024;
   const old = buffers;
@@ -124,34 +128,42 @@ function allocate(slots) {
   };
   if (old) for (const k in old) buffers[k].array.set(old[k].array);
   for (const c of chunks) { scene.remove(c.mesh, c.corners); c.mesh.geometry.dispose(); }
-  chunks = [];
+  for (const c of fineChunks) { fineScene.remove(c.mesh, c.corners); c.mesh.geometry.dispose(); }
   const triangles = raw(triVertex, triFragment), points = raw(cornerVertex, dotFragment);
-  for (let start = 0; start < capacity; start += kChunk) {
-    const geometry = new THREE.BufferGeometry();
-    for (const k in buffers) geometry.setAttribute(k, buffers[k]);  // shared: one GPU buffer per attribute
-    geometry.setDrawRange(start * 3, Math.min(kChunk, capacity - start) * 3);
-    geometry.boundingSphere = new THREE.Sphere();
-    const c = { mesh: new THREE.Mesh(geometry, triangles), corners: new THREE.Points(geometry, points),
-                lo: [Infinity, Infinity], hi: [-Infinity, -Infinity], moved: false };
-    c.mesh.renderOrder = 0; c.corners.renderOrder = 1;
-    c.mesh.visible = c.corners.visible = false;
-    chunks.push(c);
-    scene.add(c.mesh, c.corners);
-  }
+  const make = (size, into) => {
+    const out = [];
+    for (let start = 0; start < capacity; start += size) {
+      const geometry = new THREE.BufferGeometry();
+      for (const k in buffers) geometry.setAttribute(k, buffers[k]);  // shared: one GPU buffer per attribute
+      geometry.setDrawRange(start * 3, Math.min(size, capacity - start) * 3);
+      geometry.boundingSphere = new THREE.Sphere();
+      const c = { mesh: new THREE.Mesh(geometry, triangles), corners: new THREE.Points(geometry, points),
+                  lo: [Infinity, Infinity], hi: [-Infinity, -Infinity], moved: false };
+      c.mesh.renderOrder = 0; c.corners.renderOrder = 1;
+      c.mesh.visible = c.corners.visible = false;
+      out.push(c);
+      into.add(c.mesh, c.corners);
+    }
+    return out;
+  };
+  chunks = make(kChunk, scene);
+  fineChunks = make(kFine, fineScene);
   if (old) for (let s = 0; s < state.slots; ++s) if (buffers.kind.array[s * 3] !== 255) grow(s);
   updateChunks();
 }
 function grow(s) {  // chunk bounds only grow: a slot cleared leaves its chunk's bounds as they were
-  const c = chunks[Math.floor(s / kChunk)], p = buffers.position.array;
-  for (let k = 0; k < 3; ++k) {
-    const x = p[s * 6 + 2 * k], y = p[s * 6 + 2 * k + 1];
-    if (x < c.lo[0]) c.lo[0] = x; if (y < c.lo[1]) c.lo[1] = y;
-    if (x > c.hi[0]) c.hi[0] = x; if (y > c.hi[1]) c.hi[1] = y;
+  const p = buffers.position.array;
+  for (const c of [chunks[Math.floor(s / kChunk)], fineChunks[Math.floor(s / kFine)]]) {
+    for (let k = 0; k < 3; ++k) {
+      const x = p[s * 6 + 2 * k], y = p[s * 6 + 2 * k + 1];
+      if (x < c.lo[0]) c.lo[0] = x; if (y < c.lo[1]) c.lo[1] = y;
+      if (x > c.hi[0]) c.hi[0] = x; if (y > c.hi[1]) c.hi[1] = y;
+    }
+    c.moved = true;
   }
-  c.moved = true;
 }
 function updateChunks() {
-  for (const c of chunks) {
+  for (const c of [...chunks, ...fineChunks]) {
     if (!c.moved) continue;
     c.moved = false;
     const sphere = c.mesh.geometry.boundingSphere;
@@ -203,7 +215,7 @@ function upload(slots) {  // only the slots written: one bufferSubData range per
 // The shore points (draggable) and loose points, and the shoreline: rebuilt when points come or go,
 // written in place when one moves. Drawn in chunks of kChunk points (in ring order, so a chunk is a
 // stretch of shore) culled by the view like the triangles.
-let dots = null, lines = null, dotChunks = [], dotIndex = new Map();
+let dots = null, lines = null, dotChunks = [], fineDotChunks = [], dotIndex = new Map();
 function rebuildRings() {
   const ids = [...state.verts.keys()];
   dotIndex = new Map(ids.map((id, i) => [id, i]));
@@ -211,35 +223,43 @@ function rebuildRings() {
   const seg = new Float32Array(ids.length * 4);
   ids.forEach((id, i) => writeDot(pos, colour, big, seg, id, i));
   for (const c of dotChunks) { scene.remove(c.points, c.segs); c.points.geometry.dispose(); c.segs.geometry.dispose(); }
+  for (const c of fineDotChunks) { fineScene.remove(c.points, c.segs); c.points.geometry.dispose(); c.segs.geometry.dispose(); }
   dots = { attributes: { position: new THREE.BufferAttribute(pos, 2), colour: new THREE.BufferAttribute(colour, 3),
                          big: new THREE.BufferAttribute(big, 1) } };
   lines = { position: new THREE.BufferAttribute(seg, 2) };
-  dotChunks = [];
   const dotMaterial = raw(dotVertex, dotFragment), lineMaterial = raw(lineVertex, lineFragment);
-  for (let start = 0; start < ids.length; start += kChunk) {
-    const n = Math.min(kChunk, ids.length - start), sphere = new THREE.Sphere();
-    const pg = new THREE.BufferGeometry(), lg = new THREE.BufferGeometry();
-    for (const k in dots.attributes) pg.setAttribute(k, dots.attributes[k]);
-    lg.setAttribute('position', lines.position);
-    pg.setDrawRange(start, n); lg.setDrawRange(start * 2, n * 2);
-    pg.boundingSphere = lg.boundingSphere = sphere;
-    const c = { points: new THREE.Points(pg, dotMaterial), segs: new THREE.LineSegments(lg, lineMaterial),
-                lo: [Infinity, Infinity], hi: [-Infinity, -Infinity], sphere };
-    c.segs.renderOrder = 2; c.points.renderOrder = 3;
-    dotChunks.push(c);
-    for (let i = start; i < start + n; ++i) growDot(i);
-    scene.add(c.segs, c.points);
-  }
+  const make = (size, into) => {
+    const out = [];
+    for (let start = 0; start < ids.length; start += size) {
+      const n = Math.min(size, ids.length - start), sphere = new THREE.Sphere();
+      const pg = new THREE.BufferGeometry(), lg = new THREE.BufferGeometry();
+      for (const k in dots.attributes) pg.setAttribute(k, dots.attributes[k]);
+      lg.setAttribute('position', lines.position);
+      pg.setDrawRange(start, n); lg.setDrawRange(start * 2, n * 2);
+      pg.boundingSphere = lg.boundingSphere = sphere;
+      const c = { points: new THREE.Points(pg, dotMaterial), segs: new THREE.LineSegments(lg, lineMaterial),
+                  lo: [Infinity, Infinity], hi: [-Infinity, -Infinity], sphere };
+      c.segs.renderOrder = 2; c.points.renderOrder = 3;
+      out.push(c);
+      into.add(c.segs, c.points);
+    }
+    return out;
+  };
+  dotChunks = make(kChunk, scene);
+  fineDotChunks = make(kFine, fineScene);
+  for (let i = 0; i < ids.length; ++i) growDot(i);
 }
-function growDot(i) {  // a point's chunk's bounds take in its edge (both ends)
-  const c = dotChunks[Math.floor(i / kChunk)], seg = lines.position.array;
-  for (let k = 0; k < 4; k += 2) {
-    const x = seg[i * 4 + k], y = seg[i * 4 + k + 1];
-    if (x < c.lo[0]) c.lo[0] = x; if (y < c.lo[1]) c.lo[1] = y;
-    if (x > c.hi[0]) c.hi[0] = x; if (y > c.hi[1]) c.hi[1] = y;
+function growDot(i) {  // a point's chunks' bounds take in its edge (both ends)
+  const seg = lines.position.array;
+  for (const c of [dotChunks[Math.floor(i / kChunk)], fineDotChunks[Math.floor(i / kFine)]]) {
+    for (let k = 0; k < 4; k += 2) {
+      const x = seg[i * 4 + k], y = seg[i * 4 + k + 1];
+      if (x < c.lo[0]) c.lo[0] = x; if (y < c.lo[1]) c.lo[1] = y;
+      if (x > c.hi[0]) c.hi[0] = x; if (y > c.hi[1]) c.hi[1] = y;
+    }
+    c.sphere.center.set((c.lo[0] + c.hi[0]) / 2, (c.lo[1] + c.hi[1]) / 2, 0);
+    c.sphere.radius = Math.hypot(c.hi[0] - c.lo[0], c.hi[1] - c.lo[1]) / 2;
   }
-  c.sphere.center.set((c.lo[0] + c.hi[0]) / 2, (c.lo[1] + c.hi[1]) / 2, 0);
-  c.sphere.radius = Math.hypot(c.hi[0] - c.lo[0], c.hi[1] - c.lo[1]) / 2;
 }
 function writeDot(pos, colour, big, seg, id, i) {
   const v = state.verts.get(id);
@@ -264,7 +284,11 @@ function refreshDots(ids) {  // in place: points that moved or whose selection c
   for (const id of touched) {
     if (!dotIndex.has(id) || !state.verts.has(id)) continue;
     const i = dotIndex.get(id);
+    const b = emptyBox();  // the point and its edge, before and after
+    for (let k = 0; k < 4; k += 2) growBox(b, seg.array[i * 4 + k], seg.array[i * 4 + k + 1]);
     writeDot(a.position.array, a.colour.array, a.big.array, seg.array, id, i);
+    for (let k = 0; k < 4; k += 2) growBox(b, seg.array[i * 4 + k], seg.array[i * 4 + k + 1]);
+    markBox(b);
     growDot(i);
     // Only these points' entries go to the GPU (a drag rewrites one point 171k times over otherwise).
     for (const attr of [a.position, a.colour, a.big]) attr.addUpdateRange(i * attr.itemSize, attr.itemSize);
@@ -274,8 +298,24 @@ function refreshDots(ids) {  // in place: points that moved or whose selection c
 }
 
 // ---- the view --------------------------------------------------------------------------------------------
-let dirty = true;
+// A frame redraws only what changed: the canvas keeps its pixels between frames (preserveDrawingBuffer),
+// so an edit redraws the screen rectangles of its triangles and points (scissored, with a camera of that
+// rectangle so that three.js culls every chunk outside it), and a pan by whole pixels shifts the last
+// frame (one copy into a texture and one full-screen triangle) and draws only the strips it uncovers.
+// A change of scale, size or colouring redraws everything. `fast` switches these off (?full=1), for
+// benchmarks and for tests that compare a frame with a full redraw.
+const params = new URLSearchParams(window.location.search);
+const fast = { partial: !params.has('full'), scroll: !params.has('full') };
+state.fast = fast;
+let dirty = true;     // the next frame redraws everything
+let boxes = [];       // else: these boxes of the mesh (relative to the origin, [x0, y0, x1, y1]) are redrawn
 function requestDraw() { dirty = true; }
+function markBox(b) { if (b && isFinite(b[0])) boxes.push(b); }
+const growBox = (b, x, y) => {
+  if (x < b[0]) b[0] = x; if (y < b[1]) b[1] = y;
+  if (x > b[2]) b[2] = x; if (y > b[3]) b[3] = y;
+};
+const emptyBox = () => [Infinity, Infinity, -Infinity, -Infinity];
 function resize() {
   renderer.setSize(view.clientWidth, view.clientHeight);
   requestDraw();
@@ -288,9 +328,10 @@ function updateCamera() {
   // Split and Steiner points are drawn only once they are big enough to see (their pass costs a vertex
   // per triangle corner).
   for (const c of chunks) c.corners.visible = c.mesh.visible && layerMask.c && uniforms.uPointSize.value > 0.5;
+  for (const c of fineChunks) c.corners.visible = c.mesh.visible && layerMask.c && uniforms.uPointSize.value > 0.5;
   // Shore points too dense to pick one out (zoomed out on a large shore) are left to the shoreline.
   const showDots = layerMask.d && (uniforms.uPointSize.value > 0.5 || state.verts.size < 20000);
-  for (const c of dotChunks) { c.points.visible = showDots; c.segs.visible = layerMask.d; }
+  for (const c of [...dotChunks, ...fineDotChunks]) { c.points.visible = showDots; c.segs.visible = layerMask.d; }
   // The scale bar: a round length near 120 pixels.
   const target = 120 * cam.scale, p = Math.pow(10, Math.floor(Math.log10(target)));
   const len = [5, 2, 1].map((m) => m * p).find((l) => l <= target) || p;
@@ -308,20 +349,214 @@ function fit() {
   if (!isFinite(lo[0])) { lo = [0, 0]; hi = [state.side, state.side]; }
   cam.cx = (lo[0] + hi[0]) / 2; cam.cy = (lo[1] + hi[1]) / 2;
   cam.scale = 1.05 * Math.max((hi[0] - lo[0]) / view.clientWidth, (hi[1] - lo[1]) / view.clientHeight) || 1;
-  requestDraw();
 }
 const frameWaiters = [];
-function frame() {
-  if (dirty) {
-    dirty = false;
-    updateCamera();
-    renderer.render(scene, camera);
-    ++state.frames;
-    for (const f of frameWaiters.splice(0)) f(performance.now());
+let zooming = false;  // the camera's scale changed by the wheel (or state.zoom) since the last frame
+const drawnView = { cx: NaN, cy: NaN, scale: NaN, w: 0, h: 0 };  // the camera of the pixels on the canvas
+const subCamera = new THREE.OrthographicCamera(-1, 1, 1, -1, -1, 1);
+// The last frame's pixels, shifted: a copy of the canvas read back with texelFetch (exact, no filtering).
+const blit = {
+  texture: null,
+  shift: { value: new THREE.Vector2(0, 0) },
+  scene: new THREE.Scene(),
+};
+{
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array([-1, -1, 3, -1, -1, 3]), 2));
+  const material = new THREE.RawShaderMaterial({
+    glslVersion: THREE.GLSL3, depthTest: false, depthWrite: false,
+    uniforms: { uFrame: { value: null }, uShift: blit.shift },
+    vertexShader: 'in vec2 position; void main() { gl_Position = vec4(position, 0.0, 1.0); }',
+    fragmentShader: `precision highp float; precision highp sampler2D;
+      uniform sampler2D uFrame; uniform vec2 uShift; out vec4 outColor;
+      void main() {
+        ivec2 at = ivec2(floor(gl_FragCoord.xy - uShift));
+        ivec2 size = textureSize(uFrame, 0);
+        if (at.x < 0 || at.y < 0 || at.x >= size.x || at.y >= size.y) discard;  // uncovered: drawn next
+        outColor = texelFetch(uFrame, at, 0);
+      }`,
+  });
+  blit.material = material;
+  const quad = new THREE.Mesh(geometry, material);
+  quad.frustumCulled = false;
+  blit.scene.add(quad);
+}
+// While the wheel turns, the frame before it is drawn scaled (a preview, filtered), and the view is drawn in
+// full once the wheel has rested for kZoomRest ms: zooming a million triangles costs one textured triangle a
+// frame and one full frame at the end. Jumps (fit, zoomTo) draw in full at once.
+const kZoomRest = 200;
+const zoom = { texture: null, view: null, timer: null, map: { value: new THREE.Vector4() }, scene: new THREE.Scene() };
+{
+  const geometry = new THREE.BufferGeometry();
+  geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array([-1, -1, 3, -1, -1, 3]), 2));
+  zoom.material = new THREE.RawShaderMaterial({
+    glslVersion: THREE.GLSL3, depthTest: false, depthWrite: false,
+    uniforms: { uFrame: { value: null }, uMap: zoom.map },
+    vertexShader: 'in vec2 position; void main() { gl_Position = vec4(position, 0.0, 1.0); }',
+    fragmentShader: `precision highp float; precision highp sampler2D;
+      uniform sampler2D uFrame; uniform vec4 uMap; out vec4 outColor;
+      void main() {  // this pixel's place in the preview's frame (device pixels): uMap.xy * here + uMap.zw
+        vec2 at = uMap.xy * gl_FragCoord.xy + uMap.zw, size = vec2(textureSize(uFrame, 0));
+        if (at.x < 0.0 || at.y < 0.0 || at.x >= size.x || at.y >= size.y) discard;
+        outColor = texture(uFrame, at / size);
+      }`,
+  });
+  const quad = new THREE.Mesh(geometry, zoom.material);
+  quad.frustumCulled = false;
+  zoom.scene.add(quad);
+}
+let previewing = false;  // the canvas holds a zoom preview, not the view: the next frame other than one is full
+renderer.info.autoReset = false;  // a frame may be several renders: its counts are their sum
+// Redraws the rectangle (CSS pixels, top-left origin) of the view: scissored to it, through a camera of it
+// widened by the largest point's radius (a point whose centre is outside the viewport is not drawn at all).
+function renderRect(x, y, rw, rh, w, h) {
+  const m = 16;
+  const vx = x - m, vy = y - m, vw = rw + 2 * m, vh = rh + 2 * m;
+  subCamera.left = cam.cx + (vx - w / 2) * cam.scale;
+  subCamera.right = cam.cx + (vx + vw - w / 2) * cam.scale;
+  subCamera.top = cam.cy - (vy - h / 2) * cam.scale;
+  subCamera.bottom = cam.cy - (vy + vh - h / 2) * cam.scale;
+  subCamera.updateProjectionMatrix();
+  renderer.setViewport(vx, h - vy - vh, vw, vh);
+  renderer.setScissor(x, h - y - rh, rw, rh);
+  renderer.setScissorTest(true);
+  renderer.render(fineScene, subCamera);
+}
+// The boxes' rectangles on the screen (padded by a point's radius and a pixel of antialiasing), clipped to
+// the view, those that overlap or nearly so merged (each rectangle is a render of every chunk it meets);
+// null when they cover so much that one full frame is cheaper.
+function boxRects(w, h) {
+  let rects = [];
+  for (const b of boxes) {
+    const pad = 9;
+    const x0 = Math.max(0, Math.floor((b[0] - cam.cx) / cam.scale + w / 2) - pad);
+    const x1 = Math.min(w, Math.ceil((b[2] - cam.cx) / cam.scale + w / 2) + pad);
+    const y0 = Math.max(0, Math.floor(h / 2 - (b[3] - cam.cy) / cam.scale) - pad);
+    const y1 = Math.min(h, Math.ceil(h / 2 - (b[1] - cam.cy) / cam.scale) + pad);
+    if (x1 <= x0 || y1 <= y0) continue;
+    rects.push([x0, y0, x1, y1]);
   }
+  const area = (r) => (r[2] - r[0]) * (r[3] - r[1]);
+  for (let merged = true; merged;) {
+    merged = false;
+    for (let i = 0; i < rects.length && !merged; ++i) {
+      for (let j = i + 1; j < rects.length && !merged; ++j) {
+        const a = rects[i], b = rects[j];
+        const u = [Math.min(a[0], b[0]), Math.min(a[1], b[1]), Math.max(a[2], b[2]), Math.max(a[3], b[3])];
+        if (area(u) <= 1.5 * (area(a) + area(b)) + 4096) {
+          rects[i] = u;
+          rects.splice(j, 1);
+          merged = true;
+        }
+      }
+    }
+  }
+  if (rects.reduce((sum, r) => sum + area(r), 0) > 0.4 * w * h) return null;
+  return rects.map((r) => [r[0], r[1], r[2] - r[0], r[3] - r[1]]);
+}
+// What the last frame did: how ('full', 'partial', 'scroll' or 'none'), and three.js's counts summed over
+// its renders (draw calls, triangles, points, line segments: what the GPU was given, whatever the machine).
+state.drawn = null;
+function draw() {
+  const w = view.clientWidth, h = view.clientHeight, dpr = renderer.getPixelRatio();
+  updateCamera();
+  renderer.info.reset();
+  let how = 'full', pixels = w * h, drawnRects = [[0, 0, w, h]];  // pixels: how many the frame drew (CSS pixels), the shifted copy aside
+  const sameScale = drawnView.scale === cam.scale && drawnView.w === w && drawnView.h === h && Number.isInteger(dpr);
+  // The content's shift since the last frame, in CSS pixels (right, down).
+  const sx = (drawnView.cx - cam.cx) / cam.scale, sy = (cam.cy - drawnView.cy) / cam.scale;
+  const rx = Math.round(sx), ry = Math.round(sy);
+  const whole = Math.abs(sx - rx) < 1e-3 && Math.abs(sy - ry) < 1e-3;
+  let rects = null;
+  if (!dirty && sameScale && whole && fast.partial) rects = boxRects(w, h);
+  if (rects && rx === 0 && ry === 0) how = rects.length ? 'partial' : 'none';
+  else if (rects && fast.scroll && Math.abs(rx) < w / 2 && Math.abs(ry) < h / 2) how = 'scroll';
+  if (how === 'full' && !dirty && fast.scroll && zooming && drawnView.w === w && drawnView.h === h) how = 'zoom';
+  zooming = false;
+  if (previewing && how !== 'zoom') how = 'full';
+  if (how === 'zoom') {
+    const tw = w * dpr, th = h * dpr;
+    renderer.setScissorTest(false);
+    renderer.setViewport(0, 0, w, h);
+    if (!previewing) {  // the canvas holds the view: it is the preview's source
+      if (!zoom.texture || zoom.texture.image.width !== tw || zoom.texture.image.height !== th) {
+        if (zoom.texture) zoom.texture.dispose();
+        zoom.texture = new THREE.FramebufferTexture(tw, th);
+        zoom.texture.minFilter = zoom.texture.magFilter = THREE.LinearFilter;
+        zoom.material.uniforms.uFrame.value = zoom.texture;
+      }
+      renderer.copyFramebufferToTexture(zoom.texture);
+      zoom.view = { ...drawnView };
+      previewing = true;
+    }
+    const o = zoom.view, k = cam.scale / o.scale;
+    zoom.map.value.set(k, k, (cam.cx - o.cx) / o.scale * dpr + (w / 2) * dpr * (1 - k),
+                       (cam.cy - o.cy) / o.scale * dpr + (h / 2) * dpr * (1 - k));
+    renderer.render(zoom.scene, camera);  // cleared to the background first: what the preview lacks
+    clearTimeout(zoom.timer);
+    zoom.timer = setTimeout(requestDraw, kZoomRest);
+  } else if (how === 'full') {
+    renderer.setScissorTest(false);
+    renderer.setViewport(0, 0, w, h);
+    renderer.render(scene, camera);
+    previewing = false;
+    clearTimeout(zoom.timer);
+  } else {
+    pixels = 0;
+    if (how === 'scroll') {
+      const tw = w * dpr, th = h * dpr;
+      if (!blit.texture || blit.texture.image.width !== tw || blit.texture.image.height !== th) {
+        if (blit.texture) blit.texture.dispose();
+        blit.texture = new THREE.FramebufferTexture(tw, th);
+        blit.texture.minFilter = blit.texture.magFilter = THREE.NearestFilter;
+        blit.material.uniforms.uFrame.value = blit.texture;
+      }
+      renderer.setScissorTest(false);
+      renderer.setViewport(0, 0, w, h);
+      renderer.copyFramebufferToTexture(blit.texture);
+      blit.shift.value.set(rx * dpr, -ry * dpr);
+      renderer.autoClear = false;
+      renderer.render(blit.scene, camera);
+      renderer.autoClear = true;
+      if (rx > 0) rects.push([0, 0, rx, h]); else if (rx < 0) rects.push([w + rx, 0, -rx, h]);
+      if (ry > 0) rects.push([0, 0, w, ry]); else if (ry < 0) rects.push([0, h + ry, w, -ry]);
+    }
+    for (const [x, y, rw, rh] of rects) { renderRect(x, y, rw, rh, w, h); pixels += rw * rh; }
+    drawnRects = rects;
+    renderer.setScissorTest(false);
+    renderer.setViewport(0, 0, w, h);
+  }
+  dirty = false;
+  boxes = [];
+  Object.assign(drawnView, { cx: cam.cx, cy: cam.cy, scale: cam.scale, w, h });
+  const r = renderer.info.render;
+  state.drawn = { how, calls: r.calls, triangles: r.triangles, points: r.points, lines: r.lines, pixels, rects: drawnRects };
+}
+// Bench: draw each frame to the end (a pixel read back) so that frame times include the rasterizing.
+state.syncFrames = false;
+function frame() {
+  const viewMoved = cam.cx !== drawnView.cx || cam.cy !== drawnView.cy || cam.scale !== drawnView.scale ||
+                    view.clientWidth !== drawnView.w || view.clientHeight !== drawnView.h;
+  if (dirty || boxes.length || viewMoved) {
+    const start = performance.now();
+    draw();
+    const rendered = performance.now();
+    if (state.syncFrames) {
+      const gl = renderer.getContext();
+      gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, probe);
+    }
+    state.frameTiming = { start, renderMs: rendered - start, rasterMs: performance.now() - rendered };
+    if (changeFrame && changeFrame.version === state.version && !changeFrame.drawn) {
+      Object.assign(changeFrame, { drawn: state.drawn, start, end: performance.now(), ...state.frameTiming });
+    }
+    ++state.frames;
+  }
+  const now = performance.now();
+  for (const f of frameWaiters.splice(0)) f(now);
   requestAnimationFrame(frame);
 }
-function nextFrame() { requestDraw(); return new Promise((resolve) => frameWaiters.push(resolve)); }
+const probe = new Uint8Array(4);
+function nextFrame() { return new Promise((resolve) => frameWaiters.push(resolve)); }
 
 // Screen (CSS pixels in the view) <-> mesh coordinates (absolute).
 function toWorld(px, py) {
@@ -379,16 +614,34 @@ async function load() {
 
 // One accepted edit's change, in version order (from the POST's answer or the event stream, whichever
 // comes first). A gap means changes were missed: reload everything.
-function applyChange(change) {
+let flashBox = null;  // the last edit's triangles (highlighted)
+// The last change: its version, when and how it came (the POST's answer or the event stream, whichever was
+// first), and the first frame drawn after it (for tests and benches).
+let changeFrame = null;
+function applyChange(change, via = 'post') {
   if (change.version <= state.version) return false;
   if (change.version !== state.version + 1) { reload(); return false; }
   if (change.slots > capacity) allocate(change.slots);
   const written = [];
-  for (const s of change.cleared) { clearSlot(s); written.push(s); }
-  for (const a of change.added) { writeSlot(a[0], a.slice(1, 7), a.slice(7, 10), change.version); written.push(a[0]); }
+  // What to redraw: where the triangles went and came, where the last edit's highlight was, and any slot
+  // whose depths changed.
+  const box = emptyBox(), p = buffers.position.array;
+  const slotBox = (s, b) => { for (let k = 0; k < 6; k += 2) growBox(b, p[s * 6 + k], p[s * 6 + k + 1]); };
+  for (const s of change.cleared) { slotBox(s, box); clearSlot(s); written.push(s); }
+  for (const a of change.added) {
+    writeSlot(a[0], a.slice(1, 7), a.slice(7, 10), change.version);
+    slotBox(a[0], box);
+    written.push(a[0]);
+  }
+  markBox(flashBox);
+  markBox(box);
+  flashBox = box;
   for (const d of change.depths || []) {  // the added slots' depths, and slots whose nodes' depths changed
     buffers.depth.array.set([d[1], d[2], d[3]], d[0] * 3);
     written.push(d[0]);
+    const b = emptyBox();
+    slotBox(d[0], b);
+    markBox(b);
   }
   upload([...new Set(written)]);
   updateChunks();
@@ -414,13 +667,14 @@ function applyChange(change) {
       if (b && b.prev !== p.id) { b.prev = p.id; structural = true; }
     }
   }
-  if (structural) rebuildRings(); else refreshDots(change.inputs.map((p) => p.id));
+  if (structural) { rebuildRings(); requestDraw(); } else refreshDots(change.inputs.map((p) => p.id));
   Object.assign(state, { version: change.version, triangles: change.triangles, slots: Math.max(state.slots, change.slots) });
   uniforms.uVersion.value = change.version;
+  changeFrame = { version: change.version, via, applied: performance.now(), drawn: null };
+  state.changeFrame = changeFrame;
   ++state.redraws;
   $('changed').textContent = `${change.cleared.length} out, ${change.added.length} in`;
   showCounts(change.reply);
-  requestDraw();
   scheduleStats();
   return true;
 }
@@ -440,23 +694,55 @@ function setStatus(text, refused) {
 // while dragging (not a history entry, not `last`); `opts.since`: when the user asked for it (the mouse
 // release of a drag), for the time to the frame.
 // `opts.applied`: the edit was already sent and applied (the last move of a drag): {reply, roundTripMs}.
+// Where the time went (`state.last.profile`, for bench/editor_latency.cjs), from the Resource Timing entry of
+// the POST and the server's Server-Timing header: `server` the request on the server (`lock` of it waiting
+// for the session, `edit` running the line, `json` writing the answer), `network` the rest until the
+// answer's first byte, `download`, `parse` (JSON.parse), `apply` (the slots and buffers), `waitFrame`
+// (until the next animation frame), `render` (three.js's calls) and `raster` (the GPU finishing the frame:
+// measured only when state.syncFrames is set).
+performance.setResourceTimingBufferSize(100000);
+function postTiming() {
+  const entries = performance.getEntriesByType('resource').filter((e) => e.initiatorType === 'fetch' && /\/edit$/.test(e.name));
+  performance.clearResourceTimings();
+  const e = entries[entries.length - 1];
+  if (!e) return {};
+  const server = {};
+  for (const t of e.serverTiming || []) server[t.name] = t.duration;
+  return { requestStart: e.requestStart, responseStart: e.responseStart, responseEnd: e.responseEnd, server,
+           bytes: e.encodedBodySize };
+}
 async function send(line, opts = {}) {
   const t0 = performance.now();
-  let reply, t1;
-  if (opts.applied) {
+  let reply, t1, profile = {};
+  if (opts.applied) {  // the live move's POST and its profile
     reply = opts.applied.reply;
     t1 = t0 + opts.applied.roundTripMs;
+    profile = { ...opts.applied.profile };
   } else {
     ++posting;
     const res = await fetch('edit', { method: 'POST', body: line, headers: { 'Content-Type': 'text/plain' } })
       .finally(() => { --posting; });
-    const out = await res.json();
+    const text = await res.text();
+    const tText = performance.now();
+    const out = JSON.parse(text);
+    const tParse = performance.now();
     if (!res.ok) { setStatus(`${line}: ${out.error}`, true); return { ok: false, error: out.error }; }
     t1 = performance.now();
     for (const c of out.changes) applyChange(c);
+    const tApply = performance.now();
     reply = out.replies[0];
+    const rt = postTiming();
+    const serverMs = rt.server ? rt.server.total : undefined;
+    profile = {
+      fetchStart: t0, bytes: rt.bytes ?? text.length, server: serverMs, lock: rt.server?.lock, edit: rt.server?.edit,
+      json: rt.server?.json,
+      network: rt.responseStart !== undefined ? rt.responseStart - t0 - (serverMs ?? 0) : undefined,
+      download: rt.responseEnd !== undefined ? rt.responseEnd - rt.responseStart : undefined,
+      toText: tText - t0, parse: tParse - tText, apply: tApply - tParse, applied: tApply,
+    };
   }
   if (opts.live) {
+    state.liveProfile = profile;
     if (reply.ok) ++state.liveMoves;
     followCursor();
     $('live-count').textContent = state.liveMoves;
@@ -466,7 +752,16 @@ async function send(line, opts = {}) {
   }
   const t2 = await nextFrame();
   const since = opts.since ?? t0;
-  state.last = { line, ok: reply.ok, serverMs: reply.ms, roundTripMs: t1 - t0, frameMs: t2 - since, reply };
+  // The change's own frame (it may have come by the event stream before the POST's answer, and for a drag
+  // whose final move went while dragging, before the release: times from the release then negative).
+  const cf = changeFrame;
+  if (profile.fetchStart !== undefined) profile.since = profile.fetchStart - since;
+  if (cf && cf.drawn && reply.ok) {
+    Object.assign(profile, { via: cf.via, changeApplied: cf.applied - since, waitFrame: cf.start - cf.applied,
+                             render: cf.renderMs, raster: cf.rasterMs, changeFrame: cf.end - since });
+  }
+  profile.drawn = cf && cf.drawn;
+  state.last = { line, ok: reply.ok, serverMs: reply.ms, roundTripMs: t1 - t0, frameMs: t2 - since, reply, profile };
   if (reply.ok) {
     ++state.edits;
     $('edit-count').textContent = state.edits;
@@ -610,7 +905,6 @@ function select(id) {
   $('selected').textContent = !v ? 'none' : v.ring === undefined ? `point ${id}`
     : `point ${id} of ${v.role || 'ring'} ${v.ring + 1}`;
   refreshDots([old, id].filter((x) => x !== null));
-  requestDraw();
 }
 
 // A drag moves the point on the server while the mouse moves, one move in flight at a time (the next
@@ -632,7 +926,7 @@ function liveMove(p) {
   p.sent = to;
   const t0 = performance.now();
   p.inflight = send(`move ${p.hit} ${num(to[0])} ${num(to[1])}`, { live: true }).then((reply) => {
-    if (reply.ok) { p.applied = to; p.appliedReply = { reply, roundTripMs: performance.now() - t0 }; }
+    if (reply.ok) { p.applied = to; p.appliedReply = { reply, roundTripMs: performance.now() - t0, profile: state.liveProfile }; }
     p.inflight = null;
     liveMove(p);
   });
@@ -657,10 +951,11 @@ view.addEventListener('pointermove', (e) => {
     followCursor();
     liveMove(press);
   } else {
-    cam.cx = press.cx - (px - press.px) * cam.scale;
-    cam.cy = press.cy + (py - press.py) * cam.scale;
+    // By whole device pixels, so that a frame shifts the last one's pixels (see draw()).
+    const dpr = renderer.getPixelRatio();
+    cam.cx = press.cx - (Math.round((px - press.px) * dpr) / dpr) * cam.scale;
+    cam.cy = press.cy + (Math.round((py - press.py) * dpr) / dpr) * cam.scale;
   }
-  requestDraw();
 });
 async function release(p, px, py) {
   const since = performance.now();
@@ -707,7 +1002,7 @@ view.addEventListener('wheel', (e) => {
   cam.scale *= Math.exp(e.deltaY * 0.0015);
   const [nx, ny] = toWorld(px, py);
   cam.cx += wx - nx; cam.cy += wy - ny;
-  requestDraw();
+  zooming = true;
 }, { passive: false });
 function startDrawing(kind) {
   drawing = { kind, xy: [] };
@@ -732,7 +1027,7 @@ window.addEventListener('keydown', (e) => {
   else if (k === 'r') removeRingOfSelected();
   else if (k === 'enter' && drawing) finishDrawing();
   else if (k === 'escape') { drawing = null; setStatus('', false); }
-  else if (k === 'f') fit();
+  else if (k === 'f') { fit(); requestDraw(); }
 });
 $('remove').onclick = () => removeSelected();
 $('undo').onclick = () => undo();
@@ -773,10 +1068,10 @@ async function loadStats() {
   $('angles').textContent = `${s.min_angle.toFixed(2)}°–${s.max_angle.toFixed(2)}°`;
   $('shoreline').textContent = s.shore_segments === undefined ? 'no rings'
     : s.shore_conforming ? `conforming (${s.shore_segments})` : `${s.shore_covered} of ${s.shore_segments} segments`;
+  if (uniforms.uBound.value !== s.min_angle_bound) requestDraw();  // the colours change everywhere
   uniforms.uBound.value = s.min_angle_bound;
   state.stats = s;
   showLegend();
-  requestDraw();
 }
 function showLegend() {
   const mode = uniforms.uColour.value;
@@ -793,19 +1088,27 @@ function showLegend() {
 
 // For tests and scripts: a point's place on the screen, and a view centred on it.
 state.screenOf = (id) => { const v = state.verts.get(id); return toScreen(v.x, v.y); };
-state.zoomTo = (id, unitsPerPixel) => {
-  const v = state.verts.get(id);
-  cam.cx = v.x - state.origin[0]; cam.cy = v.y - state.origin[1]; cam.scale = unitsPerPixel;
+state.zoomTo = (id, unitsPerPixel) => {  // id null: the view's centre, unitsPerPixel times the scale
+  if (id === null) cam.scale *= unitsPerPixel;
+  else {
+    const v = state.verts.get(id);
+    cam.cx = v.x - state.origin[0]; cam.cy = v.y - state.origin[1]; cam.scale = unitsPerPixel;
+  }
+  requestDraw();
   return nextFrame();
 };
 state.nextFrame = nextFrame;
 state.pan = (dx, dy) => { cam.cx += dx * cam.scale; cam.cy -= dy * cam.scale; return nextFrame(); };  // CSS pixels
-state.fit = () => { fit(); return nextFrame(); };
+state.fit = () => { fit(); requestDraw(); return nextFrame(); };
+// A wheel step about the view's centre (factor > 1: out), drawn as the wheel draws it; and the time until
+// the full frame after the wheel rested.
+state.zoom = (factor) => { cam.scale *= factor; zooming = true; return nextFrame(); };
+state.zoomRest = kZoomRest;
 // Profiling (bench/): one frame drawn and read back (a pixel: the draw must have run), in ms; and layers
 // switched off.
-const probe = new Uint8Array(4);
 state.profileFrame = () => {
   updateCamera();
+  renderer.info.reset();
   const t = performance.now();
   renderer.render(scene, camera);
   const gl = renderer.getContext();
@@ -815,8 +1118,9 @@ state.profileFrame = () => {
   return ms;
 };
 state.layers = ({ dots: d = true, corners: c = true, triangles: t = true }) => {
-  for (const k of chunks) { k.mesh.visible = t && isFinite(k.lo[0]); k.corners.visible = c && k.mesh.visible; }
+  for (const k of [...chunks, ...fineChunks]) { k.mesh.visible = t && isFinite(k.lo[0]); k.corners.visible = c && k.mesh.visible; }
   layerMask = { d, c, t };
+  requestDraw();
 };
 // What the page draws, for tests: each triangle's corners (float32, relative to the origin) as sorted
 // text, the triangles sorted; and each drawn node's depth (by its float32 place).
@@ -828,13 +1132,27 @@ state.drawnTriangles = () => {
   }
   return out.sort();
 };
+// The screen boxes (CSS pixels: x0, y0, x1, y1, clipped to the view) of the triangles the last edit wrote.
+state.lastEditBoxes = () => {
+  const p = buffers.position.array, out = [], w = view.clientWidth, h = view.clientHeight;
+  for (let s = 0; s < state.slots; ++s) {
+    if (buffers.kind.array[s * 3] === 255 || buffers.changed.array[s * 3] !== state.version) continue;
+    const xs = [0, 2, 4].map((k) => toScreen(p[s * 6 + k] + state.origin[0], p[s * 6 + k + 1] + state.origin[1]));
+    const b = [Math.max(0, Math.min(...xs.map((q) => q[0]))), Math.max(0, Math.min(...xs.map((q) => q[1]))),
+               Math.min(w, Math.max(...xs.map((q) => q[0]))), Math.min(h, Math.max(...xs.map((q) => q[1])))];
+    if (b[0] < b[2] && b[1] < b[3]) out.push(b);
+  }
+  return out;
+};
 state.drawnDepths = () => {
   const p = buffers.position.array, d = buffers.depth.array, at = new Map();
   for (let c = 0; c < state.slots * 3; ++c) if (buffers.kind.array[c] !== 255) at.set(`${p[2 * c]} ${p[2 * c + 1]}`, d[c]);
   return [...at.values()].sort((a, b) => a - b);
 };
 state.undoLast = undo;
-state.setColour = (mode) => { uniforms.uColour.value = mode; $('colour').value = String(mode); showLegend(); return nextFrame(); };
+state.setColour = (mode) => { uniforms.uColour.value = mode; $('colour').value = String(mode); showLegend(); requestDraw(); return nextFrame(); };
+// For tests: the next frame redraws everything (to compare with what the partial frames left).
+state.redrawAll = () => { requestDraw(); return nextFrame(); };
 state.redoLast = redo;
 
 window.addEventListener('resize', resize);
@@ -843,7 +1161,7 @@ requestAnimationFrame(frame);
 load().then(() => {
   fit();
   const events = new EventSource('events');
-  events.addEventListener('change', (e) => applyChange(JSON.parse(e.data)));
+  events.addEventListener('change', (e) => applyChange(JSON.parse(e.data), 'events'));
   events.addEventListener('reload', () => reload());
   state.ready = true;
   return loadStats();
