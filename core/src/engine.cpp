@@ -502,10 +502,10 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::vertice
   return out;
 }
 
-// Every fill that read a node meeting the box: a fill reads the water only inside the square it tests
-// (fill_on_land), which lies in the box its search covered, and so in the nodes it registered on. Any
-// node meeting the changed box, at any level, may hold such a registration: the walk goes down from the
-// root through every node that meets it.
+// Every fill that read the water in the box: a fill reads it only inside the box it tests (fill_on_land),
+// which lies in the box its search covered, and so in the nodes it registered on. Any node meeting the
+// changed box, at any level, may hold such a registration: the walk goes down from the root through
+// every node that meets it.
 template <int D>
 void WellSpacedEngine<D>::mark_water_readers(const Point<D>& lo, const Point<D>& hi) {
   std::vector<NodeId> stack{tree_.root()};
@@ -520,8 +520,21 @@ void WellSpacedEngine<D>::mark_water_readers(const Point<D>& lo, const Point<D>&
     for (int i = 0; i < D; ++i) meets = meets && box.lo[i] <= hi[i] && lo[i] <= box.hi[i];
     if (!meets) continue;
     if (n < readers_.size())
-      for (OpId o : readers_[n])
-        if (ops_[o].kind == OpKind::Fill) mark_redo(o);
+      for (OpId o : readers_[n]) {
+        const Op& op = ops_[o];
+        // Only a fill that tested the water read it: one skipped on land, or one that inserted (a fill
+        // that found its vertex well-spaced, or idle by rank, decided without it). Its box lies within
+        // sqrt(depends2) of its vertex (docs/water_only.md): farther from the changed box, nothing it read changed.
+        if (op.kind != OpKind::Fill || (!op.on_land && op.children_begin == op.children_end)) continue;
+        const Point<D>& c = positions_[op.vertex];
+        double d2 = 0;
+        for (int i = 0; i < D; ++i) {
+          const double d = std::max({lo[i] - c[i], c[i] - hi[i], 0.0});
+          d2 += d * d;
+        }
+        if (d2 * (1 - kRadiusMargin) > op.depends2) continue;
+        mark_redo(o);
+      }
     if (!nd.is_leaf())
       for (int k = 0; k < Quadtree<D>::kChildren; ++k) stack.push_back(nd.first_child + NodeId(k));
   }

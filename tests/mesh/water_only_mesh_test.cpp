@@ -19,18 +19,18 @@ using namespace shoremesh;
 
 namespace {
 
-struct Run {
+struct SkipRun {
   std::vector<Point2> points;
   std::size_t input_count = 0;
   std::size_t skipped_fills = 0;
   std::set<Point2> skipped;  // vertices with a fill skipped on land, in the user's coordinates
 };
 
-Run run(const Domain2& rings, std::span<const Point2> input, bool water_only) {
+SkipRun skip_run(const Domain2& rings, std::span<const Point2> input, bool water_only) {
   WaterSource source;
   if (water_only) source = [&rings] { return &rings; };
   const DynamicWellSpaced<2> set(input, {}, std::nullopt, BuildFor::Updates, source);
-  Run r;
+  SkipRun r;
   r.points = set.points();
   r.input_count = set.input_count();
   const auto& engine = set.set().engine();
@@ -65,7 +65,7 @@ TEST(WaterOnlyMesh, SuperiorSkipsFillsOnLandAndNoWaterCornerWasSkipped) {
   for (const Point2& p : refinement.split_points()) input.push_back(p);
   const Domain2 refined = refinement.refined();
 
-  const Run water = run(rings, input, true), everywhere = run(rings, input, false);
+  const SkipRun water = skip_run(rings, input, true), everywhere = skip_run(rings, input, false);
   EXPECT_GT(water.skipped_fills, 0u);
   EXPECT_GT(water.skipped.size(), 0u);
   EXPECT_EQ(everywhere.skipped_fills, 0u);
