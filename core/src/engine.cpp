@@ -526,10 +526,10 @@ void WellSpacedEngine<D>::mark_water_readers(const Point<D>& lo, const Point<D>&
         // that found its vertex well-spaced, or idle by rank, decided without it). Its box lies within
         // sqrt(depends2) of its vertex (docs/water_only.md): farther from the changed box, nothing it read changed.
         if (op.kind != OpKind::Fill || (!op.on_land && op.children_begin == op.children_end)) continue;
-        const Point<D>& c = positions_[op.vertex];
+        const Point<D>& q = positions_[op.vertex];
         double d2 = 0;
         for (int i = 0; i < D; ++i) {
-          const double d = std::max({lo[i] - c[i], c[i] - hi[i], 0.0});
+          const double d = std::max({lo[i] - q[i], q[i] - hi[i], 0.0});
           d2 += d * d;
         }
         if (d2 * (1 - kRadiusMargin) > op.depends2) continue;
