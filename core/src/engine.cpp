@@ -482,9 +482,70 @@ void WellSpacedEngine<D>::redispatch_input(VertexId v) {
 }
 
 template <int D>
+void WellSpacedEngine<D>::set_water(std::vector<std::vector<Point2>> unit_rings) {
+  if constexpr (D != 2) {
+    (void)unit_rings;
+    throw std::logic_error("a water domain is for 2D engines");
+  } else {
+    water_ = std::make_unique<WaterRings>();
+    water_->assign(std::move(unit_rings));
+  }
+}
+
+template <int D>
+std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::vertices_skipped_on_land() const {
+  std::vector<VertexId> out;
+  for (const Op& op : ops_)
+    if (!(op.flags & kDead) && op.kind == OpKind::Fill && op.on_land) out.push_back(op.vertex);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+// Every fill that read the water in the box: a fill reads it only inside the box it tests (fill_on_land),
+// which lies in the box its search covered, and so in the nodes it registered on. Any node meeting the
+// changed box, at any level, may hold such a registration: the walk goes down from the root through
+// every node that meets it.
+template <int D>
+void WellSpacedEngine<D>::mark_water_readers(const Point<D>& lo, const Point<D>& hi) {
+  std::vector<NodeId> stack{tree_.root()};
+  while (!stack.empty()) {
+    const NodeId n = stack.back();
+    stack.pop_back();
+    const auto& nd = tree_.node(n);
+    std::array<std::int64_t, D> c;
+    for (int i = 0; i < D; ++i) c[std::size_t(i)] = std::int64_t(nd.coords[std::size_t(i)]);
+    const auto box = Quadtree<D>::cell_box(nd.level, c);
+    bool meets = true;
+    for (int i = 0; i < D; ++i) meets = meets && box.lo[i] <= hi[i] && lo[i] <= box.hi[i];
+    if (!meets) continue;
+    if (n < readers_.size())
+      for (OpId o : readers_[n]) {
+        const Op& op = ops_[o];
+        // Only a fill that tested the water read it: one skipped on land, or one that inserted (a fill
+        // that found its vertex well-spaced, or idle by rank, decided without it). Its box lies within
+        // sqrt(depends2) of its vertex (docs/water_only.md): farther from the changed box, nothing it read changed.
+        if (op.kind != OpKind::Fill || (!op.on_land && op.children_begin == op.children_end)) continue;
+        const Point<D>& q = positions_[op.vertex];
+        double d2 = 0;
+        for (int i = 0; i < D; ++i) {
+          const double d = std::max({lo[i] - q[i], q[i] - hi[i], 0.0});
+          d2 += d * d;
+        }
+        if (d2 * (1 - kRadiusMargin) > op.depends2) continue;
+        mark_redo(o);
+      }
+    if (!nd.is_leaf())
+      for (int k = 0; k < Quadtree<D>::kChildren; ++k) stack.push_back(nd.first_child + NodeId(k));
+  }
+}
+
+template <int D>
 std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::apply(std::span<const InputEdit> edits,
-                                                                              PropagationStats* stats) {
+                                                                              PropagationStats* stats,
+                                                                              std::span<const RingChange> rings) {
   if (!recording_) throw std::logic_error("the engine was built for its output only: it cannot be updated");
+  if (!rings.empty() && !water_) throw std::logic_error("ring changes for an engine without a water domain");
   std::vector<VertexId> added;
   for (const InputEdit& e : edits) {
     if (e.add) {
@@ -509,6 +570,14 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::apply(s
       // The input vertex of the leaf that now holds p has a new neighbourhood too.
       if (tree_.node(leaf).input_vertex != kNoVertex) redispatch_input(tree_.node(leaf).input_vertex);
       kill_vertex(v);  // an input, not a Steiner change: the report does not list it
+    }
+  }
+  if constexpr (D == 2) {
+    // The fills that read the water where it changed (the changed edges, and between old and new ones
+    // the parity) decide again (docs/water_only.md).
+    for (const auto& [r, points] : rings) {
+      Point2 lo{2.0, 2.0}, hi{-1.0, -1.0};
+      if (water_->set_ring(r, points, lo, hi)) mark_water_readers(lo, hi);
     }
   }
   propagate(stats);

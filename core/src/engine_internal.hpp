@@ -19,5 +19,6 @@ inline float at_least(double x) {
 inline constexpr double kRadiusMargin = 1e-6;    // dependency radii (depends2) and their boxes
 inline constexpr double kReachMargin = 1e-9;     // what can still cut a cell, and the boxes searched
 inline constexpr double kNearestTie = 1e-12;     // nearest-neighbour distances this close are decided exactly
+inline constexpr double kLandMargin = 1e-6;      // the cell box a fill tests against the shore (fill_on_land)
 
 }  // namespace shoremesh::engine_detail

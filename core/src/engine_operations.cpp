@@ -140,6 +140,7 @@ void add(Counters& to, const Counters& c) {
   to.dispatches += c.dispatches;
   to.fills += c.fills;
   to.fills_idle_by_rank += c.fills_idle_by_rank;
+  to.fills_on_land += c.fills_on_land;
   to.clipped_voronoi_calls += c.clipped_voronoi_calls;
   to.cells_reused += c.cells_reused;
   to.neighbourhoods_reused += c.neighbourhoods_reused;
@@ -257,7 +258,14 @@ void WellSpacedEngine<D>::compute_fill(OpId o, Worker& w, Outcome& out) {
   const Point<D> p = positions_[v];
   const bool has_cell = compute_cell(o, v, true, w);
   PredicateCounters& pc = w.cell.counters();
-  for (int inserted = 0; has_cell && w.hood.nearest != kNoVertex &&
+  // A fill that would insert, on a vertex whose cell cannot meet the water, inserts nothing (on land).
+  ops_[o].on_land = false;
+  if (water_ && has_cell && w.hood.nearest != kNoVertex &&
+      !w.cell.within_scaled_distance(params_.fill_rho_squared, positions_[w.hood.nearest]) && fill_on_land(v, w)) {
+    ops_[o].on_land = true;
+    ++w.counters.fills_on_land;
+  }
+  for (int inserted = 0; has_cell && !ops_[o].on_land && w.hood.nearest != kNoVertex &&
                          !w.cell.within_scaled_distance(params_.fill_rho_squared, positions_[w.hood.nearest]);
        ++inserted) {
     if (inserted > 1000) throw std::logic_error("fill inserted over 1000 Steiner points around one vertex");
@@ -275,7 +283,8 @@ void WellSpacedEngine<D>::compute_fill(OpId o, Worker& w, Outcome& out) {
   }
   // v was already well-spaced: a vertex inserted farther than NN(v) leaves NN(v) and the clipping cube
   // as they are and can only shrink the cell, so v stays well-spaced and this fill does nothing again.
-  if (recording_ && has_cell && out.steiner.empty() && w.hood.nearest != kNoVertex) {
+  // (Not a fill skipped on land: it keeps the whole cell's dependencies, as one that inserted.)
+  if (recording_ && has_cell && out.steiner.empty() && !ops_[o].on_land && w.hood.nearest != kNoVertex) {
     ops_[o].inserted_depends2 = at_least(squared_distance(v, w.hood.nearest) * (1 + kRadiusMargin));
     w.cell.bisector_neighbours(w.neighbours);
     record_facets(o, w);
@@ -330,6 +339,35 @@ void WellSpacedEngine<D>::commit_fill(OpId o, Outcome& out) {
   stash_.clear();
 }
 
+// The cell's box: its vertices' interval enclosures (exact positions inside) about v, widened by a margin
+// far above the rounding of p + y (and of the shore's splits, which lie on the rings' edges up to one
+// rounding: the mesh's water is the refined rings'). It is tested exactly against the rings' edges, and
+// when none meets it, v's side decides for the whole box. It lies within max_vertex_distance2 of v, so in
+// the box the operation's search covered and registered on (docs/water_only.md).
+template <int D>
+bool WellSpacedEngine<D>::fill_on_land(VertexId v, Worker& w) const {
+  if constexpr (D != 2) {
+    (void)v, (void)w;
+    return false;
+  } else {
+    constexpr double kAbsolute = 0x1p-48;  // unit box: 16 ulps of 1, below any vertex spacing (2^-40)
+    Point2 lo{0, 0}, hi{0, 0};
+    w.cell.for_each_vertex_box([&](const std::array<Interval, 2>& y) {
+      for (int i = 0; i < 2; ++i) {
+        lo[i] = std::min(lo[i], y[i].inf());
+        hi[i] = std::max(hi[i], y[i].sup());
+      }
+    });
+    const Point2 p = positions_[v];
+    const double margin = std::max(hi[0] - lo[0], hi[1] - lo[1]) * kLandMargin + kAbsolute;
+    for (int i = 0; i < 2; ++i) {
+      lo[i] = p[i] + lo[i] - margin;
+      hi[i] = p[i] + hi[i] + margin;
+    }
+    return !water_->may_meet_water(p, lo, hi, w.cell.counters());
+  }
+}
+
 // The Steiner point: toward the cell vertex c farthest from v, at distance min(|vc|, beta NN) shrunk by
 // 2^-10 (so it lies strictly inside the cell, away from the bisectors through c, and rounding cannot push
 // it out), but never nearer than rho NN. That is the largest admissible step, which keeps the output
@@ -382,7 +420,8 @@ Point<D> WellSpacedEngine<D>::pick_steiner(VertexId v, Worker& wk) const {
   template bool WellSpacedEngine<D>::already_below_rank(const Worker&, VertexId, int, PredicateCounters&) const; \
   template void WellSpacedEngine<D>::compute_fill(OpId, Worker&, Outcome&);                            \
   template void WellSpacedEngine<D>::commit_fill(OpId, Outcome&);                                      \
-  template Point<D> WellSpacedEngine<D>::pick_steiner(VertexId, Worker&) const;
+  template Point<D> WellSpacedEngine<D>::pick_steiner(VertexId, Worker&) const;                        \
+  template bool WellSpacedEngine<D>::fill_on_land(VertexId, Worker&) const;
 SHOREMESH_ENGINE_OPERATIONS(2)
 SHOREMESH_ENGINE_OPERATIONS(3)
 #undef SHOREMESH_ENGINE_OPERATIONS

@@ -478,7 +478,10 @@ ShoreSession<D>::ShoreSession(const SessionInput<D>& input, const Options& optio
       m.seeds = size_seeds(*m.size, m.refinement ? m.refinement->refined() : Domain2{});
       engine_points.insert(engine_points.end(), m.seeds.begin(), m.seeds.end());
     }
-  m.set.emplace(engine_points, session_parameters<D>(options.rho), box);
+  WaterSource water;  // work only where the water is (docs/water_only.md): the user's rings, as they are now
+  if constexpr (D == 2)
+    if (m.refinement) water = [&m]() -> const Domain2* { return &m.refinement->rings(); };
+  m.set.emplace(engine_points, session_parameters<D>(options.rho), box, BuildFor::Updates, std::move(water));
   for (std::size_t id = 0; id < n; ++id) m.engine_of_user.push_back(id);
   for (std::size_t j = 0; j < splits.size(); ++j) m.split_id.emplace(splits[j], n + j);
   for (std::size_t j = 0; j < m.seeds.size(); ++j) m.seed_id.emplace(m.seeds[j], n + splits.size() + j);

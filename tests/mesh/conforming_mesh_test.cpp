@@ -76,7 +76,7 @@ FreshRun fresh_run(const Domain2& rings, std::optional<BoxTransform<2>> box = {}
   const ShoreRefinement refinement(rings);
   std::vector<Point2> input = ring_points(rings);
   for (const Point2& p : refinement.split_points()) input.push_back(p);
-  const StableResult<2> ws = stable_well_spaced<2>(input, {}, box);
+  const StableResult<2> ws = stable_well_spaced<2>(input, {}, box, &rings);
   Domain2 refined = refinement.refined();
   return {Mesh2(ws.points, ws.input_count, refined), refined};
 }
@@ -180,7 +180,7 @@ FreshRun fresh_run(const SessionInput<2>& in, const BoxTransform<2>& box) {
   const ShoreRefinement refinement(in.rings, loose, RefinementRule::for_box(box.side));
   std::vector<Point2> input = in.points;
   for (const Point2& p : refinement.split_points()) input.push_back(p);
-  const StableResult<2> ws = stable_well_spaced<2>(input, {}, box);
+  const StableResult<2> ws = stable_well_spaced<2>(input, {}, box, &in.rings);
   Domain2 refined = refinement.refined();
   return {Mesh2(ws.points, ws.input_count, refined), refined};
 }

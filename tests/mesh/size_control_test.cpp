@@ -46,7 +46,7 @@ Mesh2 fresh_sized(const SessionInput<2>& in, const BoxTransform<2>& box, const S
     refined = refinement->refined();
   }
   for (const Point2& p : size_seeds(*field, refined)) points.push_back(p);
-  const StableResult<2> ws = stable_well_spaced<2>(points, session_parameters<2>(std::sqrt(2.0)), box);
+  const StableResult<2> ws = stable_well_spaced<2>(points, session_parameters<2>(std::sqrt(2.0)), box, &in.rings);
   return Mesh2(ws.points, ws.input_count, refined);
 }
 

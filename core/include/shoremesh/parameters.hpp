@@ -49,6 +49,7 @@ struct Counters {
   std::uint64_t dispatches = 0;
   std::uint64_t fills = 0;
   std::uint64_t fills_idle_by_rank = 0;     // fills whose vertex's nearest neighbour was already below their rank
+  std::uint64_t fills_on_land = 0;          // fills skipped: their vertex's cell cannot meet the water (docs/water_only.md)
   std::uint64_t clipped_voronoi_calls = 0;  // cells computed (searched and clipped)
   std::uint64_t cells_reused = 0;          // cells a propagation took from its cache instead
   std::uint64_t neighbourhoods_reused = 0; // cells computed from the cache's vertex lists, not a search

@@ -2,6 +2,7 @@
 // StableWS (paper, Figure 3): a size-optimal rho-well-spaced superset of a point set, built so that
 // every operation and every square it read is recorded for dynamic updates (PropagateWS).
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -20,6 +21,19 @@ inline constexpr double kSmallestSide = 1e-100;
 
 template <int D>
 class WellSpacedEngine;  // core/src: quadtree, operations, clipped Voronoi cells
+struct Domain2;          // domain.hpp
+
+// A ring of the water domain that changed, in the unit box: (ring number, its points; empty when it went,
+// is a line or has fewer than 3 points).
+using UnitRingChange = std::pair<std::size_t, std::vector<Point<2>>>;
+
+// Work only where the water is (2D, docs/water_only.md): the rings the engine's fills work for, as their
+// owner holds them now (null or without closed rings: everywhere). Asked at the build and before every
+// edit, so that an edit of the rings reaches the engine in the same propagation as its points. A fill
+// whose vertex's cell cannot meet the closed water (the rings' even-odd interior) inserts nothing: the
+// water mesh (the constrained triangulation with the rings as constraints) sees only points in the
+// closed water, and every one of them is filled as without the rings.
+using WaterSource = std::function<const Domain2*()>;
 
 // What one dynamic update changed in the output (unit-box coordinates in WellSpacedSet, the user's in
 // DynamicWellSpaced): the mesh and export layers update only this.
@@ -72,7 +86,9 @@ class WellSpacedSet {
   void move(std::size_t id, const Point<D>& unit_point, UpdateReport<D>* report = nullptr);  // keeps the id
   // Several edits, one propagation: returns the ids of the added points (in order). All edits are
   // checked before any is applied.
-  std::vector<std::size_t> apply(std::span<const Edit<D>> edits, UpdateReport<D>* report = nullptr);
+  // `rings`: the water's rings that changed with these edits (an engine given water, WellSpacedEngine::set_water).
+  std::vector<std::size_t> apply(std::span<const Edit<D>> edits, UpdateReport<D>* report = nullptr,
+                                 std::span<const UnitRingChange> rings = {});
 
   std::size_t input_count() const;
   std::size_t steiner_count() const;
@@ -119,7 +135,8 @@ template <int D>
 class DynamicWellSpaced {
  public:
   DynamicWellSpaced(std::span<const Point<D>> user_points, const Parameters<D>& parameters = {},
-                    std::optional<BoxTransform<D>> box = {}, BuildFor purpose = BuildFor::Updates);
+                    std::optional<BoxTransform<D>> box = {}, BuildFor purpose = BuildFor::Updates,
+                    WaterSource water = {});
   const BoxTransform<D>& box() const { return box_; }
   // As WellSpacedSet, in user coordinates; a point outside the box is refused (the box never grows, so
   // that the result always equals `stable_well_spaced` on the same input and box).
@@ -139,13 +156,20 @@ class DynamicWellSpaced {
  private:
   Point<D> to_unit_checked(const Point<D>& p) const;
   void to_user(UpdateReport<D>* report) const;
+  // The water's closed rings now, by ring number, in the user's coordinates (empty: none).
+  std::vector<std::vector<Point<2>>> water_now() const;
+  // The rings that differ from water_rings_, in the unit box (and in `user`, as the source has them).
+  std::vector<UnitRingChange> water_changes(std::vector<UnitRingChange>& user) const;
   BoxTransform<D> box_;
+  WaterSource water_;
+  std::vector<std::vector<Point<2>>> water_rings_;  // as the engine has them, in the user's coordinates
   WellSpacedSet<D> set_;
   std::vector<Point<D>> user_inputs_;  // by id; as the user gave them
 };
 
+// `water` (2D): work only where its water is (WaterSource).
 template <int D>
 StableResult<D> stable_well_spaced(std::span<const Point<D>> user_points, const Parameters<D>& parameters = {},
-                                   std::optional<BoxTransform<D>> box = {});
+                                   std::optional<BoxTransform<D>> box = {}, const Domain2* water = nullptr);
 
 }  // namespace shoremesh

@@ -19,6 +19,7 @@
 #include "shoremesh/engine/ids.hpp"
 #include "shoremesh/engine/quadtree.hpp"
 #include "shoremesh/engine/rank_scale.hpp"
+#include "shoremesh/engine/water.hpp"
 #include "shoremesh/parameters.hpp"
 #include "shoremesh/point.hpp"
 
@@ -75,6 +76,8 @@ class WellSpacedEngine {
     // Steiner vertex a crowded fill inserted: they lie near). Its searches then skip what cannot cut
     // its cell (compute_cell). Changes only the work, never the result.
     bool crowded = false;
+    // A fill skipped because its vertex's cell could not meet the water (docs/water_only.md).
+    bool on_land = false;
     OpId next_fill = engine::kNoOp;    // next fill acting on the same vertex
     std::uint32_t requesters = 0;      // fills: how many dispatches currently ask for it
     std::uint32_t children_begin = 0, children_end = 0;  // into children_
@@ -121,7 +124,19 @@ class WellSpacedEngine {
   // PropagateWS: input edits applied to the live computation, which then equals build() on the new
   // input. The caller checks the edits first (inside the box, no duplicate input, live ids).
   // Returns the vertex ids of added points, in order.
-  std::vector<VertexId> apply(std::span<const InputEdit> edits, PropagationStats* stats = nullptr);
+  // With a water domain (2D): `rings` are the rings that changed, (ring number, its points in the unit
+  // box; empty when it went, is a line or has fewer than 3 points), taken in before the propagation.
+  using RingChange = std::pair<std::size_t, std::vector<Point2>>;
+  std::vector<VertexId> apply(std::span<const InputEdit> edits, PropagationStats* stats = nullptr,
+                              std::span<const RingChange> rings = {});
+
+  // Work only where the water is (2D; docs/water_only.md): from the next build on, a fill whose vertex's
+  // cell cannot meet the closed water of these rings (even-odd; unit-box points; a ring with fewer than 3
+  // points, such as a line, bounds nothing) inserts nothing.
+  void set_water(std::vector<std::vector<Point2>> unit_rings);
+  const engine::WaterRings* water() const { return water_.get(); }
+  // The vertices with a live fill skipped on land (a build for updates: a one-shot build forgets its fills).
+  std::vector<VertexId> vertices_skipped_on_land() const;
 
   // The live operations as (vertex position, rank, colour), sorted: equal for a dynamic and a fresh run.
   std::vector<std::tuple<Point<D>, int, std::uint32_t>> operation_signature() const;
@@ -236,6 +251,10 @@ class WellSpacedEngine {
   bool already_below_rank(const Worker& wk, VertexId w, int rank, engine::PredicateCounters& pc) const;
   void redispatch_input(VertexId v);
   void apply_tree_change(const typename engine::Quadtree<D>::Change& change);
+  // The water changed inside the closed box [lo, hi]: every fill that read a node meeting it runs again.
+  void mark_water_readers(const Point<D>& lo, const Point<D>& hi);
+  // Whether the fill of v, whose cell w.cell is not well-spaced, is skipped: the cell cannot meet the water.
+  bool fill_on_land(VertexId v, Worker& w) const;
   // Finds v's nearest neighbour and the vertices that can cut its cell, registers op o's reads, and
   // computes v's cell clipped to the box and to the cube of half-side beta NN(v). For a fill, returns
   // false without a cell when v's nearest neighbour makes the fill idle (record_idle_fill).
@@ -310,6 +329,7 @@ class WellSpacedEngine {
   };
   std::unique_ptr<Workers, WorkersDeleter> workers_;
   bool recording_ = true;                 // false: a one-shot build (build without for_updates)
+  std::unique_ptr<engine::WaterRings> water_;  // 2D: skip fills on land (docs/water_only.md)
   std::vector<OpId> free_ops_, dead_ops_;
   std::vector<VertexId> free_vertices_, dead_vertices_;
   bool dynamic_ = false;                  // marking readers is needed only once a computation exists

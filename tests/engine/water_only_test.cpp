@@ -1,0 +1,233 @@
+// Work only where the water is (docs/water_only.md): fills whose cell cannot meet the water are skipped,
+// and a dynamic set whose rings are edited (vertices moved, added, removed; islands added and removed)
+// equals a fresh run on the edited input after every edit.
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "shoremesh/domain.hpp"
+#include "shoremesh/engine/engine.hpp"
+#include "shoremesh/error.hpp"
+#include "shoremesh/well_spaced.hpp"
+
+using namespace shoremesh;
+
+namespace {
+
+constexpr double kTau = 6.283185307179586;
+
+// A wavy lake (ring 0) in [0, 100]^2 with two islands; ring vertices are input points.
+struct Lake {
+  Domain2 domain;
+  std::vector<std::vector<std::size_t>> ids;  // ring r's vertices as input ids
+  std::vector<Point2> points;                 // by input id (a removed id keeps its place)
+  std::vector<bool> alive;
+
+  std::size_t add_point(const Point2& p) {
+    points.push_back(p);
+    alive.push_back(true);
+    return points.size() - 1;
+  }
+  void add_ring(const std::vector<Point2>& ring, RingRole role) {
+    domain.rings.push_back({{}, role});
+    ids.emplace_back();
+    for (const Point2& p : ring) {
+      domain.rings.back().points.push_back(p);
+      ids.back().push_back(add_point(p));
+    }
+  }
+  std::vector<Point2> live_points() const {
+    std::vector<Point2> out;
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (alive[i]) out.push_back(points[i]);
+    return out;
+  }
+};
+
+std::vector<Point2> polygon(const Point2& c, double radius, int n, double wave, double phase) {
+  std::vector<Point2> out;
+  for (int i = 0; i < n; ++i) {
+    const double t = kTau * i / n;
+    const double r = radius * (1 + wave * std::sin(5 * t + phase));
+    out.push_back({c[0] + r * std::cos(t), c[1] + r * std::sin(t)});
+  }
+  return out;
+}
+
+Lake make_lake() {
+  Lake lake;
+  lake.add_ring(polygon({50, 50}, 38, 48, 0.12, 0.3), RingRole::Shore);
+  lake.add_ring(polygon({40, 45}, 5, 7, 0.1, 1.0), RingRole::Island);
+  lake.add_ring(polygon({62, 58}, 4, 6, 0.1, 2.0), RingRole::Island);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(20, 80);
+  for (int i = 0; i < 12; ++i) lake.add_point({u(rng), u(rng)});
+  return lake;
+}
+
+// Land all around the lake: the box reaches well beyond it.
+const BoxTransform<2> kBox{{-60, -60}, 220};
+
+// The Steiner points, sorted (DynamicWellSpaced::points lists them sorted after the inputs).
+std::vector<Point2> steiner_of(const DynamicWellSpaced<2>& set) {
+  const auto all = set.points();
+  return {all.begin() + static_cast<std::ptrdiff_t>(set.input_count()), all.end()};
+}
+
+// The vertices in the closed water whose Voronoi cell in `points` reaches beyond rho NN (exact: CGAL's
+// Delaunay triangulation with exact constructions, apart from the engine's cells); hull vertices (an
+// unbounded cell the box would clip) are left out.
+std::size_t water_vertices_not_well_spaced(const std::vector<Point2>& points, const engine::WaterRings& water,
+                                           std::size_t& checked) {
+  using K = CGAL::Exact_predicates_exact_constructions_kernel;
+  using DT = CGAL::Delaunay_triangulation_2<K>;
+  DT dt;
+  for (const Point2& p : points) dt.insert(K::Point_2(p[0], p[1]));
+  engine::PredicateCounters pc;
+  std::size_t bad = 0;
+  checked = 0;
+  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
+    const Point2 p{CGAL::to_double(v->point().x()), CGAL::to_double(v->point().y())};
+    if (!water.in_closed_water(p, pc)) continue;
+    bool hull = false;
+    K::FT nn2 = -1, far2 = 0;
+    auto w = dt.incident_vertices(v), wend = w;
+    do {
+      if (dt.is_infinite(w)) {
+        hull = true;
+        break;
+      }
+      const K::FT d2 = CGAL::squared_distance(v->point(), w->point());
+      if (nn2 < 0 || d2 < nn2) nn2 = d2;
+    } while (++w != wend);
+    if (hull) continue;
+    auto f = dt.incident_faces(v), fend = f;
+    do {
+      if (dt.is_infinite(f)) {
+        hull = true;
+        break;
+      }
+      far2 = std::max(far2, CGAL::squared_distance(v->point(), dt.circumcenter(f)));
+    } while (++f != fend);
+    if (hull) continue;
+    ++checked;
+    bad += far2 > 2 * nn2;
+  }
+  return bad;
+}
+
+}  // namespace
+
+TEST(WaterOnly, FillsOnLandAreSkippedAndNoneInTheWater) {
+  const Lake lake = make_lake();
+  const auto points = lake.live_points();
+  const DynamicWellSpaced<2> everywhere(points, {}, kBox);
+  const DynamicWellSpaced<2> water(points, {}, kBox, BuildFor::Updates, [&] { return &lake.domain; });
+  const auto& engine = water.set().engine();
+  ASSERT_NE(engine.water(), nullptr);
+  EXPECT_GT(engine.counters().fills_on_land, 0u);
+  EXPECT_EQ(everywhere.set().engine().counters().fills_on_land, 0u);
+  EXPECT_LT(water.steiner_count(), everywhere.steiner_count());
+  // Every skipped vertex lies strictly on land, and every vertex in the closed water is as well-spaced as
+  // without the skip: no fill of a vertex there was skipped.
+  engine::PredicateCounters pc;
+  const auto skipped = engine.vertices_skipped_on_land();
+  EXPECT_FALSE(skipped.empty());
+  for (const auto v : skipped) EXPECT_FALSE(engine.water()->in_closed_water(engine.positions()[v], pc));
+  // What the water mesh needs: every vertex in the water is rho-well-spaced in the whole output.
+  std::vector<Point2> unit;
+  for (engine::VertexId v = 0; v < engine.vertex_count(); ++v)
+    if (engine.vertex(v).alive) unit.push_back(engine.positions()[v]);
+  std::size_t checked = 0;
+  EXPECT_EQ(water_vertices_not_well_spaced(unit, *engine.water(), checked), 0u);
+  EXPECT_GT(checked, 100u);
+  // A one-shot build makes the same points.
+  const StableResult<2> once = stable_well_spaced<2>(points, {}, kBox, &lake.domain);
+  std::vector<Point2> once_steiner(once.points.begin() + static_cast<std::ptrdiff_t>(once.input_count), once.points.end());
+  std::sort(once_steiner.begin(), once_steiner.end());
+  EXPECT_EQ(once_steiner, steiner_of(water));
+  EXPECT_EQ(once.counters.fills_on_land, engine.counters().fills_on_land);
+}
+
+// Random edits of the rings and the loose points; after each, the output and the operations equal a fresh
+// run's on the edited input with the edited rings.
+TEST(WaterOnly, RingEditsEqualAFreshRun) {
+  Lake lake = make_lake();
+  DynamicWellSpaced<2> set(lake.points, {}, kBox, BuildFor::Updates, [&] { return &lake.domain; });
+  std::mt19937 rng(2026);
+  std::uniform_real_distribution<double> u(0, 1);
+  int made = 0, island_adds = 0, island_removals = 0, skipped_runs = 0;
+  for (int attempt = 0; made < 60 && attempt < 1000; ++attempt) {
+    const double what = u(rng);
+    std::vector<Edit<2>> edits;
+    // Ring 0 or a live island, and one of its vertices.
+    std::vector<std::size_t> live;
+    for (std::size_t r = 0; r < lake.ids.size(); ++r)
+      if (!lake.ids[r].empty()) live.push_back(r);
+    const std::size_t r = live[rng() % live.size()];
+    auto& ring = lake.domain.rings[r].points;
+    auto& ids = lake.ids[r];
+    const std::size_t k = rng() % ring.size();
+    const Point2 a = ring[k], b = ring[(k + 1) % ring.size()];
+    if (what < 0.35) {  // move a ring vertex a little toward its next one and off
+      const Point2 p{a[0] + 0.3 * (b[0] - a[0]) + 0.2 * (u(rng) - 0.5) * (b[1] - a[1]),
+                     a[1] + 0.3 * (b[1] - a[1]) - 0.2 * (u(rng) - 0.5) * (b[0] - a[0])};
+      ring[k] = p;
+      lake.points[ids[k]] = p;
+      edits.push_back({Edit<2>::Kind::Move, ids[k], p});
+    } else if (what < 0.55) {  // a vertex after it
+      const Point2 p{0.5 * (a[0] + b[0]) + 0.1 * (u(rng) - 0.5) * (b[1] - a[1]),
+                     0.5 * (a[1] + b[1]) - 0.1 * (u(rng) - 0.5) * (b[0] - a[0])};
+      ring.insert(ring.begin() + static_cast<std::ptrdiff_t>(k + 1), p);
+      ids.insert(ids.begin() + static_cast<std::ptrdiff_t>(k + 1), lake.add_point(p));
+      edits.push_back({Edit<2>::Kind::Add, 0, p});
+    } else if (what < 0.7) {  // remove it
+      if (ring.size() <= 5) continue;
+      edits.push_back({Edit<2>::Kind::Remove, ids[k], {}});
+      lake.alive[ids[k]] = false;
+      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
+      ids.erase(ids.begin() + static_cast<std::ptrdiff_t>(k));
+    } else if (what < 0.82) {  // an island in the lake
+      const Point2 c{35 + 30 * u(rng), 35 + 30 * u(rng)};
+      lake.add_ring(polygon(c, 1.5 + 2 * u(rng), 6, 0.05, u(rng) * kTau), RingRole::Island);
+      for (std::size_t id : lake.ids.back()) edits.push_back({Edit<2>::Kind::Add, 0, lake.points[id]});
+      ++island_adds;
+    } else if (what < 0.92) {  // an island removed (its number stays, without points)
+      if (live.size() < 2) continue;
+      const std::size_t gone = live[1 + rng() % (live.size() - 1)];
+      for (std::size_t id : lake.ids[gone]) {
+        edits.push_back({Edit<2>::Kind::Remove, id, {}});
+        lake.alive[id] = false;
+      }
+      lake.ids[gone].clear();
+      lake.domain.rings[gone].points.clear();
+      ++island_removals;
+    } else {  // a loose point, in the water or on land
+      edits.push_back({Edit<2>::Kind::Add, 0, Point2{100 * u(rng), 100 * u(rng)}});
+      lake.add_point(edits.back().point);
+    }
+    // The ids the set gives added points are the next ones: as the lake numbers them.
+    try {
+      const auto added = set.apply(edits);
+      for (std::size_t j = 0; j < added.size(); ++j) ASSERT_EQ(added[j], lake.points.size() - added.size() + j);
+    } catch (const InputError& e) {
+      FAIL() << "edit " << made + 1 << " refused: " << e.what();
+    }
+    ++made;
+    const DynamicWellSpaced<2> fresh(lake.live_points(), {}, kBox, BuildFor::Updates, [&] { return &lake.domain; });
+    ASSERT_EQ(steiner_of(set), steiner_of(fresh)) << "after edit " << made;
+    ASSERT_EQ(set.set().engine().operation_signature(), fresh.set().engine().operation_signature())
+        << "after edit " << made;
+    skipped_runs += fresh.set().engine().counters().fills_on_land > 0;
+    if (made % 10 == 0) set.set().check_valid();
+  }
+  EXPECT_EQ(made, 60);
+  EXPECT_GT(island_adds, 0);
+  EXPECT_GT(island_removals, 0);
+  EXPECT_EQ(skipped_runs, made);  // every fresh run skipped some fills: the rule was exercised
+}
