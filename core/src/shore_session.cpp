@@ -127,6 +127,12 @@ struct ShoreSession<D>::Impl {
   std::unordered_map<Point2, std::size_t, ExactHash> vertex_id;
   std::unordered_map<std::size_t, std::vector<std::size_t>> lines_at;
   std::optional<Mesh<D>> mesh;
+  // 2D with rings: the user's rings as the refinement holds them, except while an edit is checked and
+  // applied: that edit is then made here in place (the ring index checks it here), and taken back if it
+  // is refused. No copy of the rings an edit.
+  Domain2 rings_now;
+  // The refined segments the last edit changed, for the mesh (unset: the mesh takes the refined rings).
+  std::optional<ShoreChange> shore_change;
 
   std::size_t engine_id(std::size_t id) const { return engine_of_user.at(id); }
 
@@ -148,26 +154,29 @@ struct ShoreSession<D>::Impl {
                        "ends on a ring)");
   }
 
-  // A change of the user's rings, checked, as the refinement, the index and the ids take it.
+  // A change of the user's rings, checked, as the refinement, the index and the ids take it; made in
+  // rings_now (`undo_now` takes it back there).
   struct RingChange {
-    Domain2 domain;                    // all the rings after it
     std::optional<RingVertexEdit> edit;  // one vertex's edit of a closed ring (nullopt: a line's edit)
     std::size_t ring = 0;
     Ring line_before;  // a line's edit: the line as it was
+    RingStretch stretch, undo;  // the edit as the refinement takes it, and the edit that undoes it there
+    RingStretch undo_now;
   };
 
   // The index takes a checked change: one vertex's edit of a ring, or a line replaced as a whole.
   void commit_index(const RingChange& change) {
     if (change.edit) {
-      ring_index->commit(change.domain, *change.edit);
+      ring_index->commit(rings_now, *change.edit);
     } else {
       ring_index->erase_ring(change.ring, change.line_before);
-      ring_index->insert_ring(change.ring, change.domain.rings[change.ring]);
+      ring_index->insert_ring(change.ring, rings_now.rings[change.ring]);
     }
   }
 
-  // The rings after a vertex edit at input `id`: moved to `p`, removed, or a new vertex at `p` after it.
-  // InputError when they would be invalid; nullopt when `id` is on no ring.
+  // The rings after a vertex edit at input `id`: moved to `p`, removed, or a new vertex at `p` after it,
+  // made in rings_now. InputError (rings_now as it was) when they would be invalid; nullopt when `id` is
+  // on no ring.
   std::optional<RingChange> vertex_change(RingVertexEdit::Kind kind, std::size_t id, const Point<D>& p) {
     using Kind = RingVertexEdit::Kind;
     if constexpr (D != 2) {
@@ -176,41 +185,53 @@ struct ShoreSession<D>::Impl {
       const auto it = ring_of.find(id);
       if (it == ring_of.end()) return std::nullopt;
       const auto [r, k] = it->second;
-      const Domain2& now = refinement->rings();
+      const Ring& now = rings_now.rings[r];
+      const std::size_t count = now.points.size();
+      const bool line = !now.closed();
       const std::string what = kind == Kind::Move     ? "moving input point " + std::to_string(id)
                                : kind == Kind::Insert ? "adding a point after input point " + std::to_string(id)
                                                       : "removing input point " + std::to_string(id);
       if (kind == Kind::Remove || kind == Kind::Move) refuse_shared_end(id, what);
-      if (kind != Kind::Remove && p != now.rings[r].points[k]) refuse_vertex_at(p, what);
-      RingChange change{now, RingVertexEdit{kind, r, k, now.rings[r].points[k]}, r, {}};
-      auto& ring = change.domain.rings[r].points;
+      if (kind != Kind::Remove && p != now.points[k]) refuse_vertex_at(p, what);
+      if (kind == Kind::Remove && count <= (line ? 2u : 3u))
+        throw InputError("input point " + std::to_string(id) + " is one of the last " + (line ? "two" : "three") +
+                         " points of " + (line ? "line " : "ring ") + std::to_string(r + 1) +
+                         "; it cannot be removed (remove the " + (line ? "line" : "ring") + " instead)");
+      RingChange change;
+      change.ring = r;
+      change.edit = RingVertexEdit{kind, r, k, now.points[k]};
+      if (line) change.line_before = now;
       // The rings were valid before: only the edges at the changed vertex (or across the gap the removed
       // one leaves, from the vertex before it) are new, and only they need a look (the ring index).
+      RingStretch s{r, k, count - k - 1, {}, false, now.role};
       if (kind == Kind::Move) {
-        ring[k] = p;
+        s.middle = {p};
       } else if (kind == Kind::Insert) {
-        ring.insert(ring.begin() + static_cast<std::ptrdiff_t>(k + 1), p);
+        s.prefix = k + 1;
+        s.middle = {p};
         change.edit->vertex = k + 1;
       } else {
-        const bool line = !now.rings[r].closed();
-        if (ring.size() <= (line ? 2u : 3u))
-          throw InputError("input point " + std::to_string(id) + " is one of the last " + (line ? "two" : "three") +
-                           " points of " + (line ? "line " : "ring ") + std::to_string(r + 1) +
-                           "; it cannot be removed (remove the " + (line ? "line" : "ring") + " instead)");
-        ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
-        change.edit->vertex = (k + ring.size() - 1) % ring.size();
+        change.edit->vertex = (k + count - 2) % (count - 1);
       }
+      change.undo_now = apply_stretch(rings_now, s);
+      const Ring& after = rings_now.rings[r];
       std::optional<RingDefect> defect;
-      if (now.rings[r].closed()) {
-        defect = ring_index->defect_at(change.domain, *change.edit);
-      } else {  // a line is checked as a whole, against the index without it
+      if (!line) {
+        defect = ring_index->defect_at(rings_now, *change.edit);
+        change.stretch = std::move(s);
+        change.undo = change.undo_now;
+      } else {  // a line is checked as a whole, against the index without it, and taken whole
         change.edit.reset();
-        change.line_before = now.rings[r];
-        ring_index->erase_ring(r, now.rings[r]);
-        defect = ring_index->defect_of_new_ring(change.domain, r);
-        ring_index->insert_ring(r, now.rings[r]);
+        ring_index->erase_ring(r, change.line_before);
+        defect = ring_index->defect_of_new_ring(rings_now, r);
+        ring_index->insert_ring(r, change.line_before);
+        change.stretch = RingStretch{r, 0, 0, after.points, true, RingRole::Line};
+        change.undo = RingStretch{r, 0, 0, change.line_before.points, true, RingRole::Line};
       }
-      if (defect) throw InputError(what + " would break the shoreline: " + defect->describe());
+      if (defect) {
+        apply_stretch(rings_now, change.undo_now);
+        throw InputError(what + " would break the shoreline: " + defect->describe());
+      }
       return change;
     }
   }
@@ -221,12 +242,12 @@ struct ShoreSession<D>::Impl {
     using Kind = RingVertexEdit::Kind;
     const std::size_t r = change.ring;
     auto& ids = ring_ids[r];
-    const bool closed = change.domain.rings[r].closed();
+    const bool closed = rings_now.rings[r].closed();
     std::size_t first = 0;  // the ids from here on changed position
     if (kind == Kind::Insert) {
       first = ring_of.at(after_id).second + 1;
       ids.insert(ids.begin() + static_cast<std::ptrdiff_t>(first), id);
-      if (closed) vertex_id[change.domain.rings[r].points[first]] = id;
+      if (closed) vertex_id[rings_now.rings[r].points[first]] = id;
     } else if (kind == Kind::Remove) {
       first = ring_of.at(id).second;
       ring_of.erase(id);
@@ -240,21 +261,26 @@ struct ShoreSession<D>::Impl {
   }
 
   // Applies the user's edits of the engine's input (engine ids) together with what they do to the shore's
-  // canonical splits, in one propagation: `rings` are the user's rings after the edit (null: unchanged),
-  // `loose_removed`/`loose_added` the loose points the edit takes and gives. The input points that went
-  // and came (splits included) are added to `removed`/`added`; returns the engine ids of the edits' added
-  // points, in order. On an error nothing changed.
-  std::vector<std::size_t> apply_edits(std::vector<Edit<D>> edits, const Domain2* rings,
+  // canonical splits, in one propagation: `rings` the user's rings' edit (null: unchanged; made in
+  // rings_now already) and `undo` its inverse, `loose_removed`/`loose_added` the loose points the edit
+  // takes and gives. The input points that went and came (splits included) are added to
+  // `removed`/`added`; returns the engine ids of the edits' added points, in order. On an error nothing
+  // changed (but rings_now, which the caller takes back).
+  std::vector<std::size_t> apply_edits(std::vector<Edit<D>> edits, const RingStretch* rings, const RingStretch* undo,
                                        std::vector<Point<D>> loose_removed, std::vector<Point<D>> loose_added,
                                        std::vector<Point<D>>& removed, std::vector<Point<D>>& added,
                                        UpdateReport<D>& report) {
     const std::size_t user_adds = static_cast<std::size_t>(
         std::count_if(edits.begin(), edits.end(), [](const Edit<D>& e) { return e.kind == Edit<D>::Kind::Add; }));
+    shore_change.reset();
     if constexpr (D == 2) {
-      if (size) return apply_sized(std::move(edits), rings, loose_removed, loose_added, nullptr, removed, added, report);
+      // Size control recomputes its seeds from all the refined rings anyway: the rings whole.
+      if (size)
+        return apply_sized(std::move(edits), rings ? &rings_now : nullptr, loose_removed, loose_added, nullptr, removed,
+                           added, report);
       if (refinement) {
-        const Domain2 before = refinement->rings();
-        const SplitChange change = refinement->update(rings ? *rings : before, loose_removed, loose_added);
+        const auto one = [](const RingStretch* s) { return s ? std::span<const RingStretch>(s, 1) : std::span<const RingStretch>(); };
+        SplitChange change = refinement->update(one(rings), loose_removed, loose_added);
         for (const Point2& p : change.removed) {
           edits.push_back({Edit<D>::Kind::Remove, split_id.at(p), {}});
           removed.push_back(p);
@@ -267,17 +293,32 @@ struct ShoreSession<D>::Impl {
         try {
           ids = set->apply(edits, &report);
         } catch (...) {
-          refinement->update(before, loose_added, loose_removed);  // the inverse edit: the same splits as before
+          refinement->update(one(undo), loose_added, loose_removed);  // the inverse edit: the same splits as before
           throw;
         }
         for (const Point2& p : change.removed) split_id.erase(p);
         for (std::size_t j = 0; j < change.added.size(); ++j) split_id.emplace(change.added[j], ids[user_adds + j]);
         ids.resize(user_adds);
+        shore_change = std::move(change.segments);
         return ids;
       }
     }
-    (void)rings, (void)loose_removed, (void)loose_added;
+    (void)rings, (void)undo, (void)loose_removed, (void)loose_added;
     return set->apply(edits, &report);
+  }
+
+  // apply_edits for a vertex edit (`change` made in rings_now), which it takes back there on an error.
+  std::vector<std::size_t> apply_vertex_edits(std::vector<Edit<D>> edits, const std::optional<RingChange>& change,
+                                              std::vector<Point<D>> loose_removed, std::vector<Point<D>> loose_added,
+                                              std::vector<Point<D>>& removed, std::vector<Point<D>>& added,
+                                              UpdateReport<D>& report) {
+    try {
+      return apply_edits(std::move(edits), change ? &change->stretch : nullptr, change ? &change->undo : nullptr,
+                         std::move(loose_removed), std::move(loose_added), removed, added, report);
+    } catch (...) {
+      if (change) apply_stretch(rings_now, change->undo_now);
+      throw;
+    }
   }
 
   // The loose input points now (2D): the live ones on no ring.
@@ -374,15 +415,25 @@ struct ShoreSession<D>::Impl {
     out.inputs_removed = removed.size();
     out.inputs_added = added.size();
     const auto change = PointChange<D>::from_update(out.engine, std::move(removed), std::move(added));
-    Domain2 refined;
-    if constexpr (D == 2)
-      if (refinement) refined = refinement->refined();
+    std::optional<ShoreChange> shore = std::move(shore_change);
+    shore_change.reset();
     try {
-      if constexpr (D == 2) out.mesh = refinement ? mesh->apply(change, refined) : mesh->apply(change);
-      else out.mesh = mesh->apply(change);
+      if constexpr (D == 2) {
+        if (refinement && shore)  // the refined rings only when someone asks for them
+          out.mesh = mesh->apply(change, *shore, [this] { return refinement->refined(); });
+        else if (refinement)
+          out.mesh = mesh->apply(change, refinement->refined());
+        else
+          out.mesh = mesh->apply(change);
+      } else {
+        out.mesh = mesh->apply(change);
+      }
     } catch (const InputError&) {
       // The mesh and the engine disagree (the mesh changed nothing): rebuild from the engine's points.
       out.rebuilt = true;
+      Domain2 refined;
+      if constexpr (D == 2)
+        if (refinement) refined = refinement->refined();
       const auto before = sorted_corners<D>(*mesh);
       const auto points = set->points();
       mesh = well_spaced_mesh<D>(points, set->input_count(), refined, set->box(), options.keep_hull);
@@ -462,6 +513,7 @@ ShoreSession<D>::ShoreSession(const SessionInput<D>& input, const Options& optio
     if (!input.rings.empty()) {
       m.refinement = refine_input(input, options.box, m.size);  // checks that the ring ids name the rings' points
       m.ring_index.emplace(input.rings);
+      m.rings_now = input.rings;
     }
   }
   // As a fresh run gives them to the engine: the input points, then the shore's splits.
@@ -500,7 +552,7 @@ SessionEdit<D> ShoreSession<D>::add(const Point<D>& p) {
   SessionEdit<D> out;
   const auto start = Clock::now();
   std::vector<Point<D>> removed, added{p};
-  const auto ids = m.apply_edits({{Edit<D>::Kind::Add, 0, p}}, nullptr, {}, {p}, removed, added, out.engine);
+  const auto ids = m.apply_edits({{Edit<D>::Kind::Add, 0, p}}, nullptr, nullptr, {}, {p}, removed, added, out.engine);
   out.id = m.engine_of_user.size();
   m.engine_of_user.push_back(ids.at(0));
   m.update_mesh(std::move(removed), std::move(added), start, start, out);
@@ -521,7 +573,7 @@ SessionEdit<D> ShoreSession<D>::add_after(std::size_t after, const Point<D>& p) 
   SessionEdit<D> out;
   const auto start = Clock::now();
   std::vector<Point<D>> removed, added{p};
-  const auto ids = m.apply_edits({{Edit<D>::Kind::Add, 0, p}}, &rings->domain, {}, {}, removed, added, out.engine);
+  const auto ids = m.apply_vertex_edits({{Edit<D>::Kind::Add, 0, p}}, rings, {}, {}, removed, added, out.engine);
   out.id = m.engine_of_user.size();
   out.ring = rings->ring;
   m.engine_of_user.push_back(ids.at(0));
@@ -543,14 +595,14 @@ SessionEdit<D> ShoreSession<D>::move(std::size_t id, const Point<D>& p) {
   out.id = id;
   const auto start = Clock::now();
   std::vector<Point<D>> removed{old}, added{p};
-  m.apply_edits({{Edit<D>::Kind::Move, m.engine_id(id), p}}, rings ? &rings->domain : nullptr,
-                rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{old},
-                rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{p}, removed, added, out.engine);
+  m.apply_vertex_edits({{Edit<D>::Kind::Move, m.engine_id(id), p}}, rings,
+                       rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{old},
+                       rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{p}, removed, added, out.engine);
   if (rings) {
     out.ring = rings->ring;
     m.commit_index(*rings);
     if constexpr (D == 2)
-      if (rings->domain.rings[rings->ring].closed()) {
+      if (m.rings_now.rings[rings->ring].closed()) {
         m.vertex_id.erase(old);
         m.vertex_id[p] = id;
       }
@@ -570,8 +622,8 @@ SessionEdit<D> ShoreSession<D>::remove(std::size_t id) {
   out.id = id;
   const auto start = Clock::now();
   std::vector<Point<D>> removed{old}, added;
-  m.apply_edits({{Edit<D>::Kind::Remove, m.engine_id(id), {}}}, rings ? &rings->domain : nullptr,
-                rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{old}, {}, removed, added, out.engine);
+  m.apply_vertex_edits({{Edit<D>::Kind::Remove, m.engine_id(id), {}}}, rings,
+                       rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{old}, {}, removed, added, out.engine);
   m.engine_of_user[id] = Impl::kRemoved;
   if (rings) {
     out.ring = rings->ring;
@@ -601,12 +653,17 @@ SessionEdit<D> ShoreSession<D>::add_ring(std::span<const Point2> points, bool li
       else m.refuse_vertex_at(points[k], what);
     }
     const auto edit_start = Clock::now();
-    Domain2 after = m.refinement->rings();
+    Domain2& after = m.rings_now;
+    after.rings.resize(r);
     after.rings.push_back({std::vector<Point2>(points.begin(), points.end()), line ? RingRole::Line : RingRole::Shore});
-    if (const auto defect = m.ring_index->defect_of_new_ring(after, r))
+    if (const auto defect = m.ring_index->defect_of_new_ring(after, r)) {
+      after.rings.resize(r);
       throw InputError(what + " would break the shoreline: " + defect->describe());
+    }
     // A ring's role from its nesting: inside an odd number of rings it bounds land (an island).
     if (!line) after.rings[r].role = m.ring_index->inside(points.front()) ? RingRole::Island : RingRole::Shore;
+    const RingStretch stretch{r, 0, 0, after.rings[r].points, true, after.rings[r].role};
+    const RingStretch undo{r, 0, 0, {}, true, after.rings[r].role};
     SessionEdit<D> out;
     const auto start = Clock::now();
     std::vector<Edit<D>> edits;
@@ -616,7 +673,13 @@ SessionEdit<D> ShoreSession<D>::add_ring(std::span<const Point2> points, bool li
         edits.push_back({Edit<D>::Kind::Add, 0, points[k]});
         added.push_back(points[k]);
       }
-    const auto ids = m.apply_edits(std::move(edits), &after, {}, {}, removed, added, out.engine);
+    std::vector<std::size_t> ids;
+    try {
+      ids = m.apply_edits(std::move(edits), &stretch, &undo, {}, {}, removed, added, out.engine);
+    } catch (...) {
+      after.rings.resize(r);
+      throw;
+    }
     std::vector<std::size_t> user_ids;
     for (std::size_t k = 0, j = 0; k < points.size(); ++k) {
       if (shared[k]) {
@@ -663,10 +726,11 @@ SessionEdit<D> ShoreSession<D>::remove_ring(std::size_t r) {
                            " on land; remove the line first");
       }
     const auto edit_start = Clock::now();
-    Domain2 after = m.refinement->rings();
-    const Ring gone_ring = after.rings[r];
+    const Ring gone_ring = m.rings_now.rings[r];
     const std::vector<Point2>& gone = gone_ring.points;
-    after.rings[r].points.clear();
+    m.rings_now.rings[r].points.clear();
+    const RingStretch stretch{r, 0, 0, {}, true, gone_ring.role};
+    const RingStretch undo{r, 0, 0, gone, true, gone_ring.role};
     SessionEdit<D> out;
     out.ring = r;
     out.id = m.ring_ids[r].front();
@@ -681,7 +745,12 @@ SessionEdit<D> ShoreSession<D>::remove_ring(std::size_t r) {
         edits.push_back({Edit<D>::Kind::Remove, m.engine_id(m.ring_ids[r][k]), {}});
         removed.push_back(gone[k]);
       }
-    m.apply_edits(std::move(edits), &after, {}, {}, removed, added, out.engine);
+    try {
+      m.apply_edits(std::move(edits), &stretch, &undo, {}, {}, removed, added, out.engine);
+    } catch (...) {
+      m.rings_now.rings[r] = gone_ring;
+      throw;
+    }
     for (std::size_t k = 0; k < gone.size(); ++k) {
       const std::size_t id = m.ring_ids[r][k];
       if (kept(id)) {
@@ -716,6 +785,7 @@ SessionEdit<D> ShoreSession<D>::set_polygon_size(std::size_t polygon, double siz
     out.id = polygon;
     const auto start = Clock::now();
     std::vector<Point<D>> removed, added;
+    m.shore_change.reset();
     m.apply_sized({}, nullptr, {}, {}, std::move(field), removed, added, out.engine);
     m.update_mesh(std::move(removed), std::move(added), edit_start, start, out);
     return out;
@@ -791,6 +861,13 @@ const std::vector<Point2>& ShoreSession<D>::ring(std::size_t r) const {
   if (!impl_->refinement || r >= impl_->refinement->rings().rings.size())
     throw InputError("no ring " + std::to_string(r + 1));
   return impl_->refinement->rings().rings[r].points;
+}
+
+template <int D>
+RingRole ShoreSession<D>::ring_role(std::size_t r) const {
+  if (!impl_->refinement || r >= impl_->refinement->rings().rings.size())
+    throw InputError("no ring " + std::to_string(r + 1));
+  return impl_->refinement->rings().rings[r].role;
 }
 
 template <int D>

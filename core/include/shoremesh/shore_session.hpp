@@ -137,8 +137,10 @@ class ShoreSession {
   // Ring numbers given so far (removed ones included), and ring r's points now (none once removed).
   std::size_t ring_count() const;
   const std::vector<Point2>& ring(std::size_t r) const;
+  RingRole ring_role(std::size_t r) const;
   // The rings as they are now, removed ones left out (in ring order), and the rings with their splits as
-  // the mesh conforms to them (removed ones as rings without points).
+  // the mesh conforms to them (removed ones as rings without points; built when first asked after an
+  // edit, O(the shore)).
   Domain2 rings() const;
   const Domain2& refined_rings() const;
   // The point set as a fresh run on the current input lists it: the input points by id, the shore's
