@@ -411,7 +411,8 @@ RingStretch apply_stretch(Domain2& rings, const RingStretch& s) {
   const auto first = pts.begin() + static_cast<std::ptrdiff_t>(s.prefix);
   const auto last = pts.end() - static_cast<std::ptrdiff_t>(s.suffix);
   undo.middle.assign(first, last);
-  pts.insert(pts.erase(first, last), s.middle.begin(), s.middle.end());
+  if (static_cast<std::size_t>(last - first) == s.middle.size()) std::copy(s.middle.begin(), s.middle.end(), first);  // a move
+  else pts.insert(pts.erase(first, last), s.middle.begin(), s.middle.end());
   return undo;
 }
 

@@ -120,12 +120,17 @@ struct ShoreSession<D>::Impl {
   std::vector<std::size_t> engine_of_user;  // by user id: the engine's input id (kRemoved once removed)
   std::optional<RingEdgeIndex> ring_index;  // the edges of the user's rings
   std::vector<std::vector<std::size_t>> ring_ids;  // ring r's vertices as input ids (empty: removed)
-  std::unordered_map<std::size_t, std::pair<std::size_t, std::size_t>> ring_of;  // id -> (ring, position)
-  // A line may end on a closed ring's vertex (a jetty on the shore): that vertex is one input point, on
-  // both; ring_of names the closed ring. The closed rings' vertices by point, to find it; the lines ending
-  // at a vertex, by its id (it can be neither moved nor removed while one does).
+  // id -> (ring, a position near its place): locate() finds the place from there, so that a vertex
+  // added or removed does not renumber the vertices after it (O(the ring) an edit).
+  mutable std::unordered_map<std::size_t, std::pair<std::size_t, std::size_t>> ring_of;
+  // Rings and lines may share a vertex: a line's end on a closed ring's vertex (a jetty on the shore), a
+  // .poly's pinch vertex or segments meeting there. It is one input point; ring_of names the ring that
+  // holds it first (closed rings before lines), shared_by the others. It can be neither moved nor
+  // removed, nor the ring that holds it first removed, while they share it (one edit of it would change
+  // several rings at once, which the ring index and the ids take one ring at a time). The closed rings'
+  // vertices by point, to find a jetty's root.
   std::unordered_map<Point2, std::size_t, ExactHash> vertex_id;
-  std::unordered_map<std::size_t, std::vector<std::size_t>> lines_at;
+  std::unordered_map<std::size_t, std::vector<std::size_t>> shared_by;
   std::optional<Mesh<D>> mesh;
   // 2D with rings: the user's rings as the refinement holds them, except while an edit is checked and
   // applied: that edit is then made here in place (the ring index checks it here), and taken back if it
@@ -136,22 +141,51 @@ struct ShoreSession<D>::Impl {
 
   std::size_t engine_id(std::size_t id) const { return engine_of_user.at(id); }
 
-  // A line's end shared with a closed ring (id `id`), or nothing.
+  // The ring of input point `id` (on one, live) and its place in it: searched outward from the position
+  // last found, which is off by as many vertices as came or went before it since (each edit one).
+  std::pair<std::size_t, std::size_t> locate(std::size_t id) const {
+    auto& [r, hint] = ring_of.at(id);
+    if constexpr (D == 2) {
+      const Point2 p = set->input_point(engine_id(id));
+      const auto& pts = rings_now.rings.at(r).points;
+      const std::size_t n = pts.size();
+      for (std::size_t d = 0; d <= n; ++d) {
+        if (hint + d < n && pts[hint + d] == p) return {r, hint += d};
+        if (d <= hint && hint - d < n && pts[hint - d] == p) return {r, hint -= d};
+      }
+      throw std::logic_error("shore session: input point " + std::to_string(id) + " is not on its ring");
+    }
+    return {r, hint};
+  }
+
+  // A vertex rings share (id `id`).
   bool shared_end(std::size_t id) const {
-    const auto it = lines_at.find(id);
-    return it != lines_at.end() && !it->second.empty();
+    const auto it = shared_by.find(id);
+    return it != shared_by.end() && !it->second.empty();
+  }
+  std::string ring_name(std::size_t r) const {
+    return (rings_now.rings.at(r).closed() ? "ring " : "line ") + std::to_string(r + 1);
   }
   void refuse_shared_end(std::size_t id, const std::string& what) const {
-    if (shared_end(id))
-      throw InputError(what + " is refused: input point " + std::to_string(id) + " is where line " +
-                       std::to_string(lines_at.at(id).front() + 1) + " ends on its ring; remove the line first");
+    if (!shared_end(id)) return;
+    std::string rings = ring_name(ring_of.at(id).first);
+    for (std::size_t r : shared_by.at(id)) rings += ", " + ring_name(r);
+    std::string where;
+    if constexpr (D == 2) {
+      const Point2 p = set->input_point(engine_id(id));
+      where = " (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) + ")";
+    }
+    throw InputError(what + " is refused: input point " + std::to_string(id) + where + " is a vertex of " + rings +
+                     ", which share it; a shared vertex can be neither moved nor removed, nor the " +
+                     ring_name(ring_of.at(id).first) + " removed, while they do (edit the vertices beside it, or " +
+                     "remove the other rings and lines first)");
   }
   // Rings share a vertex only where a line ends on a closed ring: a new vertex at another vertex is refused.
   void refuse_vertex_at(const Point2& p, const std::string& what) const {
     if (ring_index->has_vertex(p))
       throw InputError(what + " would break the shoreline: the point (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) +
-                       ") is a vertex of a ring or line already (rings and lines share a vertex only where a line "
-                       "ends on a ring)");
+                       ") is a vertex of a ring or line already (a new or moved vertex may not be one; only a new "
+                       "line's end may, on a closed ring's vertex: a jetty)");
   }
 
   // A change of the user's rings, checked, as the refinement, the index and the ids take it; made in
@@ -159,6 +193,7 @@ struct ShoreSession<D>::Impl {
   struct RingChange {
     std::optional<RingVertexEdit> edit;  // one vertex's edit of a closed ring (nullopt: a line's edit)
     std::size_t ring = 0;
+    std::size_t position = 0;  // the edited vertex's place in its ring before the edit
     Ring line_before;  // a line's edit: the line as it was
     RingStretch stretch, undo;  // the edit as the refinement takes it, and the edit that undoes it there
     RingStretch undo_now;
@@ -182,9 +217,8 @@ struct ShoreSession<D>::Impl {
     if constexpr (D != 2) {
       return std::nullopt;
     } else {
-      const auto it = ring_of.find(id);
-      if (it == ring_of.end()) return std::nullopt;
-      const auto [r, k] = it->second;
+      if (!ring_of.count(id)) return std::nullopt;
+      const auto [r, k] = locate(id);
       const Ring& now = rings_now.rings[r];
       const std::size_t count = now.points.size();
       const bool line = !now.closed();
@@ -199,6 +233,7 @@ struct ShoreSession<D>::Impl {
                          "; it cannot be removed (remove the " + (line ? "line" : "ring") + " instead)");
       RingChange change;
       change.ring = r;
+      change.position = k;
       change.edit = RingVertexEdit{kind, r, k, now.points[k]};
       if (line) change.line_before = now;
       // The rings were valid before: only the edges at the changed vertex (or across the gap the removed
@@ -237,27 +272,21 @@ struct ShoreSession<D>::Impl {
   }
 
   // Takes a committed change into the ids: `id` removed from its ring, or inserted as the new vertex.
-  // `after_id`: for an insertion, the vertex the new one follows.
-  void commit_vertex_ids(const RingChange& change, RingVertexEdit::Kind kind, std::size_t id, std::size_t after_id = 0) {
+  void commit_vertex_ids(const RingChange& change, RingVertexEdit::Kind kind, std::size_t id) {
     using Kind = RingVertexEdit::Kind;
     const std::size_t r = change.ring;
     auto& ids = ring_ids[r];
     const bool closed = rings_now.rings[r].closed();
-    std::size_t first = 0;  // the ids from here on changed position
     if (kind == Kind::Insert) {
-      first = ring_of.at(after_id).second + 1;
+      const std::size_t first = change.position + 1;
       ids.insert(ids.begin() + static_cast<std::ptrdiff_t>(first), id);
+      ring_of[id] = {r, first};
       if (closed) vertex_id[rings_now.rings[r].points[first]] = id;
     } else if (kind == Kind::Remove) {
-      first = ring_of.at(id).second;
       ring_of.erase(id);
-      ids.erase(ids.begin() + static_cast<std::ptrdiff_t>(first));
+      ids.erase(ids.begin() + static_cast<std::ptrdiff_t>(change.position));
       if (closed) vertex_id.erase(change.edit->gone);
-    } else {
-      return;
     }
-    for (std::size_t j = first; j < ids.size(); ++j)
-      if (closed || !shared_end(ids[j])) ring_of[ids[j]] = {r, j};
   }
 
   // Applies the user's edits of the engine's input (engine ids) together with what they do to the shore's
@@ -475,9 +504,7 @@ ShoreSession<D>::ShoreSession(const SessionInput<D>& input, const Options& optio
     if (options.size) throw InputError("size control is for 2D inputs");
   if constexpr (D == 2) {
     if (!input.rings.empty()) {
-      // Closed rings first: a line's end may be one of their vertices (a jetty); no other vertex is
-      // shared (one edit of it would change several rings at once, which the ring index, the splits'
-      // update and the mesh take one ring at a time).
+      // Closed rings first: a vertex rings share is held first by a closed ring where one has it.
       if (input.ring_ids.size() != input.rings.rings.size())
         throw InputError("session input: " + std::to_string(input.rings.rings.size()) + " rings but ids for " +
                          std::to_string(input.ring_ids.size()));
@@ -492,17 +519,12 @@ ShoreSession<D>::ShoreSession(const SessionInput<D>& input, const Options& optio
             if (it == m.ring_of.end()) {
               m.ring_of[id] = {r, k};
               if (!lines && k < ring.points.size()) m.vertex_id[ring.points[k]] = id;
-            } else if (lines && (k == 0 || k + 1 == ring.points.size()) &&
-                       input.rings.rings[it->second.first].closed()) {
-              m.lines_at[id].push_back(r);
             } else {
-              throw InputError("input point " + std::to_string(id) + " is a vertex of ring " +
-                               std::to_string(it->second.first + 1) + " and of ring " + std::to_string(r + 1) +
-                               ": an edit session takes shared vertices only where a line ends on a ring");
+              m.shared_by[id].push_back(r);
             }
           }
         }
-      if (const auto defect = find_ring_defect(input.rings, !m.lines_at.empty()))
+      if (const auto defect = find_ring_defect(input.rings, !m.shared_by.empty()))
         throw InputError("invalid rings: " + defect->describe());
     }
     if (options.size) {
@@ -577,7 +599,7 @@ SessionEdit<D> ShoreSession<D>::add_after(std::size_t after, const Point<D>& p) 
   out.id = m.engine_of_user.size();
   out.ring = rings->ring;
   m.engine_of_user.push_back(ids.at(0));
-  m.commit_vertex_ids(*rings, RingVertexEdit::Kind::Insert, out.id, after);
+  m.commit_vertex_ids(*rings, RingVertexEdit::Kind::Insert, out.id);
   m.commit_index(*rings);
   m.update_mesh(std::move(removed), std::move(added), edit_start, start, out);
   return out;
@@ -684,7 +706,7 @@ SessionEdit<D> ShoreSession<D>::add_ring(std::span<const Point2> points, bool li
     for (std::size_t k = 0, j = 0; k < points.size(); ++k) {
       if (shared[k]) {
         user_ids.push_back(*shared[k]);
-        m.lines_at[*shared[k]].push_back(r);
+        m.shared_by[*shared[k]].push_back(r);
         continue;
       }
       const std::size_t id = m.engine_of_user.size();
@@ -715,8 +737,9 @@ SessionEdit<D> ShoreSession<D>::remove_ring(std::size_t r) {
     if (m.ring_ids[r].empty()) throw InputError("ring " + std::to_string(r + 1) + " was removed");
     if (m.refinement->rings().rings[r].closed() && m.live_closed_rings() == 1)
       throw InputError("ring " + std::to_string(r + 1) + " is the last ring; without one the water is undefined");
-    if (m.refinement->rings().rings[r].closed())
-      for (std::size_t id : m.ring_ids[r]) m.refuse_shared_end(id, "removing ring " + std::to_string(r + 1));
+    // Its vertices that other rings share too stay (they are the other rings'), unless it holds them first.
+    for (std::size_t id : m.ring_ids[r])
+      if (m.ring_of.at(id).first == r) m.refuse_shared_end(id, "removing " + m.ring_name(r));
     // The water flips inside a closed ring that goes: a line there would be left on land.
     if (m.refinement->rings().rings[r].closed())
       for (std::size_t l = 0; l < m.ring_ids.size(); ++l) {
@@ -737,7 +760,7 @@ SessionEdit<D> ShoreSession<D>::remove_ring(std::size_t r) {
     const auto start = Clock::now();
     // A line's end on a ring stays: it is the ring's vertex.
     const bool closed = gone_ring.closed();
-    auto kept = [&](std::size_t id) { return !closed && m.ring_of.at(id).first != r; };
+    auto kept = [&](std::size_t id) { return m.ring_of.at(id).first != r; };
     std::vector<Edit<D>> edits;
     std::vector<Point<D>> removed, added;
     for (std::size_t k = 0; k < gone.size(); ++k)
@@ -754,7 +777,7 @@ SessionEdit<D> ShoreSession<D>::remove_ring(std::size_t r) {
     for (std::size_t k = 0; k < gone.size(); ++k) {
       const std::size_t id = m.ring_ids[r][k];
       if (kept(id)) {
-        std::erase(m.lines_at.at(id), r);
+        std::erase(m.shared_by.at(id), r);
         continue;
       }
       m.engine_of_user[id] = Impl::kRemoved;
@@ -830,6 +853,7 @@ template <int D>
 std::optional<std::pair<std::size_t, std::size_t>> ShoreSession<D>::ring_of(std::size_t id) const {
   const auto it = impl_->ring_of.find(id);
   if (it == impl_->ring_of.end()) return std::nullopt;
+  if (contains(id)) return impl_->locate(id);
   return it->second;
 }
 
