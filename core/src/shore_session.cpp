@@ -180,7 +180,7 @@ struct ShoreSession<D>::Impl {
                      ring_name(ring_of.at(id).first) + " removed, while they do (edit the vertices beside it, or " +
                      "remove the other rings and lines first)");
   }
-  // Rings share a vertex only where a line ends on a closed ring: a new vertex at another vertex is refused.
+  // A new or moved vertex on another vertex is refused (only a new line's end may be one: a jetty).
   void refuse_vertex_at(const Point2& p, const std::string& what) const {
     if (ring_index->has_vertex(p))
       throw InputError(what + " would break the shoreline: the point (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) +
