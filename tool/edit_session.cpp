@@ -277,7 +277,7 @@ json EditSession<D>::add_ring(const std::vector<std::string>& words, const std::
     }
     const SessionEdit<D> edit = session_.add_ring(points, line);
     json reply = {{"id", edit.id}, {"ring", *edit.ring + 1}, {"ids", edit.ring_ids}, {"points", points.size()}};
-    const RingRole role = session_.refined_rings().rings.at(*edit.ring).role;
+    const RingRole role = session_.ring_role(*edit.ring);
     reply["role"] = role == RingRole::Island ? "island" : role == RingRole::Line ? "line" : "shore";
     record(edit, reply);
     return reply;

@@ -218,7 +218,7 @@ class DrawState {
     id_of_[p] = id;
   }
   static std::string role_name(const ShoreSession<2>& s, std::size_t r) {
-    const RingRole role = s.refined_rings().rings.at(r).role;
+    const RingRole role = s.ring_role(r);
     return role == RingRole::Island ? "island" : role == RingRole::Line ? "line" : "shore";
   }
 
@@ -267,7 +267,7 @@ class DrawState {
     json j = {{"id", id}, {"x", p[0]}, {"y", p[1]}};
     if (const auto at = s.ring_of(id)) {
       const auto& ring = s.ring(at->first);
-      const bool open = s.refined_rings().rings.at(at->first).role == RingRole::Line;
+      const bool open = s.ring_role(at->first) == RingRole::Line;
       j["ring"] = at->first;
       j["role"] = role_name(s, at->first);
       if (!open || at->second > 0) j["prev"] = id_of_.at(ring[(at->second + ring.size() - 1) % ring.size()]);

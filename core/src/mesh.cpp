@@ -22,6 +22,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -340,12 +341,25 @@ class MeshTriangulation {
         for (std::size_t k = 0; k < ring.segment_count(); ++k) {
           const Point2& a = ring.points[k];
           const Point2& b = ring.points[(k + 1) % ring.points.size()];
+          if (a != b) count_segment(a, b, 1);
           const auto ia = vertex_of.find(a), ib = vertex_of.find(b);
           // A ring vertex that is not a mesh point leaves its segments out (shoreline_crossings says so).
           if (a != b && ia != vertex_of.end() && ib != vertex_of.end()) insert_constraint(ia->second, ib->second);
         }
     C::for_each_finite_face(triangulation, [&](Face f) { classify(f); });
   }
+
+  // How many shore segments end at each point: a point with constraints that is no segment's end lies
+  // inside one (Steiner points on a straight shore), whose constraint is joined again when it goes.
+  std::unordered_map<Point2, std::uint32_t, PointHash<2>> segment_ends;
+  void count_segment(const Point2& a, const Point2& b, int delta) {
+    for (const Point2* p : {&a, &b}) {
+      auto& n = segment_ends[*p];
+      n = static_cast<std::uint32_t>(static_cast<int>(n) + delta);
+      if (n == 0) segment_ends.erase(*p);
+    }
+  }
+  bool segment_end(const Point2& p) const { return segment_ends.count(p) != 0; }
 
   // Constraints never cross when the rings are valid (find_ring_defect); CGAL's refusal to construct a
   // crossing is turned into an error that says so.
@@ -742,9 +756,72 @@ class MeshTriangulation {
       const bool line = (s.ring < after.rings.size() && !after.rings[s.ring].closed()) ||
                         (s.ring < before.rings.size() && !before.rings[s.ring].closed());
       if (line) continue;  // lines bound no water
-      if (s.whole) water_.replace_ring(s.ring, ring_points(after, s.ring));
+      if (s.whole) water_.replace_ring(ring_points(before, s.ring), ring_points(after, s.ring));
       else water_.replace_stretch(s.ring, before.rings[s.ring].points, after.rings[s.ring].points, s.prefix, s.suffix);
     }
+  }
+
+  // The water test takes the segments that went and came (those of closed rings).
+  void update_water(const ShoreChange& shore) {
+    for (const ShoreSegment& s : shore.removed)
+      if (s.water) water_.remove_edge(s.a, s.b);
+    for (const ShoreSegment& s : shore.added)
+      if (s.water) water_.add_edge(s.a, s.b);
+  }
+
+  // After the change: the faces whose side can differ are classified again. The water segments that went
+  // and came meet every point an even number of times (old and new rings are closed), so each connected
+  // chain of them is closed, and a point's side changes only where such a chain winds around it an odd
+  // number of times: inside its bounding box.
+  void reclassify_changed(const ShoreChange& shore, Accumulator& acc)
+    requires(D == 2)
+  {
+    std::vector<const ShoreSegment*> segments;
+    for (const auto* list : {&shore.removed, &shore.added})
+      for (const ShoreSegment& s : *list)
+        if (s.water) segments.push_back(&s);
+    if (segments.empty()) return;
+    // Chains: segments joined through their ends (union-find over the ends).
+    std::unordered_map<Point2, std::size_t, PointHash<2>> end_of;
+    std::vector<std::size_t> parent;
+    auto find = [&](std::size_t x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    };
+    auto node = [&](const Point2& p) {
+      const auto [it, fresh] = end_of.emplace(p, parent.size());
+      if (fresh) parent.push_back(parent.size());
+      return it->second;
+    };
+    for (const ShoreSegment* s : segments) {
+      const std::size_t a = find(node(s->a)), b = find(node(s->b));
+      parent[a] = b;
+    }
+    struct Box {
+      Point2 lo, hi, seed;
+      bool seeded = false;
+    };
+    std::unordered_map<std::size_t, Box> boxes;
+    for (const ShoreSegment* s : segments) {
+      const std::size_t c = find(end_of.at(s->a));
+      auto [it, fresh] = boxes.try_emplace(c, Box{s->a, s->a, s->a});
+      Box& box = it->second;
+      for (const Point2* p : {&s->a, &s->b}) {
+        for (std::size_t i = 0; i < 2; ++i) {
+          box.lo[i] = std::min(box.lo[i], (*p)[i]);
+          box.hi[i] = std::max(box.hi[i], (*p)[i]);
+        }
+        // A mesh point to start the walk from, where there is one.
+        if (!box.seeded && vertex_of.count(*p)) box.seed = *p, box.seeded = true;
+      }
+    }
+    // In the order of the boxes' corners, so that the walks do not depend on the hash's order.
+    std::vector<Box> ordered;
+    for (const auto& [c, box] : boxes) ordered.push_back(box);
+    std::sort(ordered.begin(), ordered.end(), [](const Box& x, const Box& y) {
+      return std::tie(x.lo, x.hi) < std::tie(y.lo, y.hi);
+    });
+    for (const Box& box : ordered) reclassify_within(box.lo, box.hi, box.seed, acc);
   }
 
   // Visits the finite faces whose bounding box meets [lo, hi] (a walk from the face at `seed`, a point in
@@ -875,8 +952,17 @@ std::size_t Mesh<D>::uncovered_count() const {
 }
 
 template <int D>
+const Domain2& Mesh<D>::domain() const {
+  if (domain_source_) {
+    domain_ = domain_source_();
+    domain_source_ = nullptr;
+  }
+  return domain_;
+}
+
+template <int D>
 MeshDelta<D> Mesh<D>::apply(const PointChange<D>& change) {
-  return apply_with_water(change, nullptr);
+  return apply_with_water(change, nullptr, nullptr);
 }
 
 // The rings' change is local too: a point's side of the water (even-odd over the rings) changes only
@@ -887,11 +973,36 @@ template <int D>
 MeshDelta<D> Mesh<D>::apply(const PointChange<D>& change, const Domain2& domain)
   requires(D == 2)
 {
-  return apply_with_water(change, &domain);
+  return apply_with_water(change, &domain, nullptr);
 }
 
 template <int D>
-MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domain2* domain) {
+MeshDelta<D> Mesh<D>::apply(const PointChange<D>& change, const ShoreChange& shore, std::function<Domain2()> domain)
+  requires(D == 2)
+{
+  MeshDelta<D> delta = apply_with_water(change, nullptr, &shore);
+  domain_source_ = std::move(domain);
+  return delta;
+}
+
+template <int D>
+std::vector<std::pair<Point2, Point2>> Mesh<D>::constrained_edges() const
+  requires(D == 2)
+{
+  const auto& t = *triangulation_;
+  std::vector<std::pair<Point2, Point2>> out;
+  for (const auto& e : t.triangulation.constrained_edges()) {
+    const auto& [f, i] = e;
+    const Point2 a = Cgal<2>::from_cgal(f->vertex(t.triangulation.cw(i))->point());
+    const Point2 b = Cgal<2>::from_cgal(f->vertex(t.triangulation.ccw(i))->point());
+    out.push_back(std::minmax(a, b));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+template <int D>
+MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domain2* domain, const ShoreChange* shore) {
   auto& t = *triangulation_;
   // Validate everything first, so that a bad change leaves the mesh as it was.
   if (change.added_input_count > change.added.size())
@@ -914,35 +1025,38 @@ MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domai
   if (points_.size() + change.added.size() - change.removed.size() >= MeshTriangulation<D>::kMaxPoints)
     throw InputError("too many points for a mesh");
   std::optional<ChangedWater> water;
-  Domain2 previous;  // the rings before the change (2D with `domain`)
   std::vector<std::pair<Point2, Point2>> dropped, inserted;  // shore segments that went and came
   if constexpr (D == 2) {
     if (domain) {
-      water = changed_water(domain_, *domain);
-      changed_segments(domain_, *domain, *water, dropped, inserted);
+      const Domain2& before = this->domain();
+      water = changed_water(before, *domain);
+      changed_segments(before, *domain, *water, dropped, inserted);
       // The faces the change creates are classified against the new rings.
-      t.update_water(domain_, *domain, *water);
-      previous = std::move(domain_);
+      t.update_water(before, *domain, *water);
       domain_ = *domain;
+    } else if (shore) {
+      for (const ShoreSegment& s : shore->removed) dropped.emplace_back(s.a, s.b);
+      for (const ShoreSegment& s : shore->added) inserted.emplace_back(s.a, s.b);
+      t.update_water(*shore);
     }
   }
-  // The old rings' vertices, gathered the first time a removed point has constraints.
-  std::optional<std::unordered_set<Point2, PointHash<2>>> ring_vertices;
-  const std::function<bool(const Point2&)> ring_vertex = [&](const Point2& p) {
-    if (!ring_vertices) {
-      ring_vertices.emplace();
-      for (const Ring& ring : (domain ? previous : domain_).rings) ring_vertices->insert(ring.points.begin(), ring.points.end());
-    }
-    return ring_vertices->count(p) != 0;
-  };
   typename MeshTriangulation<D>::Accumulator acc;
+  // Whether a point was a segment's end before the change (the segments' ends are counted after the
+  // removals).
+  std::function<bool(const Point2&)> ring_vertex;
+  if constexpr (D == 2) ring_vertex = [&](const Point2& p) { return t.segment_end(p); };
   for (const Point<D>& p : change.removed) t.remove(p, points_, kinds_, acc, ring_vertex);
-  if constexpr (D == 2) t.drop_constraints(dropped, acc);
+  if constexpr (D == 2) {
+    for (const auto& [a, b] : dropped) t.count_segment(a, b, -1);
+    for (const auto& [a, b] : inserted) t.count_segment(a, b, 1);
+    t.drop_constraints(dropped, acc);
+  }
   for (std::size_t i = 0; i < change.added.size(); ++i)
     t.insert(change.added[i], i < change.added_input_count ? PointKind::Input : PointKind::Steiner, points_, kinds_, acc);
   if constexpr (D == 2) t.add_constraints(inserted, acc);
   if constexpr (D == 2) {
     if (water && water->changed) t.reclassify_within(water->lo, water->hi, water->seed, acc);
+    if (shore) t.reclassify_changed(*shore, acc);
   }
   if constexpr (D == 2) {
     if (t.canonical_ties) t.flip_ties(std::vector<ElementCorners<2>>(acc.born), acc);
@@ -1024,9 +1138,10 @@ ShorelineReport Mesh<D>::shoreline_crossings() const
     return std::sqrt(CGAL::to_double(CGAL::squared_distance(Kernel::Segment_2(a, b), p)));
   };
 
-  for (std::size_t r = 0; r < domain_.rings.size(); ++r) {
-    const auto& ring = domain_.rings[r].points;
-    for (std::size_t s = 0; s < domain_.rings[r].segment_count(); ++s) {
+  const Domain2& domain = this->domain();
+  for (std::size_t r = 0; r < domain.rings.size(); ++r) {
+    const auto& ring = domain.rings[r].points;
+    for (std::size_t s = 0; s < domain.rings[r].segment_count(); ++s) {
       const Point2& a = ring[s];
       const Point2& b = ring[(s + 1) % ring.size()];
       if (a == b) continue;

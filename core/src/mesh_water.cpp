@@ -1,17 +1,28 @@
 #include "shoremesh/mesh_water.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <stdexcept>
 
 #include "ring_geometry.hpp"
 
 namespace shoremesh {
 
+namespace {
+std::pair<Point2, Point2> key_of(const Point2& a, const Point2& b) { return a < b ? std::pair{a, b} : std::pair{b, a}; }
+}  // namespace
+
+std::size_t WaterTest::EdgeKeyHash::operator()(const std::pair<Point2, Point2>& e) const {
+  std::size_t h = 0;
+  for (const Point2* p : {&e.first, &e.second})
+    for (double x : *p) h = h * 0x9E3779B97F4A7C15ull + std::hash<std::uint64_t>{}(std::bit_cast<std::uint64_t>(x + 0.0));
+  return h;
+}
+
 WaterTest::WaterTest(const Domain2& domain) {
   double y_high = 0;
-  ring_edges_.resize(domain.rings.size());
-  for (std::size_t r = 0; r < domain.rings.size(); ++r) {
-    const Ring& ring = domain.rings[r];
+  for (const Ring& ring : domain.rings) {
     if (!ring.closed()) continue;  // a line bounds no water
     const std::size_t n = ring.points.size();
     for (std::size_t i = 0; i < n; ++i) {
@@ -23,9 +34,8 @@ WaterTest::WaterTest(const Domain2& domain) {
       }
       y_low_ = std::min({y_low_, a[1], b[1]});
       y_high = std::max({y_high, a[1], b[1]});
-      // A degenerate edge (a == b) is kept for the numbering: it crosses no ray, and a point on it is a
-      // ring vertex, on the ring anyway.
-      ring_edges_[r].push_back(static_cast<std::uint32_t>(edges_.size()));
+      // A degenerate edge (a == b) is kept: it crosses no ray, and a point on it is on the ring.
+      slot_of_.emplace(key_of(a, b), static_cast<std::uint32_t>(edges_.size()));
       edges_.push_back({a, b});
     }
   }
@@ -51,12 +61,38 @@ void WaterTest::remove_from_slabs(std::uint32_t e) {
   }
 }
 
+void WaterTest::remove_edge(const Point2& a, const Point2& b) {
+  const auto it = slot_of_.find(key_of(a, b));
+  if (it == slot_of_.end()) throw std::logic_error("water test: a removed edge is not there");
+  remove_from_slabs(it->second);
+  free_edges_.push_back(it->second);
+  slot_of_.erase(it);
+}
+
+void WaterTest::add_edge(const Point2& a, const Point2& b) {
+  if (empty_) {  // no slab yet: one, which every edge joins (slab_of clamps)
+    empty_ = false;
+    y_low_ = a[1];
+    slab_height_ = 1;
+    slabs_.assign(1, {});
+  }
+  std::uint32_t e;
+  if (free_edges_.empty()) {
+    e = static_cast<std::uint32_t>(edges_.size());
+    edges_.push_back({});
+  } else {
+    e = free_edges_.back();
+    free_edges_.pop_back();
+  }
+  edges_[e] = {a, b};
+  slot_of_.emplace(key_of(a, b), e);
+  add_to_slabs(e);
+}
+
 // Edge k of a ring of n vertices touches the changed vertices [prefix, n - suffix) iff it lies in the
-// cyclic run of edges from prefix - 1 to n - suffix - 1: those are replaced, the others keep their place
-// counted from the start (before the run) or from the end (after it).
-void WaterTest::replace_stretch(std::size_t r, const std::vector<Point2>& before, const std::vector<Point2>& after,
+// cyclic run of edges from prefix - 1 to n - suffix - 1: those are replaced, the others stay.
+void WaterTest::replace_stretch(std::size_t, const std::vector<Point2>& before, const std::vector<Point2>& after,
                                 std::size_t prefix, std::size_t suffix) {
-  const std::size_t m = before.size(), n = after.size();
   // The run of edges touching the changed vertices, in a ring of `size` vertices (the run wraps when
   // prefix is 0): visited in O(run), not O(ring).
   auto for_each_changed = [&](std::size_t size, auto&& visit) {
@@ -67,53 +103,14 @@ void WaterTest::replace_stretch(std::size_t r, const std::vector<Point2>& before
       for (std::size_t k = prefix - 1; k + suffix + 1 <= size; ++k) visit(k);
     }
   };
-  std::vector<std::uint32_t>& old_ids = ring_edges_.at(r);
-  for_each_changed(m, [&](std::size_t k) {
-    remove_from_slabs(old_ids[k]);
-    free_edges_.push_back(old_ids[k]);
-  });
-  auto new_edge = [&](std::size_t k) { return add_edge(after[k], after[(k + 1) % n]); };
-  if (m == n) {  // a vertex moved: the other edges keep their places
-    for_each_changed(n, [&](std::size_t k) { old_ids[k] = new_edge(k); });
-    return;
-  }
-  // The count changed: the edges after the run move by n - m places.
-  std::vector<std::uint32_t> ids(n, kNoEdge);
-  for_each_changed(n, [&](std::size_t k) { ids[k] = new_edge(k); });
-  for (std::size_t k = 0; k < n; ++k)
-    if (ids[k] == kNoEdge) ids[k] = old_ids[k + 1 < prefix ? k : k + m - n];
-  old_ids = std::move(ids);
+  const std::size_t m = before.size(), n = after.size();
+  for_each_changed(m, [&](std::size_t k) { remove_edge(before[k], before[(k + 1) % m]); });
+  for_each_changed(n, [&](std::size_t k) { add_edge(after[k], after[(k + 1) % n]); });
 }
 
-void WaterTest::replace_ring(std::size_t r, const std::vector<Point2>& after) {
-  if (r >= ring_edges_.size()) ring_edges_.resize(r + 1);
-  for (std::uint32_t e : ring_edges_[r]) {
-    remove_from_slabs(e);
-    free_edges_.push_back(e);
-  }
-  ring_edges_[r].clear();
-  if (after.empty()) return;
-  if (empty_) {  // no slab yet: one, which every edge joins (slab_of clamps)
-    empty_ = false;
-    y_low_ = after[0][1];
-    slab_height_ = 1;
-    slabs_.assign(1, {});
-  }
-  for (std::size_t k = 0; k < after.size(); ++k) ring_edges_[r].push_back(add_edge(after[k], after[(k + 1) % after.size()]));
-}
-
-std::uint32_t WaterTest::add_edge(const Point2& a, const Point2& b) {
-  std::uint32_t e;
-  if (free_edges_.empty()) {
-    e = static_cast<std::uint32_t>(edges_.size());
-    edges_.push_back({});
-  } else {
-    e = free_edges_.back();
-    free_edges_.pop_back();
-  }
-  edges_[e] = {a, b};
-  add_to_slabs(e);
-  return e;
+void WaterTest::replace_ring(const std::vector<Point2>& before, const std::vector<Point2>& after) {
+  for (std::size_t k = 0; k < before.size(); ++k) remove_edge(before[k], before[(k + 1) % before.size()]);
+  for (std::size_t k = 0; k < after.size(); ++k) add_edge(after[k], after[(k + 1) % after.size()]);
 }
 
 // Monotone in y, so an edge spanning [lo, hi] is found from any query height inside that range.

@@ -78,6 +78,7 @@ struct ShoreRefinement::Impl {
     Point2 a, b;             // a < b
     std::vector<double> ts;  // split parameters, sorted, in (0, 1)
     bool alive = false;
+    bool water = true;  // a closed ring's edge (a line's bounds nothing)
   };
   struct Neighbours {
     Point2 prev, next;
@@ -98,6 +99,28 @@ struct ShoreRefinement::Impl {
 
   // Filled while closing: the split points made and undone (update nets them).
   std::vector<Point2> made, undone;
+  // Filled by update: the refined segments of the edges it touched, before (each edge's first time) and
+  // the edges to read after.
+  bool recording = false;
+  std::vector<ShoreSegment> segments_before;
+  std::unordered_set<std::uint32_t> snapped;
+  std::vector<std::uint32_t> touched;
+
+  void segments_of(std::uint32_t i, std::vector<ShoreSegment>& out) const {
+    const Edge& e = edges[i];
+    Point2 p = e.a;
+    for (std::size_t k = 0; k <= e.ts.size(); ++k) {
+      const Point2 q = k < e.ts.size() ? at(e, e.ts[k]) : e.b;
+      out.push_back({std::min(p, q), std::max(p, q), e.water});
+      p = q;
+    }
+  }
+  // Edge i is about to change: its segments as they are, the first time.
+  void snap(std::uint32_t i) {
+    if (!recording) return;
+    if (snapped.insert(i).second) segments_of(i, segments_before);
+    touched.push_back(i);
+  }
 
   Point2 at(const Edge& e, double t) const {
     if (t == 0) return e.a;
@@ -217,6 +240,7 @@ struct ShoreRefinement::Impl {
       if (!e.alive || is_split(e, tm) || !encroached(n)) continue;
       // n may have been queued before its edge was reset: it must still be a node of the edge.
       if ((n.t0 != 0 && !is_split(e, n.t0)) || (n.t1 != 1 && !is_split(e, n.t1))) continue;
+      snap(n.edge);
       e.ts.insert(std::upper_bound(e.ts.begin(), e.ts.end(), tm), tm);
       const Point2 m = at(e, tm);
       split_owner.emplace(m, n.edge);
@@ -230,7 +254,7 @@ struct ShoreRefinement::Impl {
     }
   }
 
-  std::uint32_t new_edge(const Point2& p, const Point2& q) {
+  std::uint32_t new_edge(const Point2& p, const Point2& q, bool water) {
     const EdgeKey k = edge_key(p, q);
     std::uint32_t i;
     if (!free_edges.empty()) {
@@ -240,7 +264,11 @@ struct ShoreRefinement::Impl {
       i = static_cast<std::uint32_t>(edges.size());
       edges.emplace_back();
     }
-    edges[i] = Edge{k.a, k.b, {}, true};
+    edges[i] = Edge{k.a, k.b, {}, true, water};
+    if (recording) {  // it had no segments: only its new ones count
+      snapped.insert(i);
+      touched.push_back(i);
+    }
     edge_of.emplace(k, i);
     add_node({i, 0, 1});
     return i;
@@ -313,7 +341,7 @@ struct ShoreRefinement::Impl {
         const Point2& p = ring.points[k];
         const Point2& q = ring.points[(k + 1) % ring.points.size()];
         if (p == q || edge_of.count(edge_key(p, q))) continue;
-        work.push_back({new_edge(p, q), 0, 1});
+        work.push_back({new_edge(p, q, ring.closed()), 0, 1});
       }
     close(std::move(work));
     made.clear();
@@ -369,74 +397,128 @@ std::vector<Point2> ShoreRefinement::split_points() const {
 
 std::size_t ShoreRefinement::split_count() const { return impl_->split_owner.size(); }
 
+RingStretch apply_stretch(Domain2& rings, const RingStretch& s) {
+  if (s.ring >= rings.rings.size()) rings.rings.resize(s.ring + 1);
+  Ring& ring = rings.rings[s.ring];
+  RingStretch undo{s.ring, s.prefix, s.suffix, {}, s.whole, ring.role};
+  if (s.whole) {
+    if (ring.points.empty()) ring.role = s.role;
+    undo.middle = std::move(ring.points);
+    ring.points = s.middle;
+    return undo;
+  }
+  auto& pts = ring.points;
+  const auto first = pts.begin() + static_cast<std::ptrdiff_t>(s.prefix);
+  const auto last = pts.end() - static_cast<std::ptrdiff_t>(s.suffix);
+  undo.middle.assign(first, last);
+  if (static_cast<std::size_t>(last - first) == s.middle.size()) std::copy(s.middle.begin(), s.middle.end(), first);  // a move
+  else pts.insert(pts.erase(first, last), s.middle.begin(), s.middle.end());
+  return undo;
+}
+
 SplitChange ShoreRefinement::update(const Domain2& rings, std::span<const Point2> loose_removed,
                                     std::span<const Point2> loose_added) {
-  Impl& m = *impl_;
-  m.made.clear();
-  m.undone.clear();
-
-  // Per changed ring: the stretch between the common prefix and suffix, widened by two vertices each way,
-  // since a vertex whose neighbour changed has a new corner, which decides what may encroach its edges.
-  std::vector<std::uint32_t> dirty;
-  std::unordered_set<std::uint32_t> is_dirty, old_stretch;
-  std::vector<EdgeKey> new_edges;
-  std::vector<Point2> removed_points(loose_removed.begin(), loose_removed.end());
-  std::vector<Point2> added_points(loose_added.begin(), loose_added.end());
+  // Each changed ring's stretch between its common prefix and suffix (a ring that came or went, or a line
+  // that changed, whole).
+  std::vector<RingStretch> edits;
   static const std::vector<Point2> no_ring;
-  for (std::size_t r = 0; r < std::max(rings.rings.size(), m.rings.rings.size()); ++r) {
-    const auto& o = r < m.rings.rings.size() ? m.rings.rings[r].points : no_ring;
+  const Domain2& now = impl_->rings;
+  for (std::size_t r = 0; r < std::max(rings.rings.size(), now.rings.size()); ++r) {
+    const auto& o = r < now.rings.size() ? now.rings[r].points : no_ring;
     const auto& n = r < rings.rings.size() ? rings.rings[r].points : no_ring;
     if (o == n) continue;
-    const Ring* old_ring = r < m.rings.rings.size() ? &m.rings.rings[r] : nullptr;
-    const Ring* new_ring = r < rings.rings.size() ? &rings.rings[r] : nullptr;
-    const bool line = (old_ring && !old_ring->closed()) || (new_ring && !new_ring->closed());
-    if (o.empty() || n.empty() || line) {  // a ring came or went, or a line changed: all of its vertices and edges
-      for (const Point2& p : o) {
-        removed_points.push_back(p);
-        m.drop_ring_vertex(r, p);
-      }
-      for (std::size_t k = 0; old_ring && k < old_ring->segment_count(); ++k) {
-        const auto it = m.edge_of.find(edge_key(o[k], o[(k + 1) % o.size()]));
-        if (it == m.edge_of.end()) continue;
-        old_stretch.insert(it->second);
-        if (is_dirty.insert(it->second).second) dirty.push_back(it->second);
-      }
-      added_points.insert(added_points.end(), n.begin(), n.end());
-      for (std::size_t k = 0; new_ring && k < new_ring->segment_count(); ++k)
-        if (n[k] != n[(k + 1) % n.size()]) new_edges.push_back(edge_key(n[k], n[(k + 1) % n.size()]));
-      if (!n.empty()) m.add_ring_vertices(r, rings.rings[r], 0, n.size());
+    const bool line = (r < now.rings.size() && !now.rings[r].closed()) || (r < rings.rings.size() && !rings.rings[r].closed());
+    const RingRole role = r < rings.rings.size() ? rings.rings[r].role : RingRole::Shore;
+    if (o.empty() || n.empty() || line) {
+      edits.push_back({r, 0, 0, n, true, role});
       continue;
     }
     const std::size_t common = std::min(o.size(), n.size());
     std::size_t prefix = 0, suffix = 0;
     while (prefix < common && o[prefix] == n[prefix]) ++prefix;
     while (suffix < common - prefix && o[o.size() - 1 - suffix] == n[n.size() - 1 - suffix]) ++suffix;
-    // Changed vertices: o[prefix, o.size() - suffix) went, n[prefix, n.size() - suffix) came.
-    for (std::size_t k = prefix; k < o.size() - suffix; ++k) {
-      removed_points.push_back(o[k]);
-      m.drop_ring_vertex(r, o[k]);
+    edits.push_back({r, prefix, suffix, std::vector<Point2>(n.begin() + static_cast<std::ptrdiff_t>(prefix),
+                                                            n.end() - static_cast<std::ptrdiff_t>(suffix)),
+                     false, role});
+  }
+  SplitChange change = update(std::span<const RingStretch>(edits), loose_removed, loose_added);
+  impl_->rings.rings.resize(rings.rings.size());  // a ring past the new last went
+  return change;
+}
+
+SplitChange ShoreRefinement::update(std::span<const RingStretch> edits, std::span<const Point2> loose_removed,
+                                    std::span<const Point2> loose_added) {
+  Impl& m = *impl_;
+  m.made.clear();
+  m.undone.clear();
+  m.recording = true;
+  m.segments_before.clear();
+  m.snapped.clear();
+  m.touched.clear();
+
+  // Per changed ring: the stretch between the common prefix and suffix, widened by two vertices each way,
+  // since a vertex whose neighbour changed has a new corner, which decides what may encroach its edges.
+  std::vector<std::uint32_t> dirty;
+  std::unordered_set<std::uint32_t> is_dirty, old_stretch;
+  std::vector<std::pair<EdgeKey, bool>> new_edges;  // with whether it bounds water
+  std::vector<Point2> removed_points(loose_removed.begin(), loose_removed.end());
+  std::vector<Point2> added_points(loose_added.begin(), loose_added.end());
+  for (const RingStretch& edit : edits) {
+    const std::size_t r = edit.ring;
+    if (r >= m.rings.rings.size()) m.rings.rings.resize(r + 1);
+    Ring& ring = m.rings.rings[r];
+    if (ring.points.empty()) ring.role = edit.role;
+    const bool water = ring.closed();
+    if (edit.whole || ring.points.empty()) {  // a ring came or went, or a line changed: all of its vertices and edges
+      const std::vector<Point2>& o = ring.points;
+      for (const Point2& p : o) {
+        removed_points.push_back(p);
+        m.drop_ring_vertex(r, p);
+      }
+      for (std::size_t k = 0; k < ring.segment_count(); ++k) {
+        const auto it = m.edge_of.find(edge_key(o[k], o[(k + 1) % o.size()]));
+        if (it == m.edge_of.end()) continue;
+        old_stretch.insert(it->second);
+        if (is_dirty.insert(it->second).second) dirty.push_back(it->second);
+      }
+      ring.points = edit.middle;
+      const std::vector<Point2>& n = ring.points;
+      added_points.insert(added_points.end(), n.begin(), n.end());
+      for (std::size_t k = 0; k < ring.segment_count(); ++k)
+        if (n[k] != n[(k + 1) % n.size()]) new_edges.push_back({edge_key(n[k], n[(k + 1) % n.size()]), water});
+      if (!n.empty()) m.add_ring_vertices(r, ring, 0, n.size());
+      continue;
     }
-    for (std::size_t k = prefix; k < n.size() - suffix; ++k) added_points.push_back(n[k]);
+    const std::size_t prefix = edit.prefix, suffix = edit.suffix;
+    std::vector<Point2>& pts = ring.points;
+    // Changed vertices: pts[prefix, size - suffix) go, edit.middle comes.
+    for (std::size_t k = prefix; k < pts.size() - suffix; ++k) {
+      removed_points.push_back(pts[k]);
+      m.drop_ring_vertex(r, pts[k]);
+    }
+    added_points.insert(added_points.end(), edit.middle.begin(), edit.middle.end());
     // Edges from vertex prefix - 2 to vertex size - suffix + 1 (cyclically), old and new.
-    auto stretch_edges = [&](const std::vector<Point2>& ring, auto&& f) {
-      const std::size_t s = ring.size();
+    auto stretch_edges = [&](const std::vector<Point2>& points, auto&& f) {
+      const std::size_t s = points.size();
       const std::size_t changed = s - suffix - prefix;
       const std::size_t count = std::min(s, changed + 4);
       for (std::size_t j = 0; j < count; ++j) {
         const std::size_t k = (prefix + 2 * s - 2 + j) % s;
-        f(ring[k], ring[(k + 1) % s]);
+        f(points[k], points[(k + 1) % s]);
       }
     };
-    stretch_edges(o, [&](const Point2& p, const Point2& q) {
+    stretch_edges(pts, [&](const Point2& p, const Point2& q) {
       const auto it = m.edge_of.find(edge_key(p, q));
       if (it == m.edge_of.end()) return;
       old_stretch.insert(it->second);
       if (is_dirty.insert(it->second).second) dirty.push_back(it->second);
     });
-    stretch_edges(n, [&](const Point2& p, const Point2& q) {
-      if (p != q) new_edges.push_back(edge_key(p, q));
+    apply_stretch(m.rings, edit);
+    stretch_edges(pts, [&](const Point2& p, const Point2& q) {
+      if (p != q) new_edges.push_back({edge_key(p, q), water});
     });
-    m.add_ring_vertices(r, rings.rings[r], prefix + n.size() - 2, std::min(n.size(), n.size() - suffix - prefix + 4));
+    const std::size_t n = pts.size();
+    m.add_ring_vertices(r, ring, prefix + n - 2, std::min(n, n - suffix - prefix + 4));
   }
 
   // Edges whose subsegments (at any level) had a removed point in their test disk lose their splits too,
@@ -455,7 +537,8 @@ SplitChange ShoreRefinement::update(const Domain2& rings, std::span<const Point2
       }
   }
 
-  std::unordered_set<EdgeKey, EdgeKeyHash> keep(new_edges.begin(), new_edges.end());
+  std::unordered_set<EdgeKey, EdgeKeyHash> keep;
+  for (const auto& [k, water] : new_edges) keep.insert(k);
   // A vertex that another ring keeps (a line's end on a shore) stays a point; the edges near it were
   // reset all the same (its corners changed).
   for (const Point2& p : removed_points)
@@ -464,16 +547,16 @@ SplitChange ShoreRefinement::update(const Domain2& rings, std::span<const Point2
   for (std::uint32_t i : dirty) {
     // An edge of an old stretch stays only when the new rings have it; the others are unchanged edges.
     const bool kept = !old_stretch.count(i) || keep.count(edge_key(m.edges[i].a, m.edges[i].b));
+    m.snap(i);
     m.reset_edge(i, kept);
     if (kept) work.push_back({i, 0, 1});
   }
-  for (const EdgeKey& k : new_edges)
-    if (!m.edge_of.count(k)) work.push_back({m.new_edge(k.a, k.b), 0, 1});
-  m.rings = rings;
+  for (const auto& [k, water] : new_edges)
+    if (!m.edge_of.count(k)) work.push_back({m.new_edge(k.a, k.b, water), 0, 1});
   for (const Point2& p : added_points) m.add_point(p, work);
   m.close(std::move(work));
 
-  // Net: a split undone and made again at the same place did not change.
+  // Net: a split undone and made again at the same place did not change; nor did a segment.
   SplitChange change;
   std::sort(m.made.begin(), m.made.end());
   std::sort(m.undone.begin(), m.undone.end());
@@ -481,8 +564,23 @@ SplitChange ShoreRefinement::update(const Domain2& rings, std::span<const Point2
                       std::back_inserter(change.removed));
   std::set_difference(m.made.begin(), m.made.end(), m.undone.begin(), m.undone.end(),
                       std::back_inserter(change.added));
+  std::vector<ShoreSegment> after;
+  std::sort(m.touched.begin(), m.touched.end());
+  m.touched.erase(std::unique(m.touched.begin(), m.touched.end()), m.touched.end());
+  for (std::uint32_t i : m.touched)
+    if (m.edges[i].alive) m.segments_of(i, after);
+  std::sort(m.segments_before.begin(), m.segments_before.end());
+  std::sort(after.begin(), after.end());
+  std::set_difference(m.segments_before.begin(), m.segments_before.end(), after.begin(), after.end(),
+                      std::back_inserter(change.segments.removed));
+  std::set_difference(after.begin(), after.end(), m.segments_before.begin(), m.segments_before.end(),
+                      std::back_inserter(change.segments.added));
   m.made.clear();
   m.undone.clear();
+  m.recording = false;
+  m.segments_before.clear();
+  m.snapped.clear();
+  m.touched.clear();
   return change;
 }
 

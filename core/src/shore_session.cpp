@@ -120,141 +120,196 @@ struct ShoreSession<D>::Impl {
   std::vector<std::size_t> engine_of_user;  // by user id: the engine's input id (kRemoved once removed)
   std::optional<RingEdgeIndex> ring_index;  // the edges of the user's rings
   std::vector<std::vector<std::size_t>> ring_ids;  // ring r's vertices as input ids (empty: removed)
-  std::unordered_map<std::size_t, std::pair<std::size_t, std::size_t>> ring_of;  // id -> (ring, position)
-  // A line may end on a closed ring's vertex (a jetty on the shore): that vertex is one input point, on
-  // both; ring_of names the closed ring. The closed rings' vertices by point, to find it; the lines ending
-  // at a vertex, by its id (it can be neither moved nor removed while one does).
+  // id -> (ring, a position near its place): locate() finds the place from there, so that a vertex
+  // added or removed does not renumber the vertices after it (O(the ring) an edit).
+  mutable std::unordered_map<std::size_t, std::pair<std::size_t, std::size_t>> ring_of;
+  // Rings and lines may share a vertex: a line's end on a closed ring's vertex (a jetty on the shore), a
+  // .poly's pinch vertex or segments meeting there. It is one input point; ring_of names the ring that
+  // holds it first (closed rings before lines), shared_by the others. It can be neither moved nor
+  // removed, nor the ring that holds it first removed, while they share it (one edit of it would change
+  // several rings at once, which the ring index and the ids take one ring at a time). The closed rings'
+  // vertices by point, to find a jetty's root.
   std::unordered_map<Point2, std::size_t, ExactHash> vertex_id;
-  std::unordered_map<std::size_t, std::vector<std::size_t>> lines_at;
+  std::unordered_map<std::size_t, std::vector<std::size_t>> shared_by;
   std::optional<Mesh<D>> mesh;
+  // 2D with rings: the user's rings as the refinement holds them, except while an edit is checked and
+  // applied: that edit is then made here in place (the ring index checks it here), and taken back if it
+  // is refused. No copy of the rings an edit.
+  Domain2 rings_now;
+  // The refined segments the last edit changed, for the mesh (unset: the mesh takes the refined rings).
+  std::optional<ShoreChange> shore_change;
 
   std::size_t engine_id(std::size_t id) const { return engine_of_user.at(id); }
 
-  // A line's end shared with a closed ring (id `id`), or nothing.
+  // The ring of input point `id` (on one, live) and its place in it: searched outward from the position
+  // last found, which is off by as many vertices as came or went before it since (each edit one).
+  std::pair<std::size_t, std::size_t> locate(std::size_t id) const {
+    auto& [r, hint] = ring_of.at(id);
+    if constexpr (D == 2) {
+      const Point2 p = set->input_point(engine_id(id));
+      const auto& pts = rings_now.rings.at(r).points;
+      const std::size_t n = pts.size();
+      for (std::size_t d = 0; d <= n; ++d) {
+        if (hint + d < n && pts[hint + d] == p) return {r, hint += d};
+        if (d <= hint && hint - d < n && pts[hint - d] == p) return {r, hint -= d};
+      }
+      throw std::logic_error("shore session: input point " + std::to_string(id) + " is not on its ring");
+    }
+    return {r, hint};
+  }
+
+  // A vertex rings share (id `id`).
   bool shared_end(std::size_t id) const {
-    const auto it = lines_at.find(id);
-    return it != lines_at.end() && !it->second.empty();
+    const auto it = shared_by.find(id);
+    return it != shared_by.end() && !it->second.empty();
+  }
+  std::string ring_name(std::size_t r) const {
+    return (rings_now.rings.at(r).closed() ? "ring " : "line ") + std::to_string(r + 1);
   }
   void refuse_shared_end(std::size_t id, const std::string& what) const {
-    if (shared_end(id))
-      throw InputError(what + " is refused: input point " + std::to_string(id) + " is where line " +
-                       std::to_string(lines_at.at(id).front() + 1) + " ends on its ring; remove the line first");
+    if (!shared_end(id)) return;
+    std::string rings = ring_name(ring_of.at(id).first);
+    for (std::size_t r : shared_by.at(id)) rings += ", " + ring_name(r);
+    std::string where;
+    if constexpr (D == 2) {
+      const Point2 p = set->input_point(engine_id(id));
+      where = " (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) + ")";
+    }
+    throw InputError(what + " is refused: input point " + std::to_string(id) + where + " is a vertex of " + rings +
+                     ", which share it; a shared vertex can be neither moved nor removed, nor the " +
+                     ring_name(ring_of.at(id).first) + " removed, while they do (edit the vertices beside it, or " +
+                     "remove the other rings and lines first)");
   }
-  // Rings share a vertex only where a line ends on a closed ring: a new vertex at another vertex is refused.
+  // A new or moved vertex on another vertex is refused (only a new line's end may be one: a jetty).
   void refuse_vertex_at(const Point2& p, const std::string& what) const {
     if (ring_index->has_vertex(p))
       throw InputError(what + " would break the shoreline: the point (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) +
-                       ") is a vertex of a ring or line already (rings and lines share a vertex only where a line "
-                       "ends on a ring)");
+                       ") is a vertex of a ring or line already (a new or moved vertex may not be one; only a new "
+                       "line's end may, on a closed ring's vertex: a jetty)");
   }
 
-  // A change of the user's rings, checked, as the refinement, the index and the ids take it.
+  // A change of the user's rings, checked, as the refinement, the index and the ids take it; made in
+  // rings_now (`undo_now` takes it back there).
   struct RingChange {
-    Domain2 domain;                    // all the rings after it
     std::optional<RingVertexEdit> edit;  // one vertex's edit of a closed ring (nullopt: a line's edit)
     std::size_t ring = 0;
+    std::size_t position = 0;  // the edited vertex's place in its ring before the edit
     Ring line_before;  // a line's edit: the line as it was
+    RingStretch stretch, undo;  // the edit as the refinement takes it, and the edit that undoes it there
+    RingStretch undo_now;
   };
 
   // The index takes a checked change: one vertex's edit of a ring, or a line replaced as a whole.
   void commit_index(const RingChange& change) {
     if (change.edit) {
-      ring_index->commit(change.domain, *change.edit);
+      ring_index->commit(rings_now, *change.edit);
     } else {
       ring_index->erase_ring(change.ring, change.line_before);
-      ring_index->insert_ring(change.ring, change.domain.rings[change.ring]);
+      ring_index->insert_ring(change.ring, rings_now.rings[change.ring]);
     }
   }
 
-  // The rings after a vertex edit at input `id`: moved to `p`, removed, or a new vertex at `p` after it.
-  // InputError when they would be invalid; nullopt when `id` is on no ring.
+  // The rings after a vertex edit at input `id`: moved to `p`, removed, or a new vertex at `p` after it,
+  // made in rings_now. InputError (rings_now as it was) when they would be invalid; nullopt when `id` is
+  // on no ring.
   std::optional<RingChange> vertex_change(RingVertexEdit::Kind kind, std::size_t id, const Point<D>& p) {
     using Kind = RingVertexEdit::Kind;
     if constexpr (D != 2) {
       return std::nullopt;
     } else {
-      const auto it = ring_of.find(id);
-      if (it == ring_of.end()) return std::nullopt;
-      const auto [r, k] = it->second;
-      const Domain2& now = refinement->rings();
+      if (!ring_of.count(id)) return std::nullopt;
+      const auto [r, k] = locate(id);
+      const Ring& now = rings_now.rings[r];
+      const std::size_t count = now.points.size();
+      const bool line = !now.closed();
       const std::string what = kind == Kind::Move     ? "moving input point " + std::to_string(id)
                                : kind == Kind::Insert ? "adding a point after input point " + std::to_string(id)
                                                       : "removing input point " + std::to_string(id);
       if (kind == Kind::Remove || kind == Kind::Move) refuse_shared_end(id, what);
-      if (kind != Kind::Remove && p != now.rings[r].points[k]) refuse_vertex_at(p, what);
-      RingChange change{now, RingVertexEdit{kind, r, k, now.rings[r].points[k]}, r, {}};
-      auto& ring = change.domain.rings[r].points;
+      if (kind != Kind::Remove && p != now.points[k]) refuse_vertex_at(p, what);
+      if (kind == Kind::Remove && count <= (line ? 2u : 3u))
+        throw InputError("input point " + std::to_string(id) + " is one of the last " + (line ? "two" : "three") +
+                         " points of " + (line ? "line " : "ring ") + std::to_string(r + 1) +
+                         "; it cannot be removed (remove the " + (line ? "line" : "ring") + " instead)");
+      RingChange change;
+      change.ring = r;
+      change.position = k;
+      change.edit = RingVertexEdit{kind, r, k, now.points[k]};
+      if (line) change.line_before = now;
       // The rings were valid before: only the edges at the changed vertex (or across the gap the removed
       // one leaves, from the vertex before it) are new, and only they need a look (the ring index).
+      RingStretch s{r, k, count - k - 1, {}, false, now.role};
       if (kind == Kind::Move) {
-        ring[k] = p;
+        s.middle = {p};
       } else if (kind == Kind::Insert) {
-        ring.insert(ring.begin() + static_cast<std::ptrdiff_t>(k + 1), p);
+        s.prefix = k + 1;
+        s.middle = {p};
         change.edit->vertex = k + 1;
       } else {
-        const bool line = !now.rings[r].closed();
-        if (ring.size() <= (line ? 2u : 3u))
-          throw InputError("input point " + std::to_string(id) + " is one of the last " + (line ? "two" : "three") +
-                           " points of " + (line ? "line " : "ring ") + std::to_string(r + 1) +
-                           "; it cannot be removed (remove the " + (line ? "line" : "ring") + " instead)");
-        ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
-        change.edit->vertex = (k + ring.size() - 1) % ring.size();
+        change.edit->vertex = (k + count - 2) % (count - 1);
       }
+      change.undo_now = apply_stretch(rings_now, s);
+      const Ring& after = rings_now.rings[r];
       std::optional<RingDefect> defect;
-      if (now.rings[r].closed()) {
-        defect = ring_index->defect_at(change.domain, *change.edit);
-      } else {  // a line is checked as a whole, against the index without it
+      if (!line) {
+        defect = ring_index->defect_at(rings_now, *change.edit);
+        change.stretch = std::move(s);
+        change.undo = change.undo_now;
+      } else {  // a line is checked as a whole, against the index without it, and taken whole
         change.edit.reset();
-        change.line_before = now.rings[r];
-        ring_index->erase_ring(r, now.rings[r]);
-        defect = ring_index->defect_of_new_ring(change.domain, r);
-        ring_index->insert_ring(r, now.rings[r]);
+        ring_index->erase_ring(r, change.line_before);
+        defect = ring_index->defect_of_new_ring(rings_now, r);
+        ring_index->insert_ring(r, change.line_before);
+        change.stretch = RingStretch{r, 0, 0, after.points, true, RingRole::Line};
+        change.undo = RingStretch{r, 0, 0, change.line_before.points, true, RingRole::Line};
       }
-      if (defect) throw InputError(what + " would break the shoreline: " + defect->describe());
+      if (defect) {
+        apply_stretch(rings_now, change.undo_now);
+        throw InputError(what + " would break the shoreline: " + defect->describe());
+      }
       return change;
     }
   }
 
   // Takes a committed change into the ids: `id` removed from its ring, or inserted as the new vertex.
-  // `after_id`: for an insertion, the vertex the new one follows.
-  void commit_vertex_ids(const RingChange& change, RingVertexEdit::Kind kind, std::size_t id, std::size_t after_id = 0) {
+  void commit_vertex_ids(const RingChange& change, RingVertexEdit::Kind kind, std::size_t id) {
     using Kind = RingVertexEdit::Kind;
     const std::size_t r = change.ring;
     auto& ids = ring_ids[r];
-    const bool closed = change.domain.rings[r].closed();
-    std::size_t first = 0;  // the ids from here on changed position
+    const bool closed = rings_now.rings[r].closed();
     if (kind == Kind::Insert) {
-      first = ring_of.at(after_id).second + 1;
+      const std::size_t first = change.position + 1;
       ids.insert(ids.begin() + static_cast<std::ptrdiff_t>(first), id);
-      if (closed) vertex_id[change.domain.rings[r].points[first]] = id;
+      ring_of[id] = {r, first};
+      if (closed) vertex_id[rings_now.rings[r].points[first]] = id;
     } else if (kind == Kind::Remove) {
-      first = ring_of.at(id).second;
       ring_of.erase(id);
-      ids.erase(ids.begin() + static_cast<std::ptrdiff_t>(first));
+      ids.erase(ids.begin() + static_cast<std::ptrdiff_t>(change.position));
       if (closed) vertex_id.erase(change.edit->gone);
-    } else {
-      return;
     }
-    for (std::size_t j = first; j < ids.size(); ++j)
-      if (closed || !shared_end(ids[j])) ring_of[ids[j]] = {r, j};
   }
 
   // Applies the user's edits of the engine's input (engine ids) together with what they do to the shore's
-  // canonical splits, in one propagation: `rings` are the user's rings after the edit (null: unchanged),
-  // `loose_removed`/`loose_added` the loose points the edit takes and gives. The input points that went
-  // and came (splits included) are added to `removed`/`added`; returns the engine ids of the edits' added
-  // points, in order. On an error nothing changed.
-  std::vector<std::size_t> apply_edits(std::vector<Edit<D>> edits, const Domain2* rings,
+  // canonical splits, in one propagation: `rings` the user's rings' edit (null: unchanged; made in
+  // rings_now already) and `undo` its inverse, `loose_removed`/`loose_added` the loose points the edit
+  // takes and gives. The input points that went and came (splits included) are added to
+  // `removed`/`added`; returns the engine ids of the edits' added points, in order. On an error nothing
+  // changed (but rings_now, which the caller takes back).
+  std::vector<std::size_t> apply_edits(std::vector<Edit<D>> edits, const RingStretch* rings, const RingStretch* undo,
                                        std::vector<Point<D>> loose_removed, std::vector<Point<D>> loose_added,
                                        std::vector<Point<D>>& removed, std::vector<Point<D>>& added,
                                        UpdateReport<D>& report) {
     const std::size_t user_adds = static_cast<std::size_t>(
         std::count_if(edits.begin(), edits.end(), [](const Edit<D>& e) { return e.kind == Edit<D>::Kind::Add; }));
+    shore_change.reset();
     if constexpr (D == 2) {
-      if (size) return apply_sized(std::move(edits), rings, loose_removed, loose_added, nullptr, removed, added, report);
+      // Size control recomputes its seeds from all the refined rings anyway: the rings whole.
+      if (size)
+        return apply_sized(std::move(edits), rings ? &rings_now : nullptr, loose_removed, loose_added, nullptr, removed,
+                           added, report);
       if (refinement) {
-        const Domain2 before = refinement->rings();
-        const SplitChange change = refinement->update(rings ? *rings : before, loose_removed, loose_added);
+        const auto one = [](const RingStretch* s) { return s ? std::span<const RingStretch>(s, 1) : std::span<const RingStretch>(); };
+        SplitChange change = refinement->update(one(rings), loose_removed, loose_added);
         for (const Point2& p : change.removed) {
           edits.push_back({Edit<D>::Kind::Remove, split_id.at(p), {}});
           removed.push_back(p);
@@ -267,17 +322,32 @@ struct ShoreSession<D>::Impl {
         try {
           ids = set->apply(edits, &report);
         } catch (...) {
-          refinement->update(before, loose_added, loose_removed);  // the inverse edit: the same splits as before
+          refinement->update(one(undo), loose_added, loose_removed);  // the inverse edit: the same splits as before
           throw;
         }
         for (const Point2& p : change.removed) split_id.erase(p);
         for (std::size_t j = 0; j < change.added.size(); ++j) split_id.emplace(change.added[j], ids[user_adds + j]);
         ids.resize(user_adds);
+        shore_change = std::move(change.segments);
         return ids;
       }
     }
-    (void)rings, (void)loose_removed, (void)loose_added;
+    (void)rings, (void)undo, (void)loose_removed, (void)loose_added;
     return set->apply(edits, &report);
+  }
+
+  // apply_edits for a vertex edit (`change` made in rings_now), which it takes back there on an error.
+  std::vector<std::size_t> apply_vertex_edits(std::vector<Edit<D>> edits, const std::optional<RingChange>& change,
+                                              std::vector<Point<D>> loose_removed, std::vector<Point<D>> loose_added,
+                                              std::vector<Point<D>>& removed, std::vector<Point<D>>& added,
+                                              UpdateReport<D>& report) {
+    try {
+      return apply_edits(std::move(edits), change ? &change->stretch : nullptr, change ? &change->undo : nullptr,
+                         std::move(loose_removed), std::move(loose_added), removed, added, report);
+    } catch (...) {
+      if (change) apply_stretch(rings_now, change->undo_now);
+      throw;
+    }
   }
 
   // The loose input points now (2D): the live ones on no ring.
@@ -377,15 +447,25 @@ struct ShoreSession<D>::Impl {
     out.inputs_removed = removed.size();
     out.inputs_added = added.size();
     const auto change = PointChange<D>::from_update(out.engine, std::move(removed), std::move(added));
-    Domain2 refined;
-    if constexpr (D == 2)
-      if (refinement) refined = refinement->refined();
+    std::optional<ShoreChange> shore = std::move(shore_change);
+    shore_change.reset();
     try {
-      if constexpr (D == 2) out.mesh = refinement ? mesh->apply(change, refined) : mesh->apply(change);
-      else out.mesh = mesh->apply(change);
+      if constexpr (D == 2) {
+        if (refinement && shore)  // the refined rings only when someone asks for them
+          out.mesh = mesh->apply(change, *shore, [this] { return refinement->refined(); });
+        else if (refinement)
+          out.mesh = mesh->apply(change, refinement->refined());
+        else
+          out.mesh = mesh->apply(change);
+      } else {
+        out.mesh = mesh->apply(change);
+      }
     } catch (const InputError&) {
       // The mesh and the engine disagree (the mesh changed nothing): rebuild from the engine's points.
       out.rebuilt = true;
+      Domain2 refined;
+      if constexpr (D == 2)
+        if (refinement) refined = refinement->refined();
       const auto before = sorted_corners<D>(*mesh);
       const auto points = set->points();
       mesh = well_spaced_mesh<D>(points, set->input_count(), refined, set->box(), options.keep_hull);
@@ -427,9 +507,7 @@ ShoreSession<D>::ShoreSession(const SessionInput<D>& input, const Options& optio
     if (options.size) throw InputError("size control is for 2D inputs");
   if constexpr (D == 2) {
     if (!input.rings.empty()) {
-      // Closed rings first: a line's end may be one of their vertices (a jetty); no other vertex is
-      // shared (one edit of it would change several rings at once, which the ring index, the splits'
-      // update and the mesh take one ring at a time).
+      // Closed rings first: a vertex rings share is held first by a closed ring where one has it.
       if (input.ring_ids.size() != input.rings.rings.size())
         throw InputError("session input: " + std::to_string(input.rings.rings.size()) + " rings but ids for " +
                          std::to_string(input.ring_ids.size()));
@@ -444,17 +522,12 @@ ShoreSession<D>::ShoreSession(const SessionInput<D>& input, const Options& optio
             if (it == m.ring_of.end()) {
               m.ring_of[id] = {r, k};
               if (!lines && k < ring.points.size()) m.vertex_id[ring.points[k]] = id;
-            } else if (lines && (k == 0 || k + 1 == ring.points.size()) &&
-                       input.rings.rings[it->second.first].closed()) {
-              m.lines_at[id].push_back(r);
             } else {
-              throw InputError("input point " + std::to_string(id) + " is a vertex of ring " +
-                               std::to_string(it->second.first + 1) + " and of ring " + std::to_string(r + 1) +
-                               ": an edit session takes shared vertices only where a line ends on a ring");
+              m.shared_by[id].push_back(r);
             }
           }
         }
-      if (const auto defect = find_ring_defect(input.rings, !m.lines_at.empty()))
+      if (const auto defect = find_ring_defect(input.rings, !m.shared_by.empty()))
         throw InputError("invalid rings: " + defect->describe());
     }
     if (options.size) {
@@ -465,6 +538,7 @@ ShoreSession<D>::ShoreSession(const SessionInput<D>& input, const Options& optio
     if (!input.rings.empty()) {
       m.refinement = refine_input(input, options.box, m.size);  // checks that the ring ids name the rings' points
       m.ring_index.emplace(input.rings);
+      m.rings_now = input.rings;
     }
   }
   // As a fresh run gives them to the engine: the input points, then the shore's splits.
@@ -506,7 +580,7 @@ SessionEdit<D> ShoreSession<D>::add(const Point<D>& p) {
   SessionEdit<D> out;
   const auto start = Clock::now();
   std::vector<Point<D>> removed, added{p};
-  const auto ids = m.apply_edits({{Edit<D>::Kind::Add, 0, p}}, nullptr, {}, {p}, removed, added, out.engine);
+  const auto ids = m.apply_edits({{Edit<D>::Kind::Add, 0, p}}, nullptr, nullptr, {}, {p}, removed, added, out.engine);
   out.id = m.engine_of_user.size();
   m.engine_of_user.push_back(ids.at(0));
   m.update_mesh(std::move(removed), std::move(added), start, start, out);
@@ -527,11 +601,11 @@ SessionEdit<D> ShoreSession<D>::add_after(std::size_t after, const Point<D>& p) 
   SessionEdit<D> out;
   const auto start = Clock::now();
   std::vector<Point<D>> removed, added{p};
-  const auto ids = m.apply_edits({{Edit<D>::Kind::Add, 0, p}}, &rings->domain, {}, {}, removed, added, out.engine);
+  const auto ids = m.apply_vertex_edits({{Edit<D>::Kind::Add, 0, p}}, rings, {}, {}, removed, added, out.engine);
   out.id = m.engine_of_user.size();
   out.ring = rings->ring;
   m.engine_of_user.push_back(ids.at(0));
-  m.commit_vertex_ids(*rings, RingVertexEdit::Kind::Insert, out.id, after);
+  m.commit_vertex_ids(*rings, RingVertexEdit::Kind::Insert, out.id);
   m.commit_index(*rings);
   m.update_mesh(std::move(removed), std::move(added), edit_start, start, out);
   return out;
@@ -549,14 +623,14 @@ SessionEdit<D> ShoreSession<D>::move(std::size_t id, const Point<D>& p) {
   out.id = id;
   const auto start = Clock::now();
   std::vector<Point<D>> removed{old}, added{p};
-  m.apply_edits({{Edit<D>::Kind::Move, m.engine_id(id), p}}, rings ? &rings->domain : nullptr,
-                rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{old},
-                rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{p}, removed, added, out.engine);
+  m.apply_vertex_edits({{Edit<D>::Kind::Move, m.engine_id(id), p}}, rings,
+                       rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{old},
+                       rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{p}, removed, added, out.engine);
   if (rings) {
     out.ring = rings->ring;
     m.commit_index(*rings);
     if constexpr (D == 2)
-      if (rings->domain.rings[rings->ring].closed()) {
+      if (m.rings_now.rings[rings->ring].closed()) {
         m.vertex_id.erase(old);
         m.vertex_id[p] = id;
       }
@@ -576,8 +650,8 @@ SessionEdit<D> ShoreSession<D>::remove(std::size_t id) {
   out.id = id;
   const auto start = Clock::now();
   std::vector<Point<D>> removed{old}, added;
-  m.apply_edits({{Edit<D>::Kind::Remove, m.engine_id(id), {}}}, rings ? &rings->domain : nullptr,
-                rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{old}, {}, removed, added, out.engine);
+  m.apply_vertex_edits({{Edit<D>::Kind::Remove, m.engine_id(id), {}}}, rings,
+                       rings ? std::vector<Point<D>>{} : std::vector<Point<D>>{old}, {}, removed, added, out.engine);
   m.engine_of_user[id] = Impl::kRemoved;
   if (rings) {
     out.ring = rings->ring;
@@ -607,12 +681,17 @@ SessionEdit<D> ShoreSession<D>::add_ring(std::span<const Point2> points, bool li
       else m.refuse_vertex_at(points[k], what);
     }
     const auto edit_start = Clock::now();
-    Domain2 after = m.refinement->rings();
+    Domain2& after = m.rings_now;
+    after.rings.resize(r);
     after.rings.push_back({std::vector<Point2>(points.begin(), points.end()), line ? RingRole::Line : RingRole::Shore});
-    if (const auto defect = m.ring_index->defect_of_new_ring(after, r))
+    if (const auto defect = m.ring_index->defect_of_new_ring(after, r)) {
+      after.rings.resize(r);
       throw InputError(what + " would break the shoreline: " + defect->describe());
+    }
     // A ring's role from its nesting: inside an odd number of rings it bounds land (an island).
     if (!line) after.rings[r].role = m.ring_index->inside(points.front()) ? RingRole::Island : RingRole::Shore;
+    const RingStretch stretch{r, 0, 0, after.rings[r].points, true, after.rings[r].role};
+    const RingStretch undo{r, 0, 0, {}, true, after.rings[r].role};
     SessionEdit<D> out;
     const auto start = Clock::now();
     std::vector<Edit<D>> edits;
@@ -622,12 +701,18 @@ SessionEdit<D> ShoreSession<D>::add_ring(std::span<const Point2> points, bool li
         edits.push_back({Edit<D>::Kind::Add, 0, points[k]});
         added.push_back(points[k]);
       }
-    const auto ids = m.apply_edits(std::move(edits), &after, {}, {}, removed, added, out.engine);
+    std::vector<std::size_t> ids;
+    try {
+      ids = m.apply_edits(std::move(edits), &stretch, &undo, {}, {}, removed, added, out.engine);
+    } catch (...) {
+      after.rings.resize(r);
+      throw;
+    }
     std::vector<std::size_t> user_ids;
     for (std::size_t k = 0, j = 0; k < points.size(); ++k) {
       if (shared[k]) {
         user_ids.push_back(*shared[k]);
-        m.lines_at[*shared[k]].push_back(r);
+        m.shared_by[*shared[k]].push_back(r);
         continue;
       }
       const std::size_t id = m.engine_of_user.size();
@@ -658,8 +743,9 @@ SessionEdit<D> ShoreSession<D>::remove_ring(std::size_t r) {
     if (m.ring_ids[r].empty()) throw InputError("ring " + std::to_string(r + 1) + " was removed");
     if (m.refinement->rings().rings[r].closed() && m.live_closed_rings() == 1)
       throw InputError("ring " + std::to_string(r + 1) + " is the last ring; without one the water is undefined");
-    if (m.refinement->rings().rings[r].closed())
-      for (std::size_t id : m.ring_ids[r]) m.refuse_shared_end(id, "removing ring " + std::to_string(r + 1));
+    // Its vertices that other rings share too stay (they are the other rings'), unless it holds them first.
+    for (std::size_t id : m.ring_ids[r])
+      if (m.ring_of.at(id).first == r) m.refuse_shared_end(id, "removing " + m.ring_name(r));
     // The water flips inside a closed ring that goes: a line there would be left on land.
     if (m.refinement->rings().rings[r].closed())
       for (std::size_t l = 0; l < m.ring_ids.size(); ++l) {
@@ -669,17 +755,18 @@ SessionEdit<D> ShoreSession<D>::remove_ring(std::size_t r) {
                            " on land; remove the line first");
       }
     const auto edit_start = Clock::now();
-    Domain2 after = m.refinement->rings();
-    const Ring gone_ring = after.rings[r];
+    const Ring gone_ring = m.rings_now.rings[r];
     const std::vector<Point2>& gone = gone_ring.points;
-    after.rings[r].points.clear();
+    m.rings_now.rings[r].points.clear();
+    const RingStretch stretch{r, 0, 0, {}, true, gone_ring.role};
+    const RingStretch undo{r, 0, 0, gone, true, gone_ring.role};
     SessionEdit<D> out;
     out.ring = r;
     out.id = m.ring_ids[r].front();
     const auto start = Clock::now();
     // A line's end on a ring stays: it is the ring's vertex.
     const bool closed = gone_ring.closed();
-    auto kept = [&](std::size_t id) { return !closed && m.ring_of.at(id).first != r; };
+    auto kept = [&](std::size_t id) { return m.ring_of.at(id).first != r; };
     std::vector<Edit<D>> edits;
     std::vector<Point<D>> removed, added;
     for (std::size_t k = 0; k < gone.size(); ++k)
@@ -687,11 +774,16 @@ SessionEdit<D> ShoreSession<D>::remove_ring(std::size_t r) {
         edits.push_back({Edit<D>::Kind::Remove, m.engine_id(m.ring_ids[r][k]), {}});
         removed.push_back(gone[k]);
       }
-    m.apply_edits(std::move(edits), &after, {}, {}, removed, added, out.engine);
+    try {
+      m.apply_edits(std::move(edits), &stretch, &undo, {}, {}, removed, added, out.engine);
+    } catch (...) {
+      m.rings_now.rings[r] = gone_ring;
+      throw;
+    }
     for (std::size_t k = 0; k < gone.size(); ++k) {
       const std::size_t id = m.ring_ids[r][k];
       if (kept(id)) {
-        std::erase(m.lines_at.at(id), r);
+        std::erase(m.shared_by.at(id), r);
         continue;
       }
       m.engine_of_user[id] = Impl::kRemoved;
@@ -722,6 +814,7 @@ SessionEdit<D> ShoreSession<D>::set_polygon_size(std::size_t polygon, double siz
     out.id = polygon;
     const auto start = Clock::now();
     std::vector<Point<D>> removed, added;
+    m.shore_change.reset();
     m.apply_sized({}, nullptr, {}, {}, std::move(field), removed, added, out.engine);
     m.update_mesh(std::move(removed), std::move(added), edit_start, start, out);
     return out;
@@ -766,6 +859,7 @@ template <int D>
 std::optional<std::pair<std::size_t, std::size_t>> ShoreSession<D>::ring_of(std::size_t id) const {
   const auto it = impl_->ring_of.find(id);
   if (it == impl_->ring_of.end()) return std::nullopt;
+  if (contains(id)) return impl_->locate(id);
   return it->second;
 }
 
@@ -797,6 +891,13 @@ const std::vector<Point2>& ShoreSession<D>::ring(std::size_t r) const {
   if (!impl_->refinement || r >= impl_->refinement->rings().rings.size())
     throw InputError("no ring " + std::to_string(r + 1));
   return impl_->refinement->rings().rings[r].points;
+}
+
+template <int D>
+RingRole ShoreSession<D>::ring_role(std::size_t r) const {
+  if (!impl_->refinement || r >= impl_->refinement->rings().rings.size())
+    throw InputError("no ring " + std::to_string(r + 1));
+  return impl_->refinement->rings().rings[r].role;
 }
 
 template <int D>

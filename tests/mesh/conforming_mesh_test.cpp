@@ -23,6 +23,8 @@
 #include "shoremesh/shore_refinement.hpp"
 #include "shoremesh/shore_session.hpp"
 #include "shoremesh/error.hpp"
+#include "shoremesh/io/poly_file.hpp"
+#include "shoremesh/pslg.hpp"
 #include "shoremesh/well_spaced.hpp"
 
 namespace shoremesh {
@@ -192,12 +194,16 @@ bool equals_a_fresh_run(const ShoreSession<2>& session, int made, bool full) {
   const FreshRun fresh = fresh_run(now, session.box());
   const bool equal = mesh_test::corner_list(session.mesh()) == mesh_test::corner_list(fresh.mesh);
   EXPECT_TRUE(equal) << "after edit " << made;
+  // The constraints too: a segment the edit took away that stayed a constraint (a stale one) can leave
+  // the triangles as they are where it is a Delaunay edge anyway, but not the constrained edges.
+  const bool same_constraints = session.mesh().constrained_edges() == fresh.mesh.constrained_edges();
+  EXPECT_TRUE(same_constraints) << "after edit " << made << ": the constrained edges differ from a fresh run's";
   if (full) {
     session.mesh().check_valid();
     check_conforming(session.mesh(), now.rings, fresh.refined, "after edit " + std::to_string(made));
     EXPECT_TRUE(session.shoreline().conforming());
   }
-  return equal;
+  return equal && same_constraints;
 }
 
 // A jetty from shore point a: three segments of about `step` toward angle t, a little zigzag.
@@ -425,6 +431,57 @@ TEST(ConformingMesh, JettiesThroughRandomEditsEqualAFreshRun) {
   EXPECT_GT(removed_lines, 0);
   std::printf("%d edits, %d jetties added, %d removed, %d moves of a jetty's root refused\n", made, jetties, removed_lines,
               root_refusals);
+}
+
+// A .poly PSLG whose rings share vertices (fish-and-rectangle: the hole faces touch the outline at four
+// pinch vertices; lines between water faces end on ring vertices and on one another) through random
+// edits of the vertices no other ring shares: after each the mesh equals a fresh run and conforms; an
+// edit of a shared vertex is refused, naming the point and its rings, and changes nothing.
+TEST(ConformingMesh, PslgWithSharedVerticesThroughRandomEditsEqualsAFreshRun) {
+  const io::PslgFile p = io::read_poly_file(mesh_test::samples("pslg/fish-and-rectangle.poly"));
+  const PslgDomain d = pslg_domain(p.points, p.segments, p.holes);
+  ASSERT_EQ(d.pinch_vertices.size(), 4u);
+  SessionInput<2> in{p.points, d.domain, d.vertices};
+  ShoreSession<2> session(in, {});
+  std::mt19937 rng(61);
+  std::uniform_real_distribution<double> u(0, 1);
+  int made = 0, shared_refusals = 0, other_refusals = 0;
+  const int edits = std::getenv("SHOREMESH_SANITIZER_BUILD") ? 20 : 80;
+  for (int attempt = 0; made < edits && attempt < 40 * edits; ++attempt) {
+    const std::size_t id = rng() % session.next_id();
+    if (!session.contains(id) || !session.ring_of(id)) continue;
+    const auto [r, k] = *session.ring_of(id);
+    const auto& ring = session.ring(r);
+    const bool closed = session.ring_role(r) != RingRole::Line;
+    if (!closed && k + 1 == ring.size()) continue;
+    const Point2 a = ring[k], b = ring[(k + 1) % ring.size()];
+    const std::size_t elements_before = session.mesh().element_count();
+    const double what = u(rng);
+    try {
+      if (what < 0.45) session.move(id, {a[0] + 0.25 * (b[0] - a[0]) + 0.03 * (u(rng) - 0.5) * (b[1] - a[1]),
+                                         a[1] + 0.25 * (b[1] - a[1]) - 0.03 * (u(rng) - 0.5) * (b[0] - a[0])});
+      else if (what < 0.75) session.add_after(id, {0.5 * (a[0] + b[0]) + 0.02 * (u(rng) - 0.5) * (b[1] - a[1]),
+                                                   0.5 * (a[1] + b[1]) - 0.02 * (u(rng) - 0.5) * (b[0] - a[0])});
+      else session.remove(id);
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      if (message.find("which share it") != std::string::npos) {
+        ++shared_refusals;
+        EXPECT_NE(message.find("input point " + std::to_string(id) + " ("), std::string::npos) << message;
+        EXPECT_NE(message.find((closed ? "ring " : "line ") + std::to_string(r + 1) + ", "), std::string::npos) << message;
+      } else {
+        ++other_refusals;
+      }
+      ASSERT_EQ(session.mesh().element_count(), elements_before);
+      continue;
+    }
+    ++made;
+    ASSERT_TRUE(equals_a_fresh_run(session, made, false));
+    ASSERT_TRUE(session.shoreline().conforming()) << "after edit " << made;
+  }
+  EXPECT_EQ(made, edits);
+  EXPECT_GT(shared_refusals, 0);
+  std::printf("%d edits, %d refused at a shared vertex, %d refused otherwise\n", made, shared_refusals, other_refusals);
 }
 
 }  // namespace

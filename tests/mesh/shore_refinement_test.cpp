@@ -85,6 +85,18 @@ TEST(ShoreRefinement, SharpCornersEndTheHalving) {
   EXPECT_LT(r.split_count(), 20u);
 }
 
+// The refined rings' segments, ends sorted, the list sorted.
+std::vector<ShoreSegment> segments_of(const Domain2& refined) {
+  std::vector<ShoreSegment> out;
+  for (const Ring& ring : refined.rings)
+    for (std::size_t k = 0; k < ring.segment_count(); ++k) {
+      const Point2 &a = ring.points[k], &b = ring.points[(k + 1) % ring.points.size()];
+      out.push_back({std::min(a, b), std::max(a, b), ring.closed()});
+    }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 TEST(ShoreRefinement, EveryEditEqualsAFreshRefinement) {
   std::mt19937 rng(11);
   StarRing outer = star(0, 0, 6, 10, 30, rng), island = star(0.4, -0.2, 3.5, 5.2, 10, rng);
@@ -116,6 +128,7 @@ TEST(ShoreRefinement, EveryEditEqualsAFreshRefinement) {
       loose_added.push_back(loose[j]);
     }
     const std::vector<Point2> before = r.split_points();
+    const std::vector<ShoreSegment> segments_before = segments_of(r.refined());
     const SplitChange change = r.update(domain(), loose_removed, loose_added);
     const ShoreRefinement fresh(domain(), loose);
     with_splits += fresh.split_count() > 0;
@@ -132,6 +145,16 @@ TEST(ShoreRefinement, EveryEditEqualsAFreshRefinement) {
     std::sort(got_added.begin(), got_added.end());
     ASSERT_EQ(got_removed, expect_removed) << "after edit " << step;
     ASSERT_EQ(got_added, expect_added) << "after edit " << step;
+    // And the refined segments it reports are exactly those that went and came (what the mesh takes as
+    // its constraints' change: a stale one would stay a constraint).
+    const std::vector<ShoreSegment> segments_after = segments_of(fresh.refined());
+    std::vector<ShoreSegment> gone, came;
+    std::set_difference(segments_before.begin(), segments_before.end(), segments_after.begin(), segments_after.end(),
+                        std::back_inserter(gone));
+    std::set_difference(segments_after.begin(), segments_after.end(), segments_before.begin(), segments_before.end(),
+                        std::back_inserter(came));
+    ASSERT_EQ(change.segments.removed, gone) << "after edit " << step;
+    ASSERT_EQ(change.segments.added, came) << "after edit " << step;
   }
   EXPECT_GT(with_splits, std::size_t(edits) / 2);  // the edits do reach the splits
 }

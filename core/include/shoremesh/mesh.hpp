@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -18,6 +19,7 @@
 #include "shoremesh/mesh_quality.hpp"
 #include "shoremesh/mesh_shoreline.hpp"
 #include "shoremesh/point.hpp"
+#include "shoremesh/shore_segments.hpp"
 #include "shoremesh/well_spaced.hpp"
 
 namespace shoremesh {
@@ -75,7 +77,8 @@ class Mesh {
   // The current points. A dynamic update renumbers them: a removed point's slot takes the last point.
   const std::vector<Point<D>>& points() const { return points_; }
   const std::vector<PointKind>& kinds() const { return kinds_; }
-  const Domain2& domain() const { return domain_; }
+  // The rings (after an apply with a ShoreChange: asked of the source it gave, once, when first needed).
+  const Domain2& domain() const;
   const std::optional<BoxTransform<D>>& covered_box() const { return covered_box_; }
 
   // The elements inside the water (all finite Delaunay elements without a domain), positively oriented.
@@ -94,6 +97,15 @@ class Mesh {
   // elements near the rings' changed stretches are classified again, and the mesh equals a fresh one on
   // the new points and domain.
   MeshDelta<D> apply(const PointChange<D>& change, const Domain2& domain)
+    requires(D == 2);
+  // The same with the rings' change given as the refined segments that went and came
+  // (ShoreRefinement::update): O(the change), no pass over the shore. `domain` gives the rings as they
+  // are after the change; domain() calls it only when asked (and not once an edit later replaced it).
+  MeshDelta<D> apply(const PointChange<D>& change, const ShoreChange& shore, std::function<Domain2()> domain)
+    requires(D == 2);
+
+  // The constrained edges, ends sorted, the list sorted (tests: the constraints against a fresh run's).
+  std::vector<std::pair<Point2, Point2>> constrained_edges() const
     requires(D == 2);
 
   // The elements whose bounding box meets the box [lo, hi], corners sorted: a walk from the box's centre,
@@ -122,12 +134,15 @@ class Mesh {
  private:
   void build(std::span<const Point<D>> points, std::size_t input_count);
   std::size_t count_elements() const;  // by visiting every element
-  MeshDelta<D> apply_with_water(const PointChange<D>& change, const Domain2* domain);
+  MeshDelta<D> apply_with_water(const PointChange<D>& change, const Domain2* domain, const ShoreChange* shore);
 
   std::vector<Point<D>> points_;
   std::vector<PointKind> kinds_;
   std::size_t element_count_ = 0;
-  Domain2 domain_;
+  // The rings, and while they are stale the function that gives them (single-threaded, as every use of
+  // a mesh that an edit changes).
+  mutable Domain2 domain_;
+  mutable std::function<Domain2()> domain_source_;
   std::optional<BoxTransform<D>> covered_box_;
   std::unique_ptr<MeshTriangulation<D>> triangulation_;
 };

@@ -5,6 +5,8 @@
 // query tests only the edges that span its height.
 #include <cstddef>
 #include <cstdint>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "shoremesh/domain.hpp"
@@ -27,23 +29,29 @@ class WaterTest {
   // answers as WaterTest(new domain) does.
   void replace_stretch(std::size_t r, const std::vector<Point2>& before, const std::vector<Point2>& after,
                        std::size_t prefix, std::size_t suffix);
-  // Ring r (a new one past the last, or an existing one) becomes `after` (empty: it went), in
+  // A closed ring's points change from `before` to `after` (either empty: the ring came or went), in
   // O(its edges + the slabs they span).
-  void replace_ring(std::size_t r, const std::vector<Point2>& after);
+  void replace_ring(const std::vector<Point2>& before, const std::vector<Point2>& after);
+  // One edge of a closed ring goes or comes (the even-odd rule needs only the set of edges, not which ring
+  // holds them): what a shore edit changes, segment by segment (Mesh::apply with a ShoreChange).
+  void remove_edge(const Point2& a, const Point2& b);
+  void add_edge(const Point2& a, const Point2& b);
 
  private:
   struct Edge {
     Point2 a, b;
   };
-  static constexpr std::uint32_t kNoEdge = 0xffffffffu;
+  struct EdgeKeyHash {
+    std::size_t operator()(const std::pair<Point2, Point2>& e) const;
+  };
   std::size_t slab_of(double y) const;
   void add_to_slabs(std::uint32_t e);
-  std::uint32_t add_edge(const Point2& a, const Point2& b);  // a free slot (or a new one), in its slabs
   void remove_from_slabs(std::uint32_t e);
 
-  std::vector<Edge> edges_;  // with the edges replaced since the build (no slab lists them)
-  std::vector<std::vector<std::uint32_t>> ring_edges_;  // per ring: edge k, from vertex k to k + 1
-  std::vector<std::uint32_t> free_edges_;               // replaced edges, to reuse
+  std::vector<Edge> edges_;  // with free slots (no slab lists them)
+  // Each edge's slot by its ends in lexicographic order: a removal names the edge, not its place.
+  std::unordered_multimap<std::pair<Point2, Point2>, std::uint32_t, EdgeKeyHash> slot_of_;
+  std::vector<std::uint32_t> free_edges_;  // slots of removed edges, to reuse
   bool empty_ = true;
   double y_low_ = 0, slab_height_ = 1;
   std::vector<std::vector<std::uint32_t>> slabs_;  // edge indices whose y-range meets each slab

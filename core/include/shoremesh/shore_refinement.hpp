@@ -22,6 +22,7 @@
 
 #include "shoremesh/domain.hpp"
 #include "shoremesh/point.hpp"
+#include "shoremesh/shore_segments.hpp"
 
 namespace shoremesh {
 
@@ -45,8 +46,26 @@ struct RefinementRule {
 
 struct SplitChange {
   std::vector<Point2> removed, added;
+  // The refined rings' segments that went and came.
+  ShoreChange segments;
   bool empty() const { return removed.empty() && added.empty(); }
 };
+
+// One ring's edit: its vertices other than the first `prefix` and the last `suffix` are replaced by
+// `middle`. `whole`: the ring (or line) is replaced as a whole by `middle` (prefix and suffix unused): a
+// ring that came (a number past the last, or a removed ring's), went (`middle` empty: it stays as a ring
+// without points) or a line that changed. `role`: a new ring's.
+struct RingStretch {
+  std::size_t ring = 0;
+  std::size_t prefix = 0, suffix = 0;
+  std::vector<Point2> middle;
+  bool whole = false;
+  RingRole role = RingRole::Shore;
+};
+
+// Applies `s` to `rings` in place (a vector's erase and insert: no pass over other rings) and returns
+// the edit that undoes it.
+RingStretch apply_stretch(Domain2& rings, const RingStretch& s);
 
 class ShoreRefinement {
  public:
@@ -67,6 +86,10 @@ class ShoreRefinement {
   // left without points went; rings are matched by their place) and the loose points lose
   // `loose_removed` and gain `loose_added`. Returns the split points that went and came (none in both).
   SplitChange update(const Domain2& rings, std::span<const Point2> loose_removed = {},
+                     std::span<const Point2> loose_added = {});
+  // The same for rings edited by `edits` (one per ring at most), in O(the edits' reach): no pass over the
+  // shore (`rings` above finds each ring's changed stretch by comparing it whole).
+  SplitChange update(std::span<const RingStretch> edits, std::span<const Point2> loose_removed = {},
                      std::span<const Point2> loose_added = {});
 
   // Recomputes everything from scratch and throws std::logic_error when it differs (tests).

@@ -32,8 +32,9 @@ struct SessionInput {
   std::vector<Point<D>> points;  // the input points: id i is points[i]
   // 2D: the rings (valid: find_ring_defect finds nothing); ring r's vertex k is input point
   // ring_ids[r][k]. Rings may share a vertex (one input point on several rings: a .poly's segments meeting
-  // there) in a fresh run's input; an edit session takes that only where a line ends on a closed ring's
-  // vertex. The other points are loose.
+  // there, a pinch vertex, a line's end on a ring); an edit session refuses to move or remove such a
+  // vertex, or to remove the ring that holds it first (closed rings before lines), naming the point and
+  // its rings, and edits every other vertex. The other points are loose.
   Domain2 rings;
   std::vector<std::vector<std::size_t>> ring_ids;
 };
@@ -109,8 +110,8 @@ class ShoreSession {
   // can be neither moved nor removed, nor its ring removed, while the line ends there. No other point of
   // a new ring or line, and no moved or added vertex, may be a vertex already.
   SessionEdit<D> add_ring(std::span<const Point2> points, bool line = false);
-  // Ring (or line) `ring` and all of its points go; the last closed ring cannot (the water would be
-  // undefined).
+  // Ring (or line) `ring` and all of its points go, but those other rings share (they stay theirs); the
+  // last closed ring cannot (the water would be undefined).
   SessionEdit<D> remove_ring(std::size_t ring);
   // Size polygon `polygon` (0-based, as read) takes size `size`: h, the shore's size splits and the size
   // seeds are recomputed and their difference applied as one edit. InputError/ParameterError, changing
@@ -137,8 +138,10 @@ class ShoreSession {
   // Ring numbers given so far (removed ones included), and ring r's points now (none once removed).
   std::size_t ring_count() const;
   const std::vector<Point2>& ring(std::size_t r) const;
+  RingRole ring_role(std::size_t r) const;
   // The rings as they are now, removed ones left out (in ring order), and the rings with their splits as
-  // the mesh conforms to them (removed ones as rings without points).
+  // the mesh conforms to them (removed ones as rings without points; built when first asked after an
+  // edit, O(the shore)).
   Domain2 rings() const;
   const Domain2& refined_rings() const;
   // The point set as a fresh run on the current input lists it: the input points by id, the shore's
