@@ -548,7 +548,7 @@ int run_serve(const ServeOptions& opt) {
     if (words_of(req.body).empty())
       return json_error(res, 400, "POST /edit takes edit lines in the body (as 'shoremesh edit --edits' reads them)");
     using Ms = std::chrono::duration<double, std::milli>;
-    const auto start = std::chrono::steady_clock::now();
+    const auto received = std::chrono::steady_clock::now();
     double lock_ms = 0;
     const json out = editor.run(req.body, &lock_ms);
     const auto ran = std::chrono::steady_clock::now();
@@ -562,8 +562,8 @@ int run_serve(const ServeOptions& opt) {
     // Where the request's time went on the server, for the page's profile (Resource Timing's serverTiming).
     const auto done = std::chrono::steady_clock::now();
     std::ostringstream timing;
-    timing << "lock;dur=" << lock_ms << ", edit;dur=" << Ms(ran - start).count() - lock_ms
-           << ", json;dur=" << Ms(done - ran).count() << ", total;dur=" << Ms(done - start).count();
+    timing << "lock;dur=" << lock_ms << ", edit;dur=" << Ms(ran - received).count() - lock_ms
+           << ", json;dur=" << Ms(done - ran).count() << ", total;dur=" << Ms(done - received).count();
     res.set_header("Server-Timing", timing.str());
   });
   http.Get("/events", [&](const httplib::Request&, httplib::Response& res) {
