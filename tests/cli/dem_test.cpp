@@ -20,22 +20,11 @@ namespace {
 const std::string kSalish = samples("salish/salish_sea_topobathy.tif");
 
 // The raster read with GDAL here, and lon/lat <-> the raster's CRS and a local equal-area projection.
-struct Raster {
-  int w = 0, h = 0;
-  double g[6];
-  std::vector<float> z;
+struct Raster : RasterBand {
   std::unique_ptr<OGRCoordinateTransformation> to_raster, raster_to_lonlat, to_area;
-  explicit Raster(const std::string& path) {
-    GDALAllRegister();
-    std::unique_ptr<GDALDataset> ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER));
-    if (!ds) throw std::runtime_error("cannot open " + path);
-    w = ds->GetRasterXSize(), h = ds->GetRasterYSize();
-    ds->GetGeoTransform(g);
-    z.resize(static_cast<std::size_t>(w) * h);
-    if (ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, w, h, z.data(), w, h, GDT_Float32, 0, 0) != CE_None)
-      throw std::runtime_error("cannot read " + path);
+  explicit Raster(const std::string& path) : RasterBand(path) {
     OGRSpatialReference ll, area;
-    OGRSpatialReference raster(*ds->GetSpatialRef());
+    OGRSpatialReference raster(srs);
     ll.importFromEPSG(4326);
     area.importFromProj4("+proj=laea +lat_0=49 +lon_0=-124 +datum=WGS84 +units=m");
     for (auto* s : {&ll, &area, &raster}) s->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
@@ -43,7 +32,6 @@ struct Raster {
     raster_to_lonlat.reset(OGRCreateCoordinateTransformation(&raster, &ll));
     to_area.reset(OGRCreateCoordinateTransformation(&ll, &area));
   }
-  float at(int c, int r) const { return z[static_cast<std::size_t>(r) * w + c]; }
   // Cell coordinates (centre convention) of a lon/lat point.
   std::array<double, 2> cell(double lon, double lat) const {
     double x = lon, y = lat;

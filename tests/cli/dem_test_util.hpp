@@ -16,6 +16,27 @@
 
 namespace shoremesh::cli_test {
 
+// A raster's first band read with GDAL itself (the tests' independent reading, not io::read_dem): its size,
+// geotransform `g`, heights row-major and spatial reference.
+struct RasterBand {
+  int w = 0, h = 0;
+  double g[6]{};
+  std::vector<float> z;
+  OGRSpatialReference srs;
+  explicit RasterBand(const std::string& path) {
+    GDALAllRegister();
+    std::unique_ptr<GDALDataset> ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER));
+    if (!ds) throw std::runtime_error("cannot open " + path);
+    w = ds->GetRasterXSize(), h = ds->GetRasterYSize();
+    ds->GetGeoTransform(g);
+    z.resize(static_cast<std::size_t>(w) * h);
+    if (ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, w, h, z.data(), w, h, GDT_Float32, 0, 0) != CE_None)
+      throw std::runtime_error("cannot read " + path);
+    if (const OGRSpatialReference* s = ds->GetSpatialRef()) srs = *s;
+  }
+  float at(int c, int r) const { return z[static_cast<std::size_t>(r) * w + c]; }
+};
+
 // A small GeoTIFF in EPSG:`epsg` (by default 32610, UTM 10N, metres) with the given heights, row-major, north
 // up, and GDAL's geotransform `g` (upper-left corner, cell sizes).
 inline void write_dem(const std::filesystem::path& path, int w, int h, const std::vector<float>& z,

@@ -22,21 +22,8 @@ namespace {
 
 const std::string kSalish = samples("salish/salish_sea_topobathy.tif");
 
-struct Raster {
-  int w = 0, h = 0;
-  double g[6];
-  std::vector<float> z;
-  explicit Raster(const std::string& path) {
-    GDALAllRegister();
-    std::unique_ptr<GDALDataset> ds(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER));
-    if (!ds) throw std::runtime_error("cannot open " + path);
-    w = ds->GetRasterXSize(), h = ds->GetRasterYSize();
-    ds->GetGeoTransform(g);
-    z.resize(static_cast<std::size_t>(w) * h);
-    if (ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, w, h, z.data(), w, h, GDT_Float32, 0, 0) != CE_None)
-      throw std::runtime_error("cannot read " + path);
-  }
-  float at(int c, int r) const { return z[static_cast<std::size_t>(r) * w + c]; }
+struct Raster : RasterBand {
+  using RasterBand::RasterBand;
   // Cell coordinates, (0, 0) the centre of the upper-left cell.
   std::array<double, 2> cell(double x, double y) const { return {(x - g[0]) / g[1] - 0.5, (y - g[3]) / g[5] - 0.5}; }
   std::array<double, 2> centre(int c, int r) const { return {g[0] + (c + 0.5) * g[1], g[3] + (r + 0.5) * g[5]}; }

@@ -124,20 +124,7 @@ std::size_t check_conforming(const Mesh2& mesh, const Domain2& rings, const Doma
   EXPECT_NEAR(area, expect, 1e-9 * expect) << what << ": the water's area";
   // Quality: below the bound only where the constrained triangulation is not Delaunay, i.e. the element's
   // circumcircle holds a mesh point (one the shore hides from it).
-  std::size_t below = 0;
-  for (const auto& e : mesh.elements()) {
-    ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
-    const ElementShape<2> shape = element_shape<2>(c);
-    if (shape.radius_edge <= std::sqrt(2.0) * (1 + 1e-12)) continue;
-    ++below;
-    const double r = std::hypot(c[0][0] - shape.circumcentre[0], c[0][1] - shape.circumcentre[1]);
-    bool hides = false;
-    for (const Point2& p : mesh.points())
-      hides = hides || std::hypot(p[0] - shape.circumcentre[0], p[1] - shape.circumcentre[1]) < r * (1 - 1e-9);
-    EXPECT_TRUE(hides) << what << ": a Delaunay element below the bound at " << shape.centroid[0] << ","
-                       << shape.centroid[1];
-  }
-  return below;
+  return mesh_test::below_bound_all_hidden(mesh, what);
 }
 
 using mesh_test::superior;

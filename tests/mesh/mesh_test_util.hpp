@@ -17,6 +17,7 @@
 
 #include "shoremesh/domain.hpp"
 #include "shoremesh/mesh.hpp"
+#include "shoremesh/mesh_quality.hpp"
 #include "shoremesh/shore_session.hpp"
 #include "../io/io_test_util.hpp"
 
@@ -217,6 +218,25 @@ inline SessionInput<2> session_input(const Domain2& rings) {
     in.points.insert(in.points.end(), r.points.begin(), r.points.end());
   }
   return in;
+}
+
+// Elements below the bound (radius-edge > sqrt 2), each checked to be not Delaunay: a mesh point lies inside its
+// circumcircle (one the shore's constraints hide from it). `what` names the mesh in failures.
+inline std::size_t below_bound_all_hidden(const Mesh<2>& mesh, const std::string& what = "") {
+  std::size_t below = 0;
+  for (const auto& e : mesh.elements()) {
+    const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
+    const ElementShape<2> shape = element_shape<2>(c);
+    if (shape.radius_edge <= std::sqrt(2.0) * (1 + 1e-12)) continue;
+    ++below;
+    const double r = std::hypot(c[0][0] - shape.circumcentre[0], c[0][1] - shape.circumcentre[1]);
+    bool hides = false;
+    for (const Point2& p : mesh.points())
+      hides = hides || std::hypot(p[0] - shape.circumcentre[0], p[1] - shape.circumcentre[1]) < r * (1 - 1e-9);
+    EXPECT_TRUE(hides) << what << ": a Delaunay element below the bound at " << shape.centroid[0] << ","
+                       << shape.centroid[1];
+  }
+  return below;
 }
 
 }  // namespace shoremesh::mesh_test

@@ -387,6 +387,26 @@ TEST(SizeControl, EachTermChangesTheMeshOnlyWhereItBinds) {
 // polygon's size, on Superior with every kind of term, each compared with a fresh run on the edited input
 // in the session's box, triangle for triangle. A size edit changes elements only within the reach of its
 // polygon (where h can change: the graded cone from it).
+// A random shore point of the session moved 0.3 of the way to its next vertex, a point added after it near its
+// segment's midpoint, or the point removed; `wobble` (of the segment's length) moves each off the line.
+void random_shore_edit(ShoreSession<2>& session, const std::string& kind, double wobble, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0, 1);
+  std::size_t id = 0;
+  do id = rng() % session.next_id();
+  while (!session.contains(id) || !session.ring_of(id));
+  const auto [r, k] = *session.ring_of(id);
+  const auto& ring = session.ring(r);
+  const Point2 a = ring[k], b = ring[(k + 1) % ring.size()];
+  if (kind == "move")
+    session.move(id, {a[0] + 0.3 * (b[0] - a[0]) + wobble * (u(rng) - 0.5) * (b[1] - a[1]),
+                      a[1] + 0.3 * (b[1] - a[1]) - wobble * (u(rng) - 0.5) * (b[0] - a[0])});
+  else if (kind == "add after")
+    session.add_after(id, {0.5 * (a[0] + b[0]) + 0.5 * wobble * (u(rng) - 0.5) * (b[1] - a[1]),
+                           0.5 * (a[1] + b[1]) - 0.5 * wobble * (u(rng) - 0.5) * (b[0] - a[0])});
+  else
+    session.remove(id);
+}
+
 TEST(SizeControl, RandomEditsUnderEveryTermEqualAFreshRunAfterEach) {
   const int edits = std::getenv("SHOREMESH_SANITIZER_BUILD") ? 5 : 16;
   SizeTerms t;
@@ -424,20 +444,7 @@ TEST(SizeControl, RandomEditsUnderEveryTermEqualAFreshRunAfterEach) {
                           c[1] > p.rings[0][0][1] - reach && c[1] < p.rings[0][2][1] + reach)
                   << "a size edit changed an element beyond its polygon's reach";
       } else {
-        std::size_t id = 0;
-        do id = rng() % session.next_id();
-        while (!session.contains(id) || !session.ring_of(id));
-        const auto [r, k] = *session.ring_of(id);
-        const auto& ring = session.ring(r);
-        const Point2 a = ring[k], b = ring[(k + 1) % ring.size()];
-        if (what < 0.6)
-          session.move(id, {a[0] + 0.3 * (b[0] - a[0]) + 0.1 * (u(rng) - 0.5) * (b[1] - a[1]),
-                            a[1] + 0.3 * (b[1] - a[1]) - 0.1 * (u(rng) - 0.5) * (b[0] - a[0])});
-        else if (what < 0.8)
-          session.add_after(id, {0.5 * (a[0] + b[0]) + 0.05 * (u(rng) - 0.5) * (b[1] - a[1]),
-                                 0.5 * (a[1] + b[1]) - 0.05 * (u(rng) - 0.5) * (b[0] - a[0])});
-        else
-          session.remove(id);
+        random_shore_edit(session, what < 0.6 ? "move" : what < 0.8 ? "add after" : "remove", 0.1, rng);
       }
     } catch (const InputError&) {
       continue;
@@ -504,20 +511,7 @@ TEST(SizeControl, RandomShoreAndSizeEditsWithLocalSeedsEqualAFreshRunAfterEach) 
         session.set_polygon_size(q, size);
         t.polygons[q].size = size;
       } else {
-        std::size_t id = 0;
-        do id = rng() % session.next_id();
-        while (!session.contains(id) || !session.ring_of(id));
-        const auto [r, k] = *session.ring_of(id);
-        const auto& ring = session.ring(r);
-        const Point2 a = ring[k], b = ring[(k + 1) % ring.size()];
-        if (kind == "move")
-          session.move(id, {a[0] + 0.3 * (b[0] - a[0]) + 0.2 * (u(rng) - 0.5) * (b[1] - a[1]),
-                            a[1] + 0.3 * (b[1] - a[1]) - 0.2 * (u(rng) - 0.5) * (b[0] - a[0])});
-        else if (kind == "add after")
-          session.add_after(id, {0.5 * (a[0] + b[0]) + 0.1 * (u(rng) - 0.5) * (b[1] - a[1]),
-                                 0.5 * (a[1] + b[1]) - 0.1 * (u(rng) - 0.5) * (b[0] - a[0])});
-        else
-          session.remove(id);
+        random_shore_edit(session, kind, 0.2, rng);
       }
     } catch (const InputError&) {
       continue;

@@ -39,22 +39,7 @@ SkipRun skip_run(const Domain2& rings, std::span<const Point2> input, bool water
   return r;
 }
 
-// Elements below the bound, each checked to be not Delaunay: a mesh point lies inside its circumcircle.
-std::size_t below_bound_all_hidden(const Mesh<2>& mesh) {
-  std::size_t below = 0;
-  for (const auto& e : mesh.elements()) {
-    const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
-    const ElementShape<2> shape = element_shape<2>(c);
-    if (shape.radius_edge <= std::sqrt(2.0) * (1 + 1e-12)) continue;
-    ++below;
-    const double r = std::hypot(c[0][0] - shape.circumcentre[0], c[0][1] - shape.circumcentre[1]);
-    bool hides = false;
-    for (const Point2& p : mesh.points())
-      hides = hides || std::hypot(p[0] - shape.circumcentre[0], p[1] - shape.circumcentre[1]) < r * (1 - 1e-9);
-    EXPECT_TRUE(hides) << "a Delaunay element below the bound at " << shape.centroid[0] << "," << shape.centroid[1];
-  }
-  return below;
-}
+using mesh_test::below_bound_all_hidden;
 
 }  // namespace
 
