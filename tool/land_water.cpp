@@ -3,9 +3,6 @@
 // and the vertical error bound on land (docs/terrain.md, "Land and water in one mesh").
 #include "land_water.hpp"
 
-#include <boost/geometry.hpp>
-#include <boost/geometry/index/rtree.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -23,6 +20,7 @@
 #include "pipeline.hpp"
 #include "progress.hpp"
 #include "shoremesh/error.hpp"
+#include "shoremesh/land_water.hpp"
 #include "shoremesh/io/atomic_file.hpp"
 #include "shoremesh/io/dem.hpp"
 #include "shoremesh/io/export.hpp"
@@ -34,13 +32,6 @@ namespace shoremesh::tool {
 
 namespace {
 
-namespace bg = boost::geometry;
-namespace bgi = boost::geometry::index;
-using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
-using BSegment = bg::model::segment<BPoint>;
-using BBox = bg::model::box<BPoint>;
-
-BPoint bp(const Point2& p) { return BPoint(p[0], p[1]); }
 
 // The DEM's contour at `level` traced as `--dem` traces the shoreline (water strictly below), the rings
 // taken from the tracer's frame to the DEM's plane (io::dem_grid), where the TIN is built. Empty when no
@@ -88,130 +79,6 @@ Contour trace_level(const std::shared_ptr<const io::Dem>& dem, const HeightGrid&
   out.notes = set.notes;
   return out;
 }
-
-// The shoreline's pieces that lie clear of the domain's rings: a vertex at least `clearance` from every
-// ring segment, a segment at least half of it. Where the land between the shoreline and Z is narrower
-// than that (a cliff at the DEM's resolution), the domain's ring is the shoreline there, and the piece is
-// left out. A closed piece becomes two lines sharing their ends (the domain accepts shared vertices).
-struct ShoreLines {
-  std::vector<Ring> lines;
-  std::size_t segments = 0, dropped_segments = 0;
-};
-
-ShoreLines shoreline_lines(const Domain2& shore, const Domain2& domain, double clearance) {
-  std::vector<std::pair<BBox, std::size_t>> boxes;
-  std::vector<BSegment> segments;
-  for (const Ring& r : domain.rings)
-    for (std::size_t k = 0; k < r.segment_count(); ++k) {
-      const BSegment s(bp(r.points[k]), bp(r.points[(k + 1) % r.points.size()]));
-      BBox b;
-      bg::envelope(s, b);
-      boxes.push_back({b, segments.size()});
-      segments.push_back(s);
-    }
-  const bgi::rtree<std::pair<BBox, std::size_t>, bgi::rstar<16>> tree(boxes.begin(), boxes.end());
-  auto nearest_within = [&](const auto& geometry, double d) {
-    BBox b;
-    bg::envelope(geometry, b);
-    const BBox grown(BPoint(b.min_corner().get<0>() - d, b.min_corner().get<1>() - d),
-                     BPoint(b.max_corner().get<0>() + d, b.max_corner().get<1>() + d));
-    double best = std::numeric_limits<double>::infinity();
-    for (auto it = tree.qbegin(bgi::intersects(grown)); it != tree.qend(); ++it)
-      best = std::min(best, static_cast<double>(bg::distance(geometry, segments[it->second])));
-    return best;
-  };
-  ShoreLines out;
-  for (const Ring& r : shore.rings) {
-    const std::size_t n = r.points.size();
-    if (n < 3) continue;
-    std::vector<char> vertex_clear(n), segment_clear(n);
-    for (std::size_t k = 0; k < n; ++k) vertex_clear[k] = nearest_within(bp(r.points[k]), clearance) >= clearance;
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t j = (k + 1) % n;
-      segment_clear[k] = vertex_clear[k] && vertex_clear[j] &&
-                         nearest_within(BSegment(bp(r.points[k]), bp(r.points[j])), clearance) >= 0.5 * clearance;
-      out.dropped_segments += !segment_clear[k];
-    }
-    const auto first_gap = std::find(segment_clear.begin(), segment_clear.end(), 0);
-    if (first_gap == segment_clear.end()) {
-      // Closed and clear: two lines, 0 .. n/2 and n/2 .. n (= 0).
-      Ring a{{}, RingRole::Line}, b{{}, RingRole::Line};
-      for (std::size_t k = 0; k <= n / 2; ++k) a.points.push_back(r.points[k]);
-      for (std::size_t k = n / 2; k <= n; ++k) b.points.push_back(r.points[k % n]);
-      out.segments += n;
-      out.lines.push_back(std::move(a));
-      out.lines.push_back(std::move(b));
-      continue;
-    }
-    // Runs of clear segments, starting after a gap so that none wraps. A run goes on into the segments
-    // beside it as far as the clearance holds (bisection), so that it stops about `clearance` from the
-    // domain's ring rather than a whole segment before.
-    auto clip = [&](const Point2& v, const Point2& w) -> std::optional<Point2> {
-      auto at = [&](double t) { return Point2{v[0] + t * (w[0] - v[0]), v[1] + t * (w[1] - v[1])}; };
-      auto ok = [&](double t) {
-        const Point2 p = at(t);
-        return nearest_within(bp(p), clearance) >= clearance &&
-               nearest_within(BSegment(bp(v), bp(p)), clearance) >= 0.5 * clearance;
-      };
-      double lo = 0, hi = 1;
-      for (int i = 0; i < 30; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (ok(mid) ? lo : hi) = mid;
-      }
-      if (lo * std::hypot(w[0] - v[0], w[1] - v[1]) < 0.1 * clearance) return std::nullopt;
-      return at(lo);
-    };
-    const std::size_t start = static_cast<std::size_t>(first_gap - segment_clear.begin());
-    Ring line{{}, RingRole::Line};
-    auto flush = [&] {
-      if (line.points.size() >= 2) out.segments += line.points.size() - 1, out.lines.push_back(line);
-      line.points.clear();
-    };
-    for (std::size_t i = 1; i <= n; ++i) {
-      const std::size_t k = (start + i) % n, next = (k + 1) % n, previous = (k + n - 1) % n;
-      if (!segment_clear[k]) {
-        if (!line.points.empty())
-          if (const auto p = clip(r.points[k], r.points[next])) line.points.push_back(*p);
-        flush();
-        continue;
-      }
-      if (line.points.empty()) {
-        if (!segment_clear[previous])
-          if (const auto p = clip(r.points[k], r.points[previous])) line.points.push_back(*p);
-        line.points.push_back(r.points[k]);
-      }
-      line.points.push_back(r.points[next]);
-    }
-    flush();
-  }
-  return out;
-}
-
-// Even-odd: inside an odd number of the rings (their bounding boxes first).
-class EvenOdd {
- public:
-  explicit EvenOdd(const Domain2& d) : rings_(&d) {
-    for (const Ring& r : d.rings) {
-      Point2 lo = r.points.front(), hi = lo;
-      for (const Point2& p : r.points)
-        for (int i = 0; i < 2; ++i) lo[i] = std::min(lo[i], p[i]), hi[i] = std::max(hi[i], p[i]);
-      boxes_.push_back({lo, hi});
-    }
-  }
-  bool inside(const Point2& p) const {
-    bool in = false;
-    for (std::size_t k = 0; k < rings_->rings.size(); ++k) {
-      const auto& [lo, hi] = boxes_[k];
-      if (p[0] < lo[0] || p[1] < lo[1] || p[0] > hi[0] || p[1] > hi[1]) continue;
-      in ^= ring_contains(rings_->rings[k].points, p);
-    }
-    return in;
-  }
-
- private:
-  const Domain2* rings_;
-  std::vector<std::array<Point2, 2>> boxes_;
-};
 
 std::string metres(double x) { return approx(x, 4) + " m"; }
 
@@ -272,50 +139,10 @@ int run_land_water(const LandWaterRequest& req, Progress& progress) {
   const auto& triangles = session->triangles();
   const auto& heights = session->heights();
 
-  // Water: a triangle whose centroid lies below the shoreline (in the traced contour's water).
-  std::size_t water = 0;
-  if (shore.all_below) {
-    water = triangles.size();
-  } else if (!shore.none_below) {
-    const EvenOdd wet(shore.rings);
-    for (const auto& t : triangles) {
-      const Point2 c{(points[t[0]][0] + points[t[1]][0] + points[t[2]][0]) / 3,
-                     (points[t[0]][1] + points[t[1]][1] + points[t[2]][1]) / 3};
-      water += wet.inside(c);
-    }
-  }
-  // Mesh edges along the shoreline's lines: both ends on one segment of a line (the refinement's splits
-  // are midpoints, on the segment to rounding).
-  std::size_t shore_edges = 0;
-  {
-    std::vector<std::pair<BBox, std::size_t>> boxes;
-    std::vector<BSegment> segs;
-    for (const Ring& l : lines.lines)
-      for (std::size_t k = 0; k + 1 < l.points.size(); ++k) {
-        const BSegment s(bp(l.points[k]), bp(l.points[k + 1]));
-        BBox b;
-        bg::envelope(s, b);
-        boxes.push_back({b, segs.size()});
-        segs.push_back(s);
-      }
-    const bgi::rtree<std::pair<BBox, std::size_t>, bgi::rstar<16>> tree(boxes.begin(), boxes.end());
-    const double tol = 1e-9 * cell;
-    std::vector<std::vector<std::size_t>> on(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const BBox b(BPoint(points[i][0] - tol, points[i][1] - tol), BPoint(points[i][0] + tol, points[i][1] + tol));
-      for (auto it = tree.qbegin(bgi::intersects(b)); it != tree.qend(); ++it)
-        if (bg::distance(bp(points[i]), segs[it->second]) <= tol) on[i].push_back(it->second);
-    }
-    std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
-    for (const auto& t : triangles)
-      for (int k = 0; k < 3; ++k) edges.insert(std::minmax(t[k], t[(k + 1) % 3]));
-    for (const auto& [u, v] : edges)
-      for (std::size_t s : on[u])
-        if (std::find(on[v].begin(), on[v].end(), s) != on[v].end()) {
-          ++shore_edges;
-          break;
-        }
-  }
+  // Water triangles (centroid below the shoreline) and mesh edges along the shoreline's lines.
+  const LandWaterCounts counts =
+      land_water_counts(points, triangles, shore.rings, shore.all_below, shore.none_below, lines.lines, 1e-9 * cell);
+  const std::size_t water = counts.water_triangles, shore_edges = counts.shoreline_edges;
 
   progress.stage("writing " + output.filename().string());
   std::vector<double> depths(heights.size());
