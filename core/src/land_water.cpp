@@ -14,6 +14,8 @@
 #include <set>
 #include <utility>
 
+#include "shoremesh/mesh_water.hpp"
+
 namespace shoremesh {
 
 namespace {
@@ -122,35 +124,6 @@ ShoreLines shoreline_lines(const Domain2& shore, const Domain2& domain, double c
   return out;
 }
 
-namespace {
-
-// Even-odd: inside an odd number of the rings (their bounding boxes first).
-class EvenOdd {
- public:
-  explicit EvenOdd(const Domain2& d) : rings_(&d) {
-    for (const Ring& r : d.rings) {
-      Point2 lo = r.points.front(), hi = lo;
-      for (const Point2& p : r.points)
-        for (int i = 0; i < 2; ++i) lo[i] = std::min(lo[i], p[i]), hi[i] = std::max(hi[i], p[i]);
-      boxes_.push_back({lo, hi});
-    }
-  }
-  bool inside(const Point2& p) const {
-    bool in = false;
-    for (std::size_t k = 0; k < rings_->rings.size(); ++k) {
-      const auto& [lo, hi] = boxes_[k];
-      if (p[0] < lo[0] || p[1] < lo[1] || p[0] > hi[0] || p[1] > hi[1]) continue;
-      in ^= ring_contains(rings_->rings[k].points, p);
-    }
-    return in;
-  }
-
- private:
-  const Domain2* rings_;
-  std::vector<std::array<Point2, 2>> boxes_;
-};
-
-}  // namespace
 
 LandWaterCounts land_water_counts(const std::vector<Point2>& points,
                                   const std::vector<Element<2>>& triangles, const Domain2& shore,
@@ -159,11 +132,11 @@ LandWaterCounts land_water_counts(const std::vector<Point2>& points,
   if (all_below) {
     water = triangles.size();
   } else if (!none_below) {
-    const EvenOdd wet(shore);
+    const WaterTest wet(shore);
     for (const auto& t : triangles) {
       const Point2 c{(points[t[0]][0] + points[t[1]][0] + points[t[2]][0]) / 3,
                      (points[t[0]][1] + points[t[1]][1] + points[t[2]][1]) / 3};
-      water += wet.inside(c);
+      water += wet.classify(c) != WaterSide::Land;  // on the contour: counted as water
     }
   }
   // Mesh edges along the shoreline's lines: both ends on one segment of a line (the refinement's splits
