@@ -166,16 +166,6 @@ struct Cgal<3> {
   }
 };
 
-// Exact coordinates as the key (-0 and +0 are the same point).
-template <int D>
-struct PointHash {
-  std::size_t operator()(const Point<D>& p) const {
-    std::size_t h = 0;
-    for (double x : p) h = h * 0x9E3779B97F4A7C15ull + std::hash<std::uint64_t>{}(std::bit_cast<std::uint64_t>(x + 0.0));
-    return h;
-  }
-};
-
 template <int D>
 std::string describe(const Point<D>& p) {
   std::string s = "(";
@@ -781,43 +771,28 @@ class MeshTriangulation {
       for (const ShoreSegment& s : *list)
         if (s.water) segments.push_back(&s);
     if (segments.empty()) return;
-    // Chains: segments joined through their ends (union-find over the ends).
-    std::unordered_map<Point2, std::size_t, PointHash<2>> end_of;
-    std::vector<std::size_t> parent;
-    auto find = [&](std::size_t x) {
-      while (parent[x] != x) x = parent[x] = parent[parent[x]];
-      return x;
-    };
-    auto node = [&](const Point2& p) {
-      const auto [it, fresh] = end_of.emplace(p, parent.size());
-      if (fresh) parent.push_back(parent.size());
-      return it->second;
-    };
-    for (const ShoreSegment* s : segments) {
-      const std::size_t a = find(node(s->a)), b = find(node(s->b));
-      parent[a] = b;
-    }
+    // Chains: segments joined through their ends.
+    const std::vector<std::size_t> chain = segment_chains(
+        segments.size(), [&](std::size_t i) { return std::pair<const Point2&, const Point2&>(segments[i]->a, segments[i]->b); });
     struct Box {
       Point2 lo, hi, seed;
       bool seeded = false;
     };
-    std::unordered_map<std::size_t, Box> boxes;
-    for (const ShoreSegment* s : segments) {
-      const std::size_t c = find(end_of.at(s->a));
-      auto [it, fresh] = boxes.try_emplace(c, Box{s->a, s->a, s->a});
-      Box& box = it->second;
+    std::vector<Box> ordered;
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+      const ShoreSegment* s = segments[i];
+      if (chain[i] == ordered.size()) ordered.push_back(Box{s->a, s->a, s->a});
+      Box& box = ordered[chain[i]];
       for (const Point2* p : {&s->a, &s->b}) {
-        for (std::size_t i = 0; i < 2; ++i) {
-          box.lo[i] = std::min(box.lo[i], (*p)[i]);
-          box.hi[i] = std::max(box.hi[i], (*p)[i]);
+        for (std::size_t k = 0; k < 2; ++k) {
+          box.lo[k] = std::min(box.lo[k], (*p)[k]);
+          box.hi[k] = std::max(box.hi[k], (*p)[k]);
         }
         // A mesh point to start the walk from, where there is one.
         if (!box.seeded && vertex_of.count(*p)) box.seed = *p, box.seeded = true;
       }
     }
-    // In the order of the boxes' corners, so that the walks do not depend on the hash's order.
-    std::vector<Box> ordered;
-    for (const auto& [c, box] : boxes) ordered.push_back(box);
+    // Walked in the order of the boxes' corners.
     std::sort(ordered.begin(), ordered.end(), [](const Box& x, const Box& y) {
       return std::tie(x.lo, x.hi) < std::tie(y.lo, y.hi);
     });

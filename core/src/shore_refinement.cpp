@@ -23,14 +23,6 @@ namespace bgi = boost::geometry::index;
 using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
 using BBox = bg::model::box<BPoint>;
 
-struct PointHash {
-  std::size_t operator()(const Point2& p) const {
-    const auto h0 = std::hash<std::uint64_t>{}(std::bit_cast<std::uint64_t>(p[0] + 0.0));
-    const auto h1 = std::hash<std::uint64_t>{}(std::bit_cast<std::uint64_t>(p[1] + 0.0));
-    return h0 * 0x9E3779B97F4A7C15ull ^ h1;
-  }
-};
-
 // A ring edge, its ends in lexicographic order so that it has one name whichever way its ring runs.
 struct EdgeKey {
   Point2 a, b;
@@ -38,7 +30,7 @@ struct EdgeKey {
 };
 EdgeKey edge_key(const Point2& p, const Point2& q) { return p < q ? EdgeKey{p, q} : EdgeKey{q, p}; }
 struct EdgeKeyHash {
-  std::size_t operator()(const EdgeKey& e) const { return PointHash{}(e.a) * 31 + PointHash{}(e.b); }
+  std::size_t operator()(const EdgeKey& e) const { return PointHash<2>{}(e.a) * 31 + PointHash<2>{}(e.b); }
 };
 
 // A subsegment of edge `edge`: parameters t0 < t1, dyadic, so exact in doubles.
@@ -91,8 +83,8 @@ struct ShoreRefinement::Impl {
   std::unordered_map<EdgeKey, std::uint32_t, EdgeKeyHash> edge_of;
   // A ring vertex's neighbours on each ring through it (several where rings share a vertex: a .poly's
   // segments meeting there, a line ending on a shore), by ring number. A shared vertex is one point.
-  std::unordered_map<Point2, std::vector<std::pair<std::size_t, Neighbours>>, PointHash> ring_vertex;
-  std::unordered_map<Point2, std::uint32_t, PointHash> split_owner;  // a split point's edge
+  std::unordered_map<Point2, std::vector<std::pair<std::size_t, Neighbours>>, PointHash<2>> ring_vertex;
+  std::unordered_map<Point2, std::uint32_t, PointHash<2>> split_owner;  // a split point's edge
   PointTree points;  // every input point: ring vertices, loose points, split points
   DiskTree disks;    // every subsegment (leaf or split) with the box of its test disk
   mutable engine::PredicateCounters counters;

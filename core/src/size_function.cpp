@@ -16,6 +16,7 @@
 #include "shoremesh/engine/predicates.hpp"
 #include "shoremesh/error.hpp"
 #include "shoremesh/mesh_water.hpp"
+#include "shoremesh/shore_segments.hpp"
 
 namespace shoremesh {
 
@@ -483,12 +484,6 @@ double seed_root(const SizeField& field) {
   return root;
 }
 
-struct PointHash {
-  std::size_t operator()(const Point2& p) const {
-    return std::hash<double>{}(p[0] + 0.0) * 0x9E3779B97F4A7C15ull ^ std::hash<double>{}(p[1] + 0.0);
-  }
-};
-
 struct SeedNode {
   int level;
   std::uint64_t ix, iy;
@@ -662,34 +657,17 @@ std::vector<Point2> update_size_seeds(const SizeField& old_field, const std::vec
   segments_not_in(refined, old_refined, changed);
   std::vector<SegmentEntry> reach_entries;
   std::vector<Rect> water_boxes;
-  {
-    std::unordered_map<Point2, std::size_t, PointHash> group_of;
-    std::vector<std::size_t> parent;
-    auto find = [&](std::size_t x) {
-      while (parent[x] != x) x = parent[x] = parent[parent[x]];
-      return x;
-    };
-    auto vertex = [&](const Point2& p) {
-      const auto [it, fresh] = group_of.emplace(p, parent.size());
-      if (fresh) parent.push_back(parent.size());
-      return it->second;
-    };
-    for (const auto& [a, b] : changed) {
-      const std::size_t x = find(vertex(a)), y = find(vertex(b));
-      parent[x] = y;
-      reach_entries.push_back({bbox(segment_reach(a, b, gamma)), 0});
+  for (const auto& [a, b] : changed) reach_entries.push_back({bbox(segment_reach(a, b, gamma)), 0});
+  const std::vector<std::size_t> chain = segment_chains(changed.size(), [&](std::size_t i) -> const auto& { return changed[i]; });
+  for (std::size_t i = 0; i < changed.size(); ++i) {
+    const auto& [a, b] = changed[i];
+    const Rect r{std::min(a[0], b[0]), std::min(a[1], b[1]), std::max(a[0], b[0]), std::max(a[1], b[1])};
+    if (chain[i] == water_boxes.size()) {
+      water_boxes.push_back(r);
+    } else {
+      Rect& o = water_boxes[chain[i]];
+      o = {std::min(o.x0, r.x0), std::min(o.y0, r.y0), std::max(o.x1, r.x1), std::max(o.y1, r.y1)};
     }
-    std::unordered_map<std::size_t, Rect> boxes;
-    for (const auto& [a, b] : changed) {
-      const std::size_t g = find(group_of.at(a));
-      const Rect r{std::min(a[0], b[0]), std::min(a[1], b[1]), std::max(a[0], b[0]), std::max(a[1], b[1])};
-      const auto [it, fresh] = boxes.emplace(g, r);
-      if (!fresh) {
-        Rect& o = it->second;
-        o = {std::min(o.x0, r.x0), std::min(o.y0, r.y0), std::max(o.x1, r.x1), std::max(o.y1, r.y1)};
-      }
-    }
-    for (const auto& [g, r] : boxes) water_boxes.push_back(r);
   }
   const bgi::rtree<SegmentEntry, bgi::quadratic<16>> reach_index(reach_entries.begin(), reach_entries.end());
   // A node's subtree reads h over its square grown by 3 sides and a few cells (min_over reads pyramid

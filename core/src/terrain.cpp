@@ -55,15 +55,9 @@ constexpr std::size_t kNoSample = std::numeric_limits<std::size_t>::max();
 
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
-struct PointHash {
-  std::size_t operator()(const Point2& p) const {
-    const std::size_t a = std::hash<double>{}(p[0]), b = std::hash<double>{}(p[1]);
-    return a ^ (b + 0x9e3779b97f4a7c15ull + (a << 6) + (a >> 2));
-  }
-};
 struct CornersHash {
   std::size_t operator()(const ElementCorners<2>& c) const {
-    PointHash h;
+    PointHash<2> h;
     return h(c[0]) * 31 + h(c[1]) * 17 + h(c[2]);
   }
 };
@@ -141,8 +135,8 @@ struct TerrainSession::Impl {
   std::optional<ShoreRefinement> refinement;
   std::optional<DynamicWellSpaced<2>> ws;
   std::optional<Mesh2> mesh;
-  std::unordered_map<Point2, std::size_t, PointHash> input_id;    // every engine input point: its id
-  std::unordered_map<Point2, std::size_t, PointHash> sample_at;   // sample input points: their sample
+  std::unordered_map<Point2, std::size_t, PointHash<2>> input_id;    // every engine input point: its id
+  std::unordered_map<Point2, std::size_t, PointHash<2>> sample_at;   // sample input points: their sample
   // Every triangle of the mesh (= the TIN): its error, and the midpoints of its boundary edges that its
   // third corner encroaches; `flagged`: the triangles with an error above the bound or such a midpoint.
   struct TriangleState {
