@@ -543,9 +543,9 @@ void WellSpacedEngine<D>::mark_water_readers(const Point<D>& lo, const Point<D>&
 template <int D>
 std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::apply(std::span<const InputEdit> edits,
                                                                               PropagationStats* stats,
-                                                                              std::span<const RingChange> rings) {
+                                                                              std::span<const WaterEdit> water) {
   if (!recording_) throw std::logic_error("the engine was built for its output only: it cannot be updated");
-  if (!rings.empty() && !water_) throw std::logic_error("ring changes for an engine without a water domain");
+  if (!water.empty() && !water_) throw std::logic_error("ring changes for an engine without a water domain");
   std::vector<VertexId> added;
   for (const InputEdit& e : edits) {
     if (e.add) {
@@ -575,9 +575,9 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::apply(s
   if constexpr (D == 2) {
     // The fills that read the water where it changed (the changed edges, and between old and new ones
     // the parity) decide again (docs/water_only.md).
-    for (const auto& [r, points] : rings) {
+    for (const WaterEdit& edit : water) {
       Point2 lo{2.0, 2.0}, hi{-1.0, -1.0};
-      if (water_->set_ring(r, points, lo, hi)) mark_water_readers(lo, hi);
+      if (water_->apply(edit, lo, hi)) mark_water_readers(lo, hi);
     }
   }
   propagate(stats);

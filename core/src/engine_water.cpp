@@ -55,55 +55,39 @@ WaterRings& WaterRings::operator=(WaterRings&&) noexcept = default;
 std::size_t WaterRings::edge_count() const { return tree_->tree.size(); }
 
 void WaterRings::assign(std::vector<std::vector<Point2>> rings) {
-  rings_ = std::move(rings);
   std::vector<Entry> all;
-  for (auto& ring : rings_) {
-    if (ring.size() < 3) ring.clear();
-    for (std::size_t k = 0; k < ring.size(); ++k) all.push_back(entry(ring[k], ring[(k + 1) % ring.size()]));
-  }
+  for (const auto& ring : rings)
+    if (ring.size() >= 3)
+      for (std::size_t k = 0; k < ring.size(); ++k) all.push_back(entry(ring[k], ring[(k + 1) % ring.size()]));
   tree_->tree = bgi::rtree<Entry, bgi::quadratic<16>>(all.begin(), all.end());  // packed
 }
 
-bool WaterRings::set_ring(std::size_t r, std::vector<Point2> points, Point2& lo, Point2& hi) {
-  if (points.size() < 3) points.clear();
-  if (r >= rings_.size()) rings_.resize(r + 1);
-  std::vector<Point2>& old = rings_[r];
-  if (old == points) return false;
-  const std::size_t no = old.size(), nn = points.size();
-  // The common prefix and suffix: the edges within them stay, the others go or come.
-  const std::size_t m = std::min(no, nn);
-  std::size_t a = 0;
-  while (a < m && old[a] == points[a]) ++a;
-  std::size_t b = 0;
-  while (a + b < m && old[no - 1 - b] == points[nn - 1 - b]) ++b;
+bool WaterRings::apply(const WaterEdit& edit, Point2& lo, Point2& hi) {
   auto grow = [&](const Point2& p) {
     for (int i = 0; i < 2; ++i) {
       lo[i] = std::min(lo[i], p[i]);
       hi[i] = std::max(hi[i], p[i]);
     }
   };
-  // Edge k joins point k to k + 1 (cyclically). Kept: both ends in the prefix, both in the suffix, or the
-  // closing edge when its two ends are kept; every other edge of a non-empty ring changed.
-  auto for_each_changed = [&](const std::vector<Point2>& ring, auto&& f) {
-    const std::size_t n = ring.size();
-    if (n == 0) return;
-    const bool closing_kept = a >= 1 && b >= 1 && no != 0 && nn != 0;
-    const std::size_t first = a >= 1 ? a - 1 : 0;
-    const std::size_t last = n - b;  // edges [first, last) changed (k + 1 reaches the suffix at n - b)
-    for (std::size_t k = first; k < last && k < n; ++k)
-      if (k + 1 < n || !closing_kept) f(ring[k], ring[(k + 1) % n]);
-    if (!closing_kept && (last < n || first >= n)) f(ring[n - 1], ring[0]);
+  // Edge k joins point k to k + 1; a ring's closing edge joins its last point to its first.
+  auto for_each_edge = [&](const std::vector<Point2>& chain, auto&& f) {
+    const std::size_t n = chain.size();
+    if (edit.cyclic && n < 3) return;
+    for (std::size_t k = 0; k + 1 < n; ++k) f(chain[k], chain[k + 1]);
+    if (edit.cyclic) f(chain[n - 1], chain[0]);
   };
-  for_each_changed(old, [&](const Point2& p, const Point2& q) {
+  bool changed = false;
+  for_each_edge(edit.gone, [&](const Point2& p, const Point2& q) {
     tree_->tree.remove(entry(p, q));
     grow(p), grow(q);
+    changed = true;
   });
-  for_each_changed(points, [&](const Point2& p, const Point2& q) {
+  for_each_edge(edit.came, [&](const Point2& p, const Point2& q) {
     tree_->tree.insert(entry(p, q));
     grow(p), grow(q);
+    changed = true;
   });
-  old = std::move(points);
-  return true;
+  return changed;
 }
 
 bool WaterRings::odd_crossings(const Point2& p, PredicateCounters& pc) const {

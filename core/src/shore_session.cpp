@@ -318,9 +318,12 @@ struct ShoreSession<D>::Impl {
           edits.push_back({Edit<D>::Kind::Add, 0, p});
           added.push_back(p);
         }
+        // The engine takes in the water's edges in the stretch alone (the refinement's rings have the edit).
+        std::optional<WaterStretch> water;
+        if (rings && undo) water = WaterStretch{rings->ring, rings->prefix, rings->suffix, undo->middle, rings->middle, rings->whole};
         std::vector<std::size_t> ids;
         try {
-          ids = set->apply(edits, &report);
+          ids = set->apply(edits, &report, water ? std::span<const WaterStretch>(&*water, 1) : std::span<const WaterStretch>());
         } catch (...) {
           refinement->update(one(undo), loose_added, loose_removed);  // the inverse edit: the same splits as before
           throw;

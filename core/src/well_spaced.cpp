@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <optional>
 #include <string>
+#include <utility>
 
 #include "shoremesh/domain.hpp"
 #include "shoremesh/engine/engine.hpp"
@@ -94,7 +97,7 @@ void WellSpacedSet<D>::check_new_point(const Point<D>& p, std::span<const std::s
 
 template <int D>
 std::vector<std::size_t> WellSpacedSet<D>::apply(std::span<const Edit<D>> edits, UpdateReport<D>* report,
-                                                 std::span<const UnitRingChange> rings) {
+                                                 std::span<const engine::WaterEdit> water) {
   // Check everything first, in order, as if applied one by one: an error leaves the set untouched.
   std::vector<std::size_t> removed;
   std::vector<Point<D>> added;
@@ -131,7 +134,7 @@ std::vector<std::size_t> WellSpacedSet<D>::apply(std::span<const Edit<D>> edits,
   for (const Edit<D>& e : edits)
     if (e.kind != Edit<D>::Kind::Remove) engine_edits.push_back(InputEdit{true, e.point, engine::kNoVertex});
   typename WellSpacedEngine<D>::PropagationStats stats;
-  const auto vertices = engine_->apply(engine_edits, &stats, rings);
+  const auto vertices = engine_->apply(engine_edits, &stats, water);
   std::vector<std::size_t> new_ids;
   std::size_t k = 0;
   auto bind = [&](std::size_t id, std::uint32_t v) {
@@ -318,34 +321,136 @@ std::vector<std::vector<Point<2>>> DynamicWellSpaced<D>::water_now() const {
   return out;
 }
 
-// The rings as the source has them now against those the engine has: O(ring points) comparisons, a few
-// hundred microseconds at 200k shore points, and only the changed rings mapped to the unit box.
-template <int D>
-std::vector<UnitRingChange> DynamicWellSpaced<D>::water_changes(std::vector<UnitRingChange>& user) const {
-  std::vector<UnitRingChange> out;
-  user.clear();
-  if constexpr (D != 2) return out;
-  else if (!set_.engine().water()) return out;
-  const Domain2* domain = water_();
-  const std::size_t n = std::max(water_rings_.size(), domain ? domain->rings.size() : 0);
-  static const std::vector<Point2> kNone;
-  for (std::size_t r = 0; r < n; ++r) {
-    const Ring* ring = domain && r < domain->rings.size() ? &domain->rings[r] : nullptr;
-    const bool bounds = ring && ring->closed() && ring->points.size() >= 3;
-    const std::vector<Point2>& now = bounds ? ring->points : kNone;
-    if (now == (r < water_rings_.size() ? water_rings_[r] : kNone)) continue;
-    std::vector<Point2> unit;
-    unit.reserve(now.size());
-    if constexpr (D == 2)
-      for (const Point2& p : now) unit.push_back(box_.to_unit(p));
-    out.emplace_back(r, std::move(unit));
-    user.emplace_back(r, now);
+namespace {
+
+// The open chains of one ring's edit: the edges from the vertex kept before the stretch, through its old
+// (new) points, to the vertex kept after it, where `ring` is the ring after the edit, the stretch
+// `before` -> `after` between its first `prefix` and last `suffix` points. Points the old and new
+// stretch share at either end stay (their edges are unchanged): the chains are the edges that changed,
+// as the longest common prefix and suffix of the old and new ring give them. Both empty when nothing
+// changed; nullopt when no vertex stays (the ring changed as a whole).
+using Chains = std::pair<std::vector<Point2>, std::vector<Point2>>;
+std::optional<Chains> stretch_chains(const std::vector<Point2>& ring, std::size_t prefix, std::size_t suffix,
+                                     std::span<const Point2> before, std::span<const Point2> after) {
+  std::size_t a = 0, b = 0;
+  const std::size_t m = std::min(before.size(), after.size());
+  while (a < m && before[a] == after[a]) ++a;
+  while (a + b < m && before[before.size() - 1 - b] == after[after.size() - 1 - b]) ++b;
+  if (a == before.size() && a == after.size()) return Chains{};
+  prefix += a;
+  suffix += b;
+  if (prefix + suffix == 0) return std::nullopt;
+  const std::size_t n = ring.size();
+  const Point2& from = prefix > 0 ? ring[prefix - 1] : ring[n - 1];
+  const Point2& to = suffix > 0 ? ring[n - suffix] : ring[0];
+  Chains out;
+  for (auto [chain, middle] : {std::pair{&out.first, before.subspan(a, before.size() - a - b)},
+                               std::pair{&out.second, after.subspan(a, after.size() - a - b)}}) {
+    chain->reserve(middle.size() + 2);
+    chain->push_back(from);
+    chain->insert(chain->end(), middle.begin(), middle.end());
+    chain->push_back(to);
   }
   return out;
 }
 
+// Ring `ring` had `before` between its first `prefix` and last `suffix` points and has `after` there now.
+void replace_stretch(std::vector<Point2>& ring, std::size_t prefix, std::size_t suffix, std::span<const Point2> after) {
+  const auto first = ring.begin() + static_cast<std::ptrdiff_t>(prefix);
+  const auto last = ring.end() - static_cast<std::ptrdiff_t>(suffix);
+  ring.insert(ring.erase(first, last), after.begin(), after.end());
+}
+
+constexpr std::size_t kPendingStretches = 4096;  // then the copy is refreshed: O(shore) per that many edits
+
+}  // namespace
+
 template <int D>
-std::vector<std::size_t> DynamicWellSpaced<D>::apply(std::span<const Edit<D>> edits, UpdateReport<D>* report) {
+std::optional<engine::WaterEdit> DynamicWellSpaced<D>::water_edit(const Domain2& domain, const WaterStretch& s) const {
+  if constexpr (D != 2) {
+    (void)domain, (void)s;
+    return std::nullopt;
+  } else {
+    const Ring& ring = domain.rings.at(s.ring);
+    if (!ring.closed()) return std::nullopt;  // a line bounds no water
+    engine::WaterEdit edit;
+    auto to_unit = [&](std::span<const Point2> chain, std::vector<Point2>& out) {
+      out.reserve(chain.size());
+      for (const Point2& p : chain) out.push_back(box_.to_unit(p));
+    };
+    const std::size_t n = ring.points.size(), old_n = n - s.after.size() + s.before.size();
+    std::optional<Chains> chains;
+    if (!s.whole && n >= 3 && old_n >= 3) chains = stretch_chains(ring.points, s.prefix, s.suffix, s.before, s.after);
+    if (!chains) {
+      // A whole ring went and came (a ring with fewer than 3 points bounds nothing and has no edge).
+      std::vector<Point2> old_ring;
+      if (s.whole) {
+        old_ring.assign(s.before.begin(), s.before.end());
+      } else {
+        old_ring.assign(ring.points.begin(), ring.points.begin() + static_cast<std::ptrdiff_t>(s.prefix));
+        old_ring.insert(old_ring.end(), s.before.begin(), s.before.end());
+        old_ring.insert(old_ring.end(), ring.points.end() - static_cast<std::ptrdiff_t>(s.suffix), ring.points.end());
+      }
+      if (old_ring == ring.points) return std::nullopt;
+      edit.cyclic = true;
+      if (old_ring.size() >= 3) to_unit(old_ring, edit.gone);
+      if (n >= 3) to_unit(ring.points, edit.came);
+      return edit;
+    }
+    if (chains->first.empty()) return std::nullopt;
+    to_unit(chains->first, edit.gone);
+    to_unit(chains->second, edit.came);
+    return edit;
+  }
+}
+
+// The rings as the source has them now against those the engine has: O(ring points) comparisons, a few
+// hundred microseconds at 200k shore points, and only the changed stretches mapped to the unit box.
+template <int D>
+std::vector<engine::WaterEdit> DynamicWellSpaced<D>::water_changes(
+    std::vector<std::pair<std::size_t, std::vector<Point<2>>>>& user) {
+  std::vector<engine::WaterEdit> out;
+  user.clear();
+  if constexpr (D != 2) {
+    return out;
+  } else {
+    if (!set_.engine().water()) return out;
+    for (const PendingStretch& s : water_pending_) {  // the copy catches up with the engine
+      if (water_rings_.size() <= s.ring) water_rings_.resize(s.ring + 1);
+      if (s.whole) water_rings_[s.ring] = s.after;
+      else replace_stretch(water_rings_[s.ring], s.prefix, s.suffix, s.after);
+    }
+    water_pending_.clear();
+    const Domain2* domain = water_();
+    const std::size_t n = std::max(water_rings_.size(), domain ? domain->rings.size() : 0);
+    static const std::vector<Point2> kNone;
+    for (std::size_t r = 0; r < n; ++r) {
+      const Ring* ring = domain && r < domain->rings.size() ? &domain->rings[r] : nullptr;
+      const bool bounds = ring && ring->closed() && ring->points.size() >= 3;
+      const std::vector<Point2>& now = bounds ? ring->points : kNone;
+      const std::vector<Point2>& was = r < water_rings_.size() ? water_rings_[r] : kNone;
+      if (now == was) continue;
+      // The longest common prefix and suffix stay (a ring that came or went: none).
+      const std::size_t m = std::min(was.size(), now.size());
+      std::size_t a = 0, b = 0;
+      while (a < m && was[a] == now[a]) ++a;
+      while (a + b < m && was[was.size() - 1 - b] == now[now.size() - 1 - b]) ++b;
+      engine::WaterEdit edit;
+      const std::span<const Point2> before(was.data() + a, was.size() - a - b), after(now.data() + a, now.size() - a - b);
+      const std::optional<Chains> chains = stretch_chains(now, a, b, before, after);
+      edit.cyclic = !chains;
+      for (const Point2& p : chains ? chains->first : was) edit.gone.push_back(box_.to_unit(p));
+      for (const Point2& p : chains ? chains->second : now) edit.came.push_back(box_.to_unit(p));
+      out.push_back(std::move(edit));
+      user.emplace_back(r, now);
+    }
+    return out;
+  }
+}
+
+template <int D>
+std::vector<std::size_t> DynamicWellSpaced<D>::apply_unit(std::span<const Edit<D>> edits, UpdateReport<D>* report,
+                                                          std::span<const engine::WaterEdit> water) {
   std::vector<Edit<D>> unit(edits.begin(), edits.end());
   for (std::size_t k = 0; k < unit.size(); ++k)
     if (unit[k].kind != Edit<D>::Kind::Remove) {
@@ -356,13 +461,7 @@ std::vector<std::size_t> DynamicWellSpaced<D>::apply(std::span<const Edit<D>> ed
         throw InputError("edit " + std::to_string(k + 1) + ": " + e.message());
       }
     }
-  std::vector<UnitRingChange> rings, user_rings;
-  if constexpr (D == 2) rings = water_changes(user_rings);
-  const std::vector<std::size_t> ids = set_.apply(unit, report, rings);
-  for (auto& [r, points] : user_rings) {
-    if (water_rings_.size() <= r) water_rings_.resize(r + 1);
-    water_rings_[r] = std::move(points);
-  }
+  const std::vector<std::size_t> ids = set_.apply(unit, report, water);
   std::size_t next = 0;
   for (const Edit<D>& e : edits) {
     if (e.kind == Edit<D>::Kind::Move) user_inputs_[e.id] = e.point;
@@ -372,6 +471,53 @@ std::vector<std::size_t> DynamicWellSpaced<D>::apply(std::span<const Edit<D>> ed
     }
   }
   to_user(report);
+  return ids;
+}
+
+template <int D>
+std::vector<std::size_t> DynamicWellSpaced<D>::apply(std::span<const Edit<D>> edits, UpdateReport<D>* report) {
+  std::vector<engine::WaterEdit> water;
+  std::vector<std::pair<std::size_t, std::vector<Point<2>>>> user_rings;
+  if constexpr (D == 2) water = water_changes(user_rings);
+  const std::vector<std::size_t> ids = apply_unit(edits, report, water);
+  for (auto& [r, points] : user_rings) {
+    if (water_rings_.size() <= r) water_rings_.resize(r + 1);
+    water_rings_[r] = std::move(points);
+  }
+  return ids;
+}
+
+template <int D>
+std::vector<std::size_t> DynamicWellSpaced<D>::apply(std::span<const Edit<D>> edits, UpdateReport<D>* report,
+                                                     std::span<const WaterStretch> stretches) {
+  std::vector<engine::WaterEdit> water;
+  std::vector<PendingStretch> pending;
+  if constexpr (D == 2) {
+    const Domain2* domain = set_.engine().water() && water_ ? water_() : nullptr;
+    if (domain)
+      for (const WaterStretch& s : stretches)
+        if (auto edit = water_edit(*domain, s)) {
+          water.push_back(std::move(*edit));
+          // As water_now() has the ring: its points when it bounds water, none otherwise.
+          const Ring& ring = domain->rings[s.ring];
+          if (s.whole || ring.points.size() < 3 || ring.points.size() - s.after.size() + s.before.size() < 3)
+            pending.push_back({s.ring, 0, 0, ring.points.size() >= 3 ? ring.points : std::vector<Point2>{}, true});
+          else
+            pending.push_back({s.ring, s.prefix, s.suffix, std::vector<Point2>(s.after.begin(), s.after.end()), false});
+        }
+  } else {
+    (void)stretches;
+  }
+  const std::vector<std::size_t> ids = apply_unit(edits, report, water);
+  if constexpr (D == 2) {
+    if (water_pending_.size() + pending.size() > kPendingStretches) {
+      water_rings_ = water_now();
+      water_pending_.clear();
+    } else {
+      water_pending_.insert(water_pending_.end(), std::make_move_iterator(pending.begin()),
+                            std::make_move_iterator(pending.end()));
+    }
+  }
   return ids;
 }
 

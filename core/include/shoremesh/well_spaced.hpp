@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "shoremesh/box_transform.hpp"
+#include "shoremesh/engine/water_edit.hpp"
 #include "shoremesh/parameters.hpp"
 #include "shoremesh/point.hpp"
 
@@ -23,9 +24,16 @@ template <int D>
 class WellSpacedEngine;  // core/src: quadtree, operations, clipped Voronoi cells
 struct Domain2;          // domain.hpp
 
-// A ring of the water domain that changed, in the unit box: (ring number, its points; empty when it went,
-// is a line or has fewer than 3 points).
-using UnitRingChange = std::pair<std::size_t, std::vector<Point<2>>>;
+// One ring's edit as the WaterSource's owner made it (2D, the user's coordinates): ring `ring` had
+// `before` between its first `prefix` and its last `suffix` points and has `after` there now (the
+// source holds the ring after the edit); `whole`: the ring was `before` and is `after` (prefix and suffix
+// unused: a ring that came, went or changed as a whole). A line's edit may be given too: it bounds no water.
+struct WaterStretch {
+  std::size_t ring = 0;
+  std::size_t prefix = 0, suffix = 0;
+  std::span<const Point<2>> before, after;
+  bool whole = false;
+};
 
 // Work only where the water is (2D, docs/water_only.md): the rings the engine's fills work for, as their
 // owner holds them now (null or without closed rings: everywhere). Asked at the build and before every
@@ -86,9 +94,9 @@ class WellSpacedSet {
   void move(std::size_t id, const Point<D>& unit_point, UpdateReport<D>* report = nullptr);  // keeps the id
   // Several edits, one propagation: returns the ids of the added points (in order). All edits are
   // checked before any is applied.
-  // `rings`: the water's rings that changed with these edits (an engine given water, WellSpacedEngine::set_water).
+  // `water`: the changes of the water's edges with these edits (an engine given water, WellSpacedEngine::set_water).
   std::vector<std::size_t> apply(std::span<const Edit<D>> edits, UpdateReport<D>* report = nullptr,
-                                 std::span<const UnitRingChange> rings = {});
+                                 std::span<const engine::WaterEdit> water = {});
 
   std::size_t input_count() const;
   std::size_t steiner_count() const;
@@ -144,6 +152,11 @@ class DynamicWellSpaced {
   void remove(std::size_t id, UpdateReport<D>* report = nullptr);
   void move(std::size_t id, const Point<D>& p, UpdateReport<D>* report = nullptr);
   std::vector<std::size_t> apply(std::span<const Edit<D>> edits, UpdateReport<D>* report = nullptr);
+  // As apply, with the source's rings changed by exactly `water` since the last edit (2D): the engine
+  // takes in only the edges in those stretches (O(stretch), no ring compared or copied). apply without
+  // them finds the changed rings by comparing every ring with the engine's copy (O(shore)).
+  std::vector<std::size_t> apply(std::span<const Edit<D>> edits, UpdateReport<D>* report,
+                                 std::span<const WaterStretch> water);
   bool has_input(std::size_t id) const { return set_.has_input(id); }
   Point<D> input_point(std::size_t id) const;
   std::vector<std::size_t> input_ids() const { return set_.input_ids(); }
@@ -158,11 +171,26 @@ class DynamicWellSpaced {
   void to_user(UpdateReport<D>* report) const;
   // The water's closed rings now, by ring number, in the user's coordinates (empty: none).
   std::vector<std::vector<Point<2>>> water_now() const;
-  // The rings that differ from water_rings_, in the unit box (and in `user`, as the source has them).
-  std::vector<UnitRingChange> water_changes(std::vector<UnitRingChange>& user) const;
+  // The changes of the rings that differ from water_rings_ (after the stretches not yet in it), in the
+  // unit box; `user`: those rings as the source has them.
+  std::vector<engine::WaterEdit> water_changes(std::vector<std::pair<std::size_t, std::vector<Point<2>>>>& user);
+  // The edit of the engine's edges for one stretch of the source's domain (nothing for a line's).
+  std::optional<engine::WaterEdit> water_edit(const Domain2& domain, const WaterStretch& s) const;
+  std::vector<std::size_t> apply_unit(std::span<const Edit<D>> edits, UpdateReport<D>* report,
+                                      std::span<const engine::WaterEdit> water);
   BoxTransform<D> box_;
   WaterSource water_;
-  std::vector<std::vector<Point<2>>> water_rings_;  // as the engine has them, in the user's coordinates
+  // The closed rings as the engine has them, in the user's coordinates, for apply without stretches.
+  // The stretches given since are not in it (`water_pending_`, in order; a ring's points after a whole
+  // change, empty for none), so that those edits stay O(stretch); it is refreshed from the source when
+  // they pile up, and brought up to date by them before a comparison.
+  struct PendingStretch {
+    std::size_t ring = 0, prefix = 0, suffix = 0;
+    std::vector<Point<2>> after;
+    bool whole = false;
+  };
+  std::vector<std::vector<Point<2>>> water_rings_;
+  std::vector<PendingStretch> water_pending_;
   WellSpacedSet<D> set_;
   std::vector<Point<D>> user_inputs_;  // by id; as the user gave them
 };

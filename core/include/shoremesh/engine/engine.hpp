@@ -124,11 +124,10 @@ class WellSpacedEngine {
   // PropagateWS: input edits applied to the live computation, which then equals build() on the new
   // input. The caller checks the edits first (inside the box, no duplicate input, live ids).
   // Returns the vertex ids of added points, in order.
-  // With a water domain (2D): `rings` are the rings that changed, (ring number, its points in the unit
-  // box; empty when it went, is a line or has fewer than 3 points), taken in before the propagation.
-  using RingChange = std::pair<std::size_t, std::vector<Point2>>;
+  // With a water domain (2D): `water` are the changes of its edges (unit box), taken in before the
+  // propagation; each marks the fills that read the water where it changed.
   std::vector<VertexId> apply(std::span<const InputEdit> edits, PropagationStats* stats = nullptr,
-                              std::span<const RingChange> rings = {});
+                              std::span<const engine::WaterEdit> water = {});
 
   // Work only where the water is (2D; docs/water_only.md): from the next build on, a fill whose vertex's
   // cell cannot meet the closed water of these rings (even-odd; unit-box points; a ring with fewer than 3

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "shoremesh/engine/predicates.hpp"
+#include "shoremesh/engine/water_edit.hpp"
 #include "shoremesh/point.hpp"
 
 namespace shoremesh::engine {
@@ -21,11 +22,11 @@ class WaterRings {
 
   // All rings at once (ring r's points; empty for a line, a removed ring or fewer than 3 points).
   void assign(std::vector<std::vector<Point2>> rings);
-  // Ring r is now `points` (empty: none). Returns whether it changed; when it did, [lo, hi] grows to hold
-  // every edge it lost or gained, and with them the only places whose parity changed (the region between
-  // the old and the new edges).
-  bool set_ring(std::size_t r, std::vector<Point2> points, Point2& lo, Point2& hi);
-  const std::vector<std::vector<Point2>>& rings() const { return rings_; }
+  // Takes the edges `edit` names out and in: O(log n) each, nothing else is walked (the tree holds edges,
+  // not rings). Returns whether any edge changed; when one did, [lo, hi] grows to hold every edge it took
+  // out or in, and with them the only places whose parity changed (the region between the old and the new
+  // edges).
+  bool apply(const WaterEdit& edit, Point2& lo, Point2& hi);
 
   // Whether the closed box [lo, hi] may meet the closed water: some edge meets it, or, when none does,
   // `inside` (a point of the box) lies in the water (then the whole box does: no edge separates them).
@@ -38,7 +39,6 @@ class WaterRings {
   bool odd_crossings(const Point2& p, PredicateCounters& pc) const;
   struct Tree;
   std::unique_ptr<Tree> tree_;
-  std::vector<std::vector<Point2>> rings_;
 };
 
 }  // namespace shoremesh::engine
