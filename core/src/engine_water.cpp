@@ -91,15 +91,31 @@ bool WaterRings::apply(const WaterEdit& edit, Point2& lo, Point2& hi) {
 }
 
 bool WaterRings::odd_crossings(const Point2& p, PredicateCounters& pc) const {
-  // The edges that cross the rightward ray from p, each decided exactly (half-open in y).
+  // The edges that cross a ray from p, each decided exactly (half-open across the ray). p lies on no edge
+  // (the callers found none meeting a box that holds it), so every ray gives the same parity: the one to
+  // the nearest side of the edges' bounds crosses the fewest tree nodes.
+  if (tree_->tree.empty()) return false;
+  const BBox bounds = tree_->tree.bounds();
+  const double gaps[4] = {bounds.max_corner().get<0>() - p[0], p[0] - bounds.min_corner().get<0>(),
+                          bounds.max_corner().get<1>() - p[1], p[1] - bounds.min_corner().get<1>()};
+  const int side = int(std::min_element(gaps, gaps + 4) - gaps);  // right, left, up, down
+  const int along = side < 2 ? 0 : 1, across = 1 - along;       // the ray's axis and the other
+  const bool forward = side % 2 == 0;
+  Point2 far = p;
+  far[along] = forward ? 2.0 : -1.0;  // past every edge: the rings lie in the unit box
+  const BBox ray(Corner(std::min(p[0], far[0]), std::min(p[1], far[1])), Corner(std::max(p[0], far[0]), std::max(p[1], far[1])));
   bool odd = false;
-  const BBox ray(Corner(p[0], p[1]), Corner(2.0, p[1]));
   for (auto it = tree_->tree.qbegin(bgi::intersects(ray)); it != tree_->tree.qend(); ++it) {
     const Edge& e = it->second;
     const Point2 a{e[0], e[1]}, b{e[2], e[3]};
-    if ((a[1] > p[1]) == (b[1] > p[1])) continue;
+    if ((a[across] > p[across]) == (b[across] > p[across])) continue;
+    // The edge crosses the line through p along the ray; o != 0 (p is on no edge). Along x, the crossing
+    // is past p (rightward) when p lies left of the edge directed upward; along y, it is above p when p
+    // lies right of the edge directed rightward.
     const int o = orient2d(pc, a, b, p);
-    if (b[1] > a[1] ? o > 0 : o < 0) odd = !odd;
+    const bool up = b[across] > a[across];
+    const bool ahead = along == 0 ? (up ? o > 0 : o < 0) : (up ? o < 0 : o > 0);
+    if (ahead == forward) odd = !odd;
   }
   return odd;
 }
