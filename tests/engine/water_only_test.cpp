@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -155,8 +156,9 @@ TEST(WaterOnly, FillsOnLandAreSkippedAndNoneInTheWater) {
 }
 
 // Random edits of the rings and the loose points; after each, the output and the operations equal a fresh
-// run's on the edited input with the edited rings.
-TEST(WaterOnly, RingEditsEqualAFreshRun) {
+// run's on the edited input with the edited rings. `stretches`: two edits in three give the engine the
+// edit of the rings as a stretch (as the edit session does), the third none (it compares the rings).
+void ring_edits_equal_a_fresh_run(bool stretches) {
   Lake lake = make_lake();
   DynamicWellSpaced<2> set(lake.points, {}, kBox, BuildFor::Updates, [&] { return &lake.domain; });
   std::mt19937 rng(2026);
@@ -165,6 +167,9 @@ TEST(WaterOnly, RingEditsEqualAFreshRun) {
   for (int attempt = 0; made < 60 && attempt < 1000; ++attempt) {
     const double what = u(rng);
     std::vector<Edit<2>> edits;
+    // The stretch of this edit: its points before and after, kept alive until the apply.
+    std::vector<Point2> before, after;
+    std::optional<WaterStretch> stretch;
     // Ring 0 or a live island, and one of its vertices.
     std::vector<std::size_t> live;
     for (std::size_t r = 0; r < lake.ids.size(); ++r)
@@ -177,17 +182,23 @@ TEST(WaterOnly, RingEditsEqualAFreshRun) {
     if (what < 0.35) {  // move a ring vertex a little toward its next one and off
       const Point2 p{a[0] + 0.3 * (b[0] - a[0]) + 0.2 * (u(rng) - 0.5) * (b[1] - a[1]),
                      a[1] + 0.3 * (b[1] - a[1]) - 0.2 * (u(rng) - 0.5) * (b[0] - a[0])};
+      before = {ring[k]}, after = {p};
+      stretch = WaterStretch{r, k, ring.size() - k - 1, before, after, false};
       ring[k] = p;
       lake.points[ids[k]] = p;
       edits.push_back({Edit<2>::Kind::Move, ids[k], p});
     } else if (what < 0.55) {  // a vertex after it
       const Point2 p{0.5 * (a[0] + b[0]) + 0.1 * (u(rng) - 0.5) * (b[1] - a[1]),
                      0.5 * (a[1] + b[1]) - 0.1 * (u(rng) - 0.5) * (b[0] - a[0])};
+      after = {p};
+      stretch = WaterStretch{r, k + 1, ring.size() - k - 1, before, after, false};
       ring.insert(ring.begin() + static_cast<std::ptrdiff_t>(k + 1), p);
       ids.insert(ids.begin() + static_cast<std::ptrdiff_t>(k + 1), lake.add_point(p));
       edits.push_back({Edit<2>::Kind::Add, 0, p});
     } else if (what < 0.7) {  // remove it
       if (ring.size() <= 5) continue;
+      before = {ring[k]};
+      stretch = WaterStretch{r, k, ring.size() - k - 1, before, after, false};
       edits.push_back({Edit<2>::Kind::Remove, ids[k], {}});
       lake.alive[ids[k]] = false;
       ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
@@ -195,6 +206,8 @@ TEST(WaterOnly, RingEditsEqualAFreshRun) {
     } else if (what < 0.82) {  // an island in the lake
       const Point2 c{35 + 30 * u(rng), 35 + 30 * u(rng)};
       lake.add_ring(polygon(c, 1.5 + 2 * u(rng), 6, 0.05, u(rng) * kTau), RingRole::Island);
+      after = lake.domain.rings.back().points;
+      stretch = WaterStretch{lake.domain.rings.size() - 1, 0, 0, before, after, true};
       for (std::size_t id : lake.ids.back()) edits.push_back({Edit<2>::Kind::Add, 0, lake.points[id]});
       ++island_adds;
     } else if (what < 0.92) {  // an island removed (its number stays, without points)
@@ -205,6 +218,8 @@ TEST(WaterOnly, RingEditsEqualAFreshRun) {
         lake.alive[id] = false;
       }
       lake.ids[gone].clear();
+      before = lake.domain.rings[gone].points;
+      stretch = WaterStretch{gone, 0, 0, before, after, true};
       lake.domain.rings[gone].points.clear();
       ++island_removals;
     } else {  // a loose point, in the water or on land
@@ -213,7 +228,10 @@ TEST(WaterOnly, RingEditsEqualAFreshRun) {
     }
     // The ids the set gives added points are the next ones: as the lake numbers them.
     try {
-      const auto added = set.apply(edits);
+      const bool given = stretches && made % 3 != 2;
+      const auto added = given ? set.apply(edits, nullptr, stretch ? std::span<const WaterStretch>(&*stretch, 1)
+                                                                   : std::span<const WaterStretch>())
+                               : set.apply(edits);
       for (std::size_t j = 0; j < added.size(); ++j) ASSERT_EQ(added[j], lake.points.size() - added.size() + j);
     } catch (const InputError& e) {
       FAIL() << "edit " << made + 1 << " refused: " << e.what();
@@ -231,3 +249,9 @@ TEST(WaterOnly, RingEditsEqualAFreshRun) {
   EXPECT_GT(island_removals, 0);
   EXPECT_EQ(skipped_runs, made);  // every fresh run skipped some fills: the rule was exercised
 }
+
+TEST(WaterOnly, RingEditsEqualAFreshRun) { ring_edits_equal_a_fresh_run(false); }
+
+// The session's way (the edit's stretch, no ring compared), mixed with edits that compare the rings after
+// catching the engine's copy up with the stretches given before.
+TEST(WaterOnly, RingEditsGivenAsStretchesEqualAFreshRun) { ring_edits_equal_a_fresh_run(true); }
