@@ -153,6 +153,23 @@ struct TerrainSession::Impl {
   // A land-and-water TIN: the options' rings instead of the rectangle.
   bool custom() const { return !options.domain.empty(); }
 
+  void check_in_box(const Domain2& d) const {
+    for (const Ring& r : d.rings)
+      for (const Point2& p : r.points)
+        if (!box.contains(p))
+          throw InputError("the TIN's rings reach (" + readable(p[0]) + ", " + readable(p[1]) +
+                           "), more than a cell outside the grid");
+  }
+
+  // The rings' and lines' vertices (the engine's ring inputs before splits), sorted, each once.
+  static std::vector<Point2> ring_points(const Domain2& d) {
+    std::vector<Point2> out;
+    for (const Ring& r : d.rings) out.insert(out.end(), r.points.begin(), r.points.end());
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
   Point2 position(std::size_t s) const {
     return grid.position(static_cast<int>(s % grid.width), static_cast<int>(s / grid.width));
   }
@@ -373,9 +390,12 @@ struct TerrainSession::Impl {
   // Samples become inputs (`added`) or stop being inputs (`removed`): one batch for the rectangle's splits,
   // the engine and the mesh.
   void change_samples(const std::vector<std::size_t>& added, const std::vector<std::size_t>& removed, TerrainUpdate& u,
-                      const std::vector<Point2>& splits_added = {}, const std::vector<Point2>& splits_removed = {}) {
+                      const std::vector<Point2>& splits_added = {}, const std::vector<Point2>& splits_removed = {},
+                      const std::vector<Point2>& ring_gone = {}, const std::vector<Point2>& ring_come = {}) {
     const auto t0 = Clock::now();
     std::vector<Point2> loose_added, loose_removed, gone(splits_removed), come(splits_added);
+    gone.insert(gone.end(), ring_gone.begin(), ring_gone.end());
+    come.insert(come.end(), ring_come.begin(), ring_come.end());
     for (const Point2& p : splits_removed) boundary_splits.erase(p);
     for (const Point2& p : splits_added) boundary_splits.insert(p);
     if (custom()) insert_splits(splits_added);
@@ -425,6 +445,9 @@ struct TerrainSession::Impl {
     u.mesh_ms += ms_since(t1);
     follow(delta, u);
   }
+
+  TerrainUpdate patch(int col, int row, int w, int h, std::span<const float> z, std::span<const std::uint8_t> valid,
+                      const Domain2* domain);
 
   void run_rounds(TerrainUpdate& u) {
     rounds = 0;
@@ -498,8 +521,16 @@ TerrainSession::TerrainSession(HeightGrid grid, const TerrainOptions& options) :
   const std::array<std::size_t, 4> corners = m.corners();
   std::vector<Point2> corner_points;
   for (std::size_t s : corners) corner_points.push_back(m.position(s));
-  for (const Ring& ring : m.options.domain.rings) corner_points.insert(corner_points.end(), ring.points.begin(), ring.points.end());
-  m.box = BoxTransform<2>::fit(corner_points);
+  if (custom) {
+    // The box is a function of the grid alone (not of the rings), so that a patch that moves the rings
+    // keeps the engine's box, as a fresh run on the patched grid has it: the samples' rectangle grown by a
+    // cell (the traced contours lie within half a cell of it).
+    corner_points = {m.grid.position(-1, -1), m.grid.position(m.grid.width, m.grid.height)};
+    m.box = BoxTransform<2>::fit(corner_points);
+    m.check_in_box(m.options.domain);
+  } else {
+    m.box = BoxTransform<2>::fit(corner_points);
+  }
   m.build_engine(m.build);
   m.run_rounds(m.build);
 }
@@ -510,9 +541,25 @@ TerrainSession& TerrainSession::operator=(TerrainSession&&) noexcept = default;
 
 TerrainUpdate TerrainSession::patch(int col, int row, int w, int h, std::span<const float> z,
                                     std::span<const std::uint8_t> valid) {
-  Impl& m = *impl_;
+  if (impl_->custom())
+    throw ParameterError("a TIN inside rings (land and water) is patched with its rings traced on the patched grid");
+  return impl_->patch(col, row, w, h, z, valid, nullptr);
+}
+
+TerrainUpdate TerrainSession::patch(int col, int row, int w, int h, std::span<const float> z,
+                                    std::span<const std::uint8_t> valid, const Domain2& domain) {
+  if (!impl_->custom()) throw ParameterError("the rectangle's TIN takes no rings: patch it without them");
+  if (domain.empty()) throw InputError("a land-and-water TIN needs rings after the patch too");
+  if (const auto defect = find_ring_defect(domain, true))
+    throw InputError("the TIN's rings and lines after the patch: " + defect->describe());
+  impl_->check_in_box(domain);
+  return impl_->patch(col, row, w, h, z, valid, &domain);
+}
+
+TerrainUpdate TerrainSession::Impl::patch(int col, int row, int w, int h, std::span<const float> z,
+                                          std::span<const std::uint8_t> valid, const Domain2* domain) {
+  Impl& m = *this;
   HeightGrid& g = m.grid;
-  if (m.custom()) throw ParameterError("a TIN inside rings (land and water) takes no patches");
   if (w <= 0 || h <= 0 || col < 0 || row < 0 || col > g.width - w || row > g.height - h)
     throw InputError("the patch [" + std::to_string(col) + ", " + std::to_string(col + w) + ") x [" + std::to_string(row) +
                      ", " + std::to_string(row + h) + ") does not lie in the grid of " + std::to_string(g.width) + " x " +
@@ -551,15 +598,16 @@ TerrainUpdate TerrainSession::patch(int col, int row, int w, int h, std::span<co
   // The greedy rounds start again from the seeds: every pick goes (a pick that is now a seed stays).
   // The samples go from `samples` to samples - picks - seeds_removed + corners + seeds_added, computed
   // from the change alone (not a copy of every sample).
-  const std::array<std::size_t, 4> corner_samples = m.corners();
+  std::set<std::size_t> corner_samples;  // inside rings, the grid's corners are no inputs
+  if (!m.custom())
+    for (std::size_t s : m.corners()) corner_samples.insert(s);
   const std::set<std::size_t> staying(seeds_added.begin(), seeds_added.end());
   std::set<std::size_t> leaving(m.picks.begin(), m.picks.end());
   leaving.insert(seeds_removed.begin(), seeds_removed.end());
   std::vector<std::size_t> added, removed;
   for (std::size_t s : leaving)
-    if (!staying.count(s) && std::find(corner_samples.begin(), corner_samples.end(), s) == corner_samples.end())
-      removed.push_back(s);
-  for (const std::set<std::size_t>& from : {staying, std::set<std::size_t>(corner_samples.begin(), corner_samples.end())})
+    if (!staying.count(s) && !corner_samples.count(s)) removed.push_back(s);
+  for (const std::set<std::size_t>& from : {staying, corner_samples})
     for (std::size_t s : from)
       if (!m.samples.count(s)) added.push_back(s);
   u.picks_removed = m.picks.size();
@@ -577,7 +625,33 @@ TerrainUpdate TerrainSession::patch(int col, int row, int w, int h, std::span<co
     u.error_ms += ms_since(t1);
   }
   const std::vector<Point2> splits_removed(m.boundary_splits.begin(), m.boundary_splits.end());
-  if (!added.empty() || !removed.empty() || !splits_removed.empty()) m.change_samples(added, removed, u, {}, splits_removed);
+  if (domain) {
+    // The rings move to the patched grid's contours, in the batch that takes back the picks and splits:
+    // the engine then holds a fresh run's round-0 input (the new rings' points and their canonical
+    // splits), and the rounds replay. A triangle that keeps its corners but whose edge stops or starts
+    // being a constraint is measured again (its encroached midpoints change).
+    const std::vector<Point2> before = ring_points(m.options.domain), after = ring_points(*domain);
+    std::vector<Point2> ring_gone, ring_come;
+    std::set_difference(before.begin(), before.end(), after.begin(), after.end(), std::back_inserter(ring_gone));
+    std::set_difference(after.begin(), after.end(), before.begin(), before.end(), std::back_inserter(ring_come));
+    std::vector<std::pair<Point2, Point2>> edges_before;
+    for (const auto& [e, at] : m.constrained) edges_before.push_back(e);
+    m.options.domain = *domain;
+    m.current = *domain;
+    m.change_samples(added, removed, u, {}, splits_removed, ring_gone, ring_come);
+    std::vector<std::pair<Point2, Point2>> edges_after, edges_changed;
+    for (const auto& [e, at] : m.constrained) edges_after.push_back(e);
+    std::set_symmetric_difference(edges_before.begin(), edges_before.end(), edges_after.begin(), edges_after.end(),
+                                  std::back_inserter(edges_changed));
+    std::set<ElementCorners<2>> again;
+    for (const auto& [a, b] : edges_changed) {
+      const Point2 lo{std::min(a[0], b[0]), std::min(a[1], b[1])}, hi{std::max(a[0], b[0]), std::max(a[1], b[1])};
+      for (const auto& key : m.mesh->elements_meeting(lo, hi)) again.insert(key);
+    }
+    for (const auto& key : again) m.measure_triangle(key, u);
+  } else if (!added.empty() || !removed.empty() || !splits_removed.empty()) {
+    m.change_samples(added, removed, u, {}, splits_removed);
+  }
   m.run_rounds(u);
   return u;
 }
@@ -658,6 +732,12 @@ void TerrainSession::check_valid() const {
   terrain::Seeds fresh_seeds;
   fresh_seeds.build(m.grid, m.options.seed_fraction * m.options.max_error);
   if (fresh_seeds.sorted() != m.seeds.sorted()) throw std::logic_error("the seeds differ from a fresh quadtree");
+  // The input samples are the corners (the rectangle's TIN only), the seeds and the picks, nothing else.
+  std::set<std::size_t> inputs(m.picks.begin(), m.picks.end());
+  for (std::size_t s : m.seeds.sorted()) inputs.insert(s);
+  if (!m.custom())
+    for (std::size_t s : m.corners()) inputs.insert(s);
+  if (inputs != m.samples) throw std::logic_error("the input samples are not the corners, seeds and picks");
 }
 
 }  // namespace shoremesh

@@ -63,7 +63,7 @@ struct TerrainOptions {
   // the TIN covers the water of these rings (even-odd rule), their lines (the shoreline) chains of edges
   // inside it, all in the grid's plane; rings and lines may share vertices. Empty: the rectangle. With a
   // domain, max_error may be infinite (no greedy rounds: the mesh of the rings alone), seeds are refused,
-  // and patch() is refused.
+  // and a patch brings the new rings along. The rings must lie within a cell of the samples' rectangle.
   Domain2 domain;
   // The error bound holds at the valid samples at or above this height (the land of a land-and-water TIN);
   // samples below it are neither measured nor picked.
@@ -105,6 +105,12 @@ class TerrainSession {
   // changed) for a window outside the grid, sizes that do not match, or heights that are not finite.
   TerrainUpdate patch(int col, int row, int w, int h, std::span<const float> z,
                       std::span<const std::uint8_t> valid = {});
+  // A TIN with a domain (land and water): the same, and the domain becomes `domain` (its rings and lines
+  // traced on the patched grid by the caller). The session then equals a fresh TerrainSession on the
+  // patched grid with `domain`. InputError (nothing changed) also for rings with a defect or reaching
+  // more than a cell outside the grid; ParameterError for a session without a domain.
+  TerrainUpdate patch(int col, int row, int w, int h, std::span<const float> z, std::span<const std::uint8_t> valid,
+                      const Domain2& domain);
 
   const HeightGrid& grid() const;
   const TerrainOptions& options() const;
