@@ -449,10 +449,57 @@ struct TerrainSession::Impl {
   TerrainUpdate patch(int col, int row, int w, int h, std::span<const float> z, std::span<const std::uint8_t> valid,
                       const Domain2* domain);
 
+  // Inside rings: midpoints of the constrained edges that a Steiner point encroaches from either side (in
+  // the edge's diametral circle). measure_triangle sees only the apex of the kept triangle on an edge; a
+  // Steiner point outside the domain (the engine fills its whole box) can lie in the diametral circle and
+  // in the kept triangle's circumcircle behind the constraint, which then is not Delaunay and not covered
+  // by the angle bound (docs/terrain.md: 18.77 degrees on the synthetic valley before). Recomputed every
+  // round from the mesh's points (not cached by triangle: the encroacher is no corner of the kept
+  // triangle), so a round stays a function of the TIN and its points.
+  std::vector<Point2> encroached_from_anywhere() {
+    std::vector<Point2> out;
+    if (!custom()) return out;
+    const std::vector<Point2>& pts = mesh->points();
+    auto cell_of = [&](const Point2& p) {
+      const Point2 q = grid.to_grid(p);
+      return std::array<long long, 2>{static_cast<long long>(std::floor(q[0])), static_cast<long long>(std::floor(q[1]))};
+    };
+    std::map<std::array<long long, 2>, std::vector<std::uint32_t>> cells;
+    for (std::uint32_t i = 0; i < pts.size(); ++i)
+      if (!input_id.count(pts[i])) cells[cell_of(pts[i])].push_back(i);
+    for (const auto& [edge, at] : constrained) {
+      const auto& [a, b] = edge;
+      const Point2 mid{0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
+      const Point2 gm = grid.to_grid(mid), ga = grid.to_grid(a);
+      const double half = std::hypot(gm[0] - ga[0], gm[1] - ga[1]);  // in cells
+      if (half <= 1.0 / 1024) continue;  // no split below 1/1024 of a cell, as measure_triangle
+      const double radius = 0.5 * std::hypot(b[0] - a[0], b[1] - a[1]);
+      const double hc = radius / std::abs(grid.dx), hr = radius / std::abs(grid.dy);
+      const long long c0 = static_cast<long long>(std::floor(gm[0] - hc)), c1 = static_cast<long long>(std::floor(gm[0] + hc));
+      const long long r0 = static_cast<long long>(std::floor(gm[1] - hr)), r1 = static_cast<long long>(std::floor(gm[1] + hr));
+      bool encroached = false;
+      const Kernel::Point_2 ka(a[0], a[1]), kb(b[0], b[1]);
+      for (long long r = r0; r <= r1 && !encroached; ++r)
+        for (long long c = c0; c <= c1 && !encroached; ++c) {
+          const auto it = cells.find({c, r});
+          if (it == cells.end()) continue;
+          for (std::uint32_t i : it->second)
+            if (CGAL::angle(ka, Kernel::Point_2(pts[i][0], pts[i][1]), kb) == CGAL::OBTUSE) {
+              encroached = true;
+              break;
+            }
+        }
+      if (!encroached) continue;
+      out.push_back(mid);
+      split_edge.insert_or_assign(mid, std::make_pair(a, b));
+    }
+    return out;
+  }
+
   void run_rounds(TerrainUpdate& u) {
     rounds = 0;
     for (;;) {
-      std::vector<Point2> splits;
+      std::vector<Point2> splits = encroached_from_anywhere();
       const auto t0 = Clock::now();
       std::vector<std::size_t> round = picks_of_round(splits);
       u.error_ms += ms_since(t0);
