@@ -5,7 +5,7 @@
 // DEM; then random patches of the DEM applied to a session, each timed.
 //
 //   bench_terrain (DEM | --synthetic N | --upsample DEM K) --max-error E [E...] [--seed-fraction F]
-//                 [--repeat R] [--patches P --patch-side CELLS] [--no-gh] [--no-session]
+//                 [--repeat R] [--patches P --patch-side CELLS] [--no-gh] [--no-session] [--beta B]
 //                 [--triangle PATH [--triangle-angle A]]
 //
 // Prints one line per configuration: triangles, vertices, max and RMS error measured at every sample,
@@ -336,6 +336,7 @@ int main(int argc, char** argv) {
   bool gh = true, session = true;
   std::string triangle;  // --triangle PATH: the quality reference on the greedy TIN's vertices
   double triangle_angle = 20.7;
+  double beta = 0;  // --beta B: the engine's picking-region radius (0: its default, 2)
   std::vector<double> errors;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -349,13 +350,14 @@ int main(int argc, char** argv) {
     else if (a == "--no-session") session = false;
     else if (a == "--triangle") triangle = argv[++i];
     else if (a == "--triangle-angle") triangle_angle = std::stod(argv[++i]);
+    else if (a == "--beta") beta = std::stod(argv[++i]);
     else if (a == "--max-error")
       while (i + 1 < argc && argv[i + 1][0] != '-') errors.push_back(std::stod(argv[++i]));
     else dem_path = a;
   }
   if (errors.empty() || (dem_path.empty() && synthetic_n == 0)) {
     std::cerr << "usage: bench_terrain (DEM | --synthetic N | --upsample DEM K) --max-error E [E...] [--seed-fraction F] "
-                 "[--repeat R] [--patches P --patch-side CELLS] [--no-gh] [--no-session] [--triangle PATH [--triangle-angle A]]\n";
+                 "[--repeat R] [--patches P --patch-side CELLS] [--no-gh] [--no-session] [--beta B] [--triangle PATH [--triangle-angle A]]\n";
     return 2;
   }
   HeightGrid grid;
@@ -375,6 +377,7 @@ int main(int argc, char** argv) {
       TerrainOptions o;
       o.max_error = e;
       o.seed_fraction = fraction;
+      if (beta > 0) o.engine.beta = beta;
       const auto t0 = Clock::now();
       s.emplace(grid, o);
       times.push_back(ms_since(t0));
