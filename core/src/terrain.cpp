@@ -391,7 +391,8 @@ struct TerrainSession::Impl {
   // the engine and the mesh.
   void change_samples(const std::vector<std::size_t>& added, const std::vector<std::size_t>& removed, TerrainUpdate& u,
                       const std::vector<Point2>& splits_added = {}, const std::vector<Point2>& splits_removed = {},
-                      const std::vector<Point2>& ring_gone = {}, const std::vector<Point2>& ring_come = {}) {
+                      const std::vector<Point2>& ring_gone = {}, const std::vector<Point2>& ring_come = {},
+                      bool rings_replaced = false) {
     const auto t0 = Clock::now();
     std::vector<Point2> loose_added, loose_removed, gone(splits_removed), come(splits_added);
     gone.insert(gone.end(), ring_gone.begin(), ring_gone.end());
@@ -413,7 +414,25 @@ struct TerrainSession::Impl {
       come.push_back(p);
       if (!on_boundary(s)) loose_added.push_back(p);
     }
-    const SplitChange splits = refinement->update(rectangle(), loose_removed, loose_added);
+    const bool new_rings = !ring_gone.empty() || !ring_come.empty() || rings_replaced;
+    SplitChange splits;
+    if (!new_rings) {
+      splits = refinement->update(rectangle(), loose_removed, loose_added);
+    } else {
+      // The rings were traced again: the refinement is made afresh (ShoreRefinement::update matches rings
+      // by their place and keeps a ring's role, and a traced ring list reorders: a line at one index
+      // became a shore ring there, and the mesh lost its water), the split points' change by difference.
+      const std::vector<Point2> old_splits = refinement->split_points();
+      std::vector<Point2> loose;
+      for (std::size_t s : samples)
+        if (!on_boundary(s)) loose.push_back(position(s));
+      refinement.emplace(rectangle(), loose, RefinementRule::for_box(box.side));
+      const std::vector<Point2> new_splits = refinement->split_points();  // sorted
+      std::set_difference(old_splits.begin(), old_splits.end(), new_splits.begin(), new_splits.end(),
+                          std::back_inserter(splits.removed));
+      std::set_difference(new_splits.begin(), new_splits.end(), old_splits.begin(), old_splits.end(),
+                          std::back_inserter(splits.added));
+    }
     if (custom()) index_constrained();
     gone.insert(gone.end(), splits.removed.begin(), splits.removed.end());
     come.insert(come.end(), splits.added.begin(), splits.added.end());
@@ -440,8 +459,31 @@ struct TerrainSession::Impl {
     u.operations += report.operations_touched();
     u.engine_ms += ms_since(t0);
     const auto t1 = Clock::now();
-    const MeshDelta<2> delta =
-        mesh->apply(PointChange<2>::from_update(report, removed_points, added_points), refinement->refined());
+    MeshDelta<2> delta;
+    if (!new_rings) {
+      delta = mesh->apply(PointChange<2>::from_update(report, removed_points, added_points), refinement->refined());
+    } else {
+      // The rings were traced again (a land-and-water patch): the mesh is built afresh on the engine's
+      // points and the new rings, and the delta is the difference of the two triangle sets (Mesh::apply
+      // would need the rings' change as stretches of rings matched by place, which a new tracing does not
+      // give); such a patch replays every pick anyway, so an O(n) mesh costs no more than the rounds.
+      std::vector<ElementCorners<2>> before;
+      before.reserve(triangles.size());
+      for (const auto& [key, st] : triangles) before.push_back(key);
+      std::sort(before.begin(), before.end());
+      const std::vector<Point2> points = ws->points();
+      mesh.emplace(points, ws->input_count(), refinement->refined());
+      mesh->canonicalize_ties();
+      std::vector<ElementCorners<2>> after;
+      for (const auto& e : mesh->elements()) {
+        ElementCorners<2> c{points[e[0]], points[e[1]], points[e[2]]};
+        std::sort(c.begin(), c.end());
+        after.push_back(c);
+      }
+      std::sort(after.begin(), after.end());
+      std::set_difference(before.begin(), before.end(), after.begin(), after.end(), std::back_inserter(delta.removed));
+      std::set_difference(after.begin(), after.end(), before.begin(), before.end(), std::back_inserter(delta.added));
+    }
     u.mesh_ms += ms_since(t1);
     follow(delta, u);
   }
@@ -685,7 +727,7 @@ TerrainUpdate TerrainSession::Impl::patch(int col, int row, int w, int h, std::s
     for (const auto& [e, at] : m.constrained) edges_before.push_back(e);
     m.options.domain = *domain;
     m.current = *domain;
-    m.change_samples(added, removed, u, {}, splits_removed, ring_gone, ring_come);
+    m.change_samples(added, removed, u, {}, splits_removed, ring_gone, ring_come, true);
     std::vector<std::pair<Point2, Point2>> edges_after, edges_changed;
     for (const auto& [e, at] : m.constrained) edges_after.push_back(e);
     std::set_symmetric_difference(edges_before.begin(), edges_before.end(), edges_after.begin(), edges_after.end(),

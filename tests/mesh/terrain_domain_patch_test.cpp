@@ -33,16 +33,17 @@ HeightGrid valley(int w = 60, int h = 50) {
 Point2 at(const HeightGrid& g, double c, double r) { return {g.x0 + c * g.dx, g.y0 + r * g.dy}; }
 
 // The rings of terrain_domain_test.cpp, with one outer vertex and the open line's middle vertex moved by
-// (du, dv) cells, and the island present or not (a ring that goes and comes).
+// (du, dv) cells, and the island present or not (a ring that goes and comes, first in the list: every
+// other ring changes its place, a line's place taken by a closed ring, as a new tracing can do).
 Domain2 rings(const HeightGrid& g, double du, double dv, bool island) {
   Domain2 d;
+  if (island) d.rings.push_back({{at(g, 30, 30), at(g, 36, 31), at(g, 34, 37)}, RingRole::Island});
   d.rings.push_back(
       {{at(g, 5, 3), at(g, 40, 2.5), at(g, 55 + du, 20 + dv), at(g, 50, 46), at(g, 12, 47), at(g, 2.5, 25)}, RingRole::Shore});
   d.rings.push_back({{at(g, 20.3, 8.1), at(g, 22.7 + dv, 20.4 + du), at(g, 24.1, 33.3)}, RingRole::Line});
   const std::vector<Point2> loop = {at(g, 33.2, 8.3), at(g, 39.6, 9.1), at(g, 40.9, 15.2), at(g, 34.1, 16.7)};
   d.rings.push_back({{loop[0], loop[1], loop[2]}, RingRole::Line});
   d.rings.push_back({{loop[2], loop[3], loop[0]}, RingRole::Line});
-  if (island) d.rings.push_back({{at(g, 30, 30), at(g, 36, 31), at(g, 34, 37)}, RingRole::Island});
   return d;
 }
 
