@@ -31,7 +31,11 @@
 #include <string>
 #include <vector>
 
+#include "shoremesh/box_transform.hpp"
 #include "shoremesh/io/dem.hpp"
+#include "shoremesh/mesh.hpp"
+#include "shoremesh/shore_refinement.hpp"
+#include "shoremesh/well_spaced.hpp"
 #include "shoremesh/terrain.hpp"
 
 namespace {
@@ -289,6 +293,57 @@ QualityRef triangle_quality(const HeightGrid& g, std::vector<std::size_t> sample
   }
 }
 
+// ---- The engine alone on a given vertex set ------------------------------------------------------------
+// StableWS on `samples` exactly as TerrainSession feeds it (the rectangle through the boundary samples with
+// its canonical splits, the other samples loose, the box fitted to the grid's corners), and the constrained
+// Delaunay mesh of its output inside the rectangle: how many Steiner points the engine needs for these
+// vertices, to set against Triangle's on the same ones (where the terrain's excess comes from).
+struct EngineOn {
+  std::size_t inputs = 0, splits = 0, steiner = 0, steiner_inside = 0, triangles = 0;
+  double ms = 0;
+};
+
+EngineOn engine_on(const HeightGrid& g, const std::vector<std::size_t>& samples, const Parameters<2>& params) {
+  const auto t0 = Clock::now();
+  std::vector<std::uint8_t> is_sample(g.z.size(), 0);
+  for (std::size_t s : samples) is_sample[s] = 1;
+  for (std::size_t s : {g.index(0, 0), g.index(g.width - 1, 0), g.index(0, g.height - 1), g.index(g.width - 1, g.height - 1)})
+    is_sample[s] = 1;
+  Domain2 rect;
+  rect.rings.push_back({{}, RingRole::Shore});
+  auto take = [&](int c, int r) { if (is_sample[g.index(c, r)]) rect.rings[0].points.push_back(g.position(c, r)); };
+  for (int c = 0; c < g.width; ++c) take(c, 0);
+  for (int r = 1; r < g.height; ++r) take(g.width - 1, r);
+  for (int c = g.width - 2; c >= 0; --c) take(c, g.height - 1);
+  for (int r = g.height - 2; r >= 1; --r) take(0, r);
+  std::vector<Point2> loose;
+  for (int r = 1; r + 1 < g.height; ++r)
+    for (int c = 1; c + 1 < g.width; ++c)
+      if (is_sample[g.index(c, r)]) loose.push_back(g.position(c, r));
+  const std::vector<Point2> corners = {g.position(0, 0), g.position(g.width - 1, g.height - 1)};
+  const BoxTransform<2> box = BoxTransform<2>::fit(corners);
+  const ShoreRefinement refinement(rect, loose, RefinementRule::for_box(box.side));
+  std::vector<Point2> inputs(rect.rings[0].points);
+  inputs.insert(inputs.end(), loose.begin(), loose.end());
+  const std::vector<Point2> splits = refinement.split_points();
+  inputs.insert(inputs.end(), splits.begin(), splits.end());
+  const DynamicWellSpaced<2> ws(inputs, params, box, BuildFor::OutputOnly);
+  const std::vector<Point2> points = ws.points();
+  const Mesh<2> mesh(points, ws.input_count(), refinement.refined());
+  EngineOn e;
+  e.inputs = ws.input_count(), e.splits = splits.size(), e.steiner = ws.steiner_count();
+  e.triangles = mesh.elements().size();
+  const Point2 lo = g.position(0, 0), hi = g.position(g.width - 1, g.height - 1);
+  for (std::size_t k = ws.input_count(); k < points.size(); ++k) {
+    const Point2& p = points[k];
+    if (p[0] > std::min(lo[0], hi[0]) && p[0] < std::max(lo[0], hi[0]) && p[1] > std::min(lo[1], hi[1]) &&
+        p[1] < std::max(lo[1], hi[1]))
+      ++e.steiner_inside;
+  }
+  e.ms = ms_since(t0);
+  return e;
+}
+
 // ---- DEMs ------------------------------------------------------------------------------------------------
 // Octave noise on an n x n lattice of 30 m cells: six octaves of hills, 400 m down to 4 m high, the
 // shortest waves n / 32 cells long.
@@ -337,6 +392,8 @@ int main(int argc, char** argv) {
   std::string triangle;  // --triangle PATH: the quality reference on the greedy TIN's vertices
   double triangle_angle = 20.7;
   double beta = 0;  // --beta B: the engine's picking-region radius (0: its default, 2)
+  double pick_spacing = 0;  // --pick-spacing S: TerrainOptions::pick_spacing
+  bool engine_alone = false;  // --engine-on: StableWS alone on the greedy TIN's vertices and on our own samples
   std::vector<double> errors;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -351,13 +408,15 @@ int main(int argc, char** argv) {
     else if (a == "--triangle") triangle = argv[++i];
     else if (a == "--triangle-angle") triangle_angle = std::stod(argv[++i]);
     else if (a == "--beta") beta = std::stod(argv[++i]);
+    else if (a == "--engine-on") engine_alone = true;
+    else if (a == "--pick-spacing") pick_spacing = std::stod(argv[++i]);
     else if (a == "--max-error")
       while (i + 1 < argc && argv[i + 1][0] != '-') errors.push_back(std::stod(argv[++i]));
     else dem_path = a;
   }
   if (errors.empty() || (dem_path.empty() && synthetic_n == 0)) {
     std::cerr << "usage: bench_terrain (DEM | --synthetic N | --upsample DEM K) --max-error E [E...] [--seed-fraction F] "
-                 "[--repeat R] [--patches P --patch-side CELLS] [--no-gh] [--no-session] [--beta B] [--triangle PATH [--triangle-angle A]]\n";
+                 "[--repeat R] [--patches P --patch-side CELLS] [--no-gh] [--no-session] [--beta B] [--triangle PATH [--triangle-angle A]] [--engine-on] [--pick-spacing S]\n";
     return 2;
   }
   HeightGrid grid;
@@ -378,6 +437,7 @@ int main(int argc, char** argv) {
       o.max_error = e;
       o.seed_fraction = fraction;
       if (beta > 0) o.engine.beta = beta;
+      o.pick_spacing = pick_spacing;
       const auto t0 = Clock::now();
       s.emplace(grid, o);
       times.push_back(ms_since(t0));
@@ -413,6 +473,35 @@ int main(int argc, char** argv) {
                   "of %d; shoremesh/gh triangles %.2f\n",
                   e, r.triangles, r.vertices, r.max_error, r.rms, r.min_angle, median(gtimes), repeat,
                   double(s->triangles().size()) / double(r.triangles));
+      if (engine_alone) {
+        Parameters<2> params;
+        if (beta > 0) params.beta = beta;
+        const EngineOn a = engine_on(grid, r.samples, params);
+        std::printf("engine alone on the greedy vertices E=%g: %zu inputs (%zu rectangle splits), %zu Steiner (%zu inside "
+                    "the rectangle), %zu triangles (%.2f x greedy), %.1f ms\n",
+                    e, a.inputs, a.splits, a.steiner, a.steiner_inside, a.triangles, double(a.triangles) / double(r.triangles), a.ms);
+        // Our own session's samples (its picks and corners; its boundary halvings are left out) through the
+        // engine alone and through Triangle: is the excess in our picks or in the refinement?
+        std::vector<std::size_t> ours;
+        for (std::size_t k = 0; k < s->points().size(); ++k) {
+          if (s->kinds()[k] != PointKind::Input) continue;
+          const Point2 c = grid.to_grid(s->points()[k]);
+          const double rc = std::round(c[0]), rr = std::round(c[1]);
+          if (c[0] == rc && c[1] == rr) ours.push_back(grid.index(int(rc), int(rr)));
+        }
+        std::sort(ours.begin(), ours.end());
+        const EngineOn o = engine_on(grid, ours, params);
+        std::printf("engine alone on our %zu samples E=%g: %zu inputs, %zu Steiner (%zu inside), %zu triangles (session: "
+                    "%zu Steiner, %zu triangles)\n",
+                    ours.size(), e, o.inputs, o.steiner, o.steiner_inside, o.triangles, s->steiner_count(), s->triangles().size());
+        if (!triangle.empty()) {
+          const QualityRef q = triangle_quality(grid, ours, e, triangle, triangle_angle, "/tmp/bench_terrain_quality");
+          std::printf("triangle -pq%g on our samples E=%g: %zu triangles (%.2f x greedy), %zu vertices, max %.4g; until "
+                      "within E: %zu triangles, %zu passes\n",
+                      triangle_angle, e, q.first_triangles, double(q.first_triangles) / double(r.triangles), q.vertices,
+                      q.first_max_error, q.triangles, q.passes);
+        }
+      }
       if (!triangle.empty()) {
         const QualityRef q = triangle_quality(grid, r.samples, e, triangle, triangle_angle, "/tmp/bench_terrain_quality");
         std::printf("triangle -pq%g on the greedy vertices E=%g: %zu triangles (%.2f x greedy), max %.4g; then with the "

@@ -338,16 +338,67 @@ struct TerrainSession::Impl {
   // that have either.
   std::vector<std::size_t> picks_of_round(std::vector<Point2>& splits) const {
     std::vector<std::size_t> out;
+    // Candidates: sample -> (error, the longest edge squared of its triangles, in cells).
+    std::map<std::size_t, std::pair<double, double>> candidates;
     for (const auto& key : flagged) {
       const TriangleState& st = triangles.at(key);
-      if (st.error.error > options.max_error && st.error.sample != kNoSample && !samples.count(st.error.sample))
+      if (st.error.error > options.max_error && st.error.sample != kNoSample && !samples.count(st.error.sample)) {
         out.push_back(st.error.sample);
+        if (options.pick_spacing > 0) {
+          double longest = 0;
+          for (int k = 0; k < 3; ++k) {
+            const Point2 a = grid.to_grid(key[k]), b = grid.to_grid(key[(k + 1) % 3]);
+            longest = std::max(longest, (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]));
+          }
+          auto& c = candidates[st.error.sample];
+          c.first = st.error.error;
+          c.second = std::max(c.second, longest);
+        }
+      }
       splits.insert(splits.end(), st.splits.begin(), st.splits.end());
     }
     std::sort(splits.begin(), splits.end());
     splits.erase(std::unique(splits.begin(), splits.end()), splits.end());
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
+    if (options.pick_spacing > 0) out = thin_picks(candidates);
+    return out;
+  }
+
+  // The candidates that are local maxima of the error: none better (larger error, ties the smaller index)
+  // within pick_spacing times its triangle's longest edge. Distances between lattice samples are exact in
+  // integers; the candidates are a function of the TIN, so the kept ones are too, whatever their order.
+  std::vector<std::size_t> thin_picks(const std::map<std::size_t, std::pair<double, double>>& candidates) const {
+    constexpr long long kBucket = 16;  // cells per bucket side
+    std::unordered_map<long long, std::vector<std::size_t>> buckets;
+    const long long w = grid.width, span = (w + kBucket - 1) / kBucket + 1;
+    auto bucket_of = [&](long long c, long long r) { return (r / kBucket) * span + c / kBucket; };
+    for (const auto& [s, v] : candidates) buckets[bucket_of(static_cast<long long>(s) % w, static_cast<long long>(s) / w)].push_back(s);
+    auto better = [&](std::size_t a, std::size_t b) {  // a before b
+      const double ea = candidates.at(a).first, eb = candidates.at(b).first;
+      return ea > eb || (ea == eb && a < b);
+    };
+    std::vector<std::size_t> out;
+    for (const auto& [s, v] : candidates) {
+      const long long c = static_cast<long long>(s) % w, r = static_cast<long long>(s) / w;
+      const double reach2 = options.pick_spacing * options.pick_spacing * v.second;
+      const long long reach = static_cast<long long>(std::ceil(std::sqrt(reach2)));
+      bool kept = true;
+      for (long long br = std::max(0LL, r - reach) / kBucket; kept && br <= (r + reach) / kBucket; ++br)
+        for (long long bc = std::max(0LL, c - reach) / kBucket; kept && bc <= (c + reach) / kBucket; ++bc) {
+          const auto it = buckets.find(br * span + bc);
+          if (it == buckets.end()) continue;
+          for (std::size_t o : it->second) {
+            if (o == s || !better(o, s)) continue;
+            const long long dc = static_cast<long long>(o) % w - c, dr = static_cast<long long>(o) / w - r;
+            if (static_cast<double>(dc * dc + dr * dr) < reach2) {
+              kept = false;
+              break;
+            }
+          }
+        }
+      if (kept) out.push_back(s);
+    }
     return out;
   }
 
@@ -576,6 +627,8 @@ TerrainSession::TerrainSession(HeightGrid grid, const TerrainOptions& options) :
   if (custom && options.seed_fraction != 0)
     throw ParameterError("seeds are for the rectangle's TIN, not for a TIN inside rings");
   if (std::isnan(options.bound_from)) throw ParameterError("the height the error bound applies from is NaN");
+  if (!(options.pick_spacing >= 0 && std::isfinite(options.pick_spacing)))
+    throw ParameterError("the picks' spacing must be a finite number >= 0 (got " + readable(options.pick_spacing) + ")");
   if (custom)
     if (const auto defect = find_ring_defect(options.domain, true))
       throw InputError("the TIN's rings and lines: " + defect->describe());
