@@ -392,7 +392,7 @@ int main(int argc, char** argv) {
   std::string triangle;  // --triangle PATH: the quality reference on the greedy TIN's vertices
   double triangle_angle = 20.7;
   double beta = 0;  // --beta B: the engine's picking-region radius (0: its default, 2)
-  double pick_spacing = 0;  // --pick-spacing S: TerrainOptions::pick_spacing
+  double pick_spacing = TerrainOptions{}.pick_spacing;  // --pick-spacing S
   bool engine_alone = false;  // --engine-on: StableWS alone on the greedy TIN's vertices and on our own samples
   std::vector<double> errors;
   for (int i = 1; i < argc; ++i) {
@@ -496,10 +496,10 @@ int main(int argc, char** argv) {
                     ours.size(), e, o.inputs, o.steiner, o.steiner_inside, o.triangles, s->steiner_count(), s->triangles().size());
         if (!triangle.empty()) {
           const QualityRef q = triangle_quality(grid, ours, e, triangle, triangle_angle, "/tmp/bench_terrain_quality");
-          std::printf("triangle -pq%g on our samples E=%g: %zu triangles (%.2f x greedy), %zu vertices, max %.4g; until "
-                      "within E: %zu triangles, %zu passes\n",
-                      triangle_angle, e, q.first_triangles, double(q.first_triangles) / double(r.triangles), q.vertices,
-                      q.first_max_error, q.triangles, q.passes);
+          std::printf("triangle -pq%g on our samples E=%g: %zu triangles (%.2f x greedy), max %.4g; until within E: %zu "
+                      "triangles, %zu vertices, %zu passes\n",
+                      triangle_angle, e, q.first_triangles, double(q.first_triangles) / double(r.triangles),
+                      q.first_max_error, q.triangles, q.vertices, q.passes);
         }
       }
       if (!triangle.empty()) {
