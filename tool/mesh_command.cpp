@@ -29,6 +29,8 @@ struct MeshOptions {
   EngineArgs engine;
   SizeArgs size;
   std::string format;
+  std::string edits;  // --land-up-to only (land_water.cpp)
+  bool json = false;
 };
 
 // Every output of the run, checked before any work and written together at the end (io::OutputBatch):
@@ -134,6 +136,11 @@ Command add_mesh_command(CLI::App& app) {
   add_size_options(cmd, opt->size);
   cmd->add_option("--format", opt->format, "Output format (default: from the output's extension)")
       ->check(CLI::IsMember({"msh", "vtu", "node", "fort14", "geojson", "obj", "ply", "off"}));
+  cmd->add_option("--edits", opt->edits,
+                  "--land-up-to: after the build, edit lines from FILE or '-' (standard input): dem-patch FILE (a "
+                  "window of new heights; the contours and the mesh follow, equal to a fresh run on the patched DEM) "
+                  "| export PATH | stats; -o is written after the last line");
+  cmd->add_flag("--json", opt->json, "--edits: reply to each edit line with one JSON object");
   cmd->footer(
       "Examples:\n"
       "  shoremesh mesh samples/superior/superior_watermask_h.png --largest-water --spacing 5000 \\\n"
@@ -144,13 +151,15 @@ Command add_mesh_command(CLI::App& app) {
     Progress progress(!opt->in.quiet && Progress::stderr_is_terminal(), opt->in.files.size() + 4);
     opt->in.three_d = opt->engine.dim == 3;
     if (opt->in.land_up_to) {
-      LandWaterRequest req{opt->in, opt->output, opt->format, opt->preview, opt->engine.rho, std::nullopt};
+      LandWaterRequest req{opt->in, opt->output, opt->format, opt->preview, opt->engine.rho, std::nullopt, opt->edits, opt->json};
       if (opt->size.any()) req.other_options = "size control (--max-size and the other size options)";
       else if (!opt->engine.box.empty()) req.other_options = "--box";
       else if (opt->engine.dim == 3) req.other_options = "--dim 3";
       else if (opt->engine.keep_hull) req.other_options = "--keep-hull";
       return run_land_water(req, progress);
     }
+    if (!opt->edits.empty() || opt->json)
+      throw ParameterError("--edits and --json are for --land-up-to meshes (water meshes are edited with `edit`)");
     const io::InputSet set = read_user_inputs(opt->in, progress);
     const int dim = opt->engine.dim != 0 ? opt->engine.dim : set.dimension;
     return dim == 3 ? run_mesh<3>(*opt, set, progress) : run_mesh<2>(*opt, set, progress);

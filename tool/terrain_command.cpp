@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "dem_patch.hpp"
 #include "edit_session.hpp"
 #include "input_args.hpp"
 #include "pipeline.hpp"
@@ -29,25 +30,6 @@
 
 namespace shoremesh::tool {
 
-namespace {
-
-struct TerrainOptionsArgs {
-  std::string dem;
-  double max_error = std::nan("");
-  double seed_fraction = 0;
-  std::string output, format, preview;
-  std::vector<std::string> patches;
-  std::string edits;  // edit lines (dem-patch FILE, export PATH, stats), '-' for standard input
-  bool json = false;
-  PreviewArgs preview_args;
-  double rho = std::numbers::sqrt2;
-  bool quiet = false;
-};
-
-// Where a patch raster lies in the DEM: its cells must be the DEM's (same size, whole-cell offset).
-struct PatchWindow {
-  int col = 0, row = 0;
-};
 PatchWindow locate_patch(const io::Dem& dem, const io::Dem& patch) {
   const auto &a = dem.geotransform, &b = patch.geotransform;
   auto same = [](double x, double y) { return std::abs(x - y) <= 1e-9 * std::max(std::abs(x), std::abs(y)); };
@@ -71,6 +53,21 @@ PatchWindow locate_patch(const io::Dem& dem, const io::Dem& patch) {
                      patch.file);
   return {static_cast<int>(cr), static_cast<int>(rr)};
 }
+
+namespace {
+
+struct TerrainOptionsArgs {
+  std::string dem;
+  double max_error = std::nan("");
+  double seed_fraction = 0;
+  std::string output, format, preview;
+  std::vector<std::string> patches;
+  std::string edits;  // edit lines (dem-patch FILE, export PATH, stats), '-' for standard input
+  bool json = false;
+  PreviewArgs preview_args;
+  double rho = std::numbers::sqrt2;
+  bool quiet = false;
+};
 
 std::string ms(double x) { return approx(x, 3) + " ms"; }
 

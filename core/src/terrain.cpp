@@ -153,6 +153,23 @@ struct TerrainSession::Impl {
   // A land-and-water TIN: the options' rings instead of the rectangle.
   bool custom() const { return !options.domain.empty(); }
 
+  void check_in_box(const Domain2& d) const {
+    for (const Ring& r : d.rings)
+      for (const Point2& p : r.points)
+        if (!box.contains(p))
+          throw InputError("the TIN's rings reach (" + readable(p[0]) + ", " + readable(p[1]) +
+                           "), more than a cell outside the grid");
+  }
+
+  // The rings' and lines' vertices (the engine's ring inputs before splits), sorted, each once.
+  static std::vector<Point2> ring_points(const Domain2& d) {
+    std::vector<Point2> out;
+    for (const Ring& r : d.rings) out.insert(out.end(), r.points.begin(), r.points.end());
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
   Point2 position(std::size_t s) const {
     return grid.position(static_cast<int>(s % grid.width), static_cast<int>(s / grid.width));
   }
@@ -321,16 +338,67 @@ struct TerrainSession::Impl {
   // that have either.
   std::vector<std::size_t> picks_of_round(std::vector<Point2>& splits) const {
     std::vector<std::size_t> out;
+    // Candidates: sample -> (error, the longest edge squared of its triangles, in cells).
+    std::map<std::size_t, std::pair<double, double>> candidates;
     for (const auto& key : flagged) {
       const TriangleState& st = triangles.at(key);
-      if (st.error.error > options.max_error && st.error.sample != kNoSample && !samples.count(st.error.sample))
+      if (st.error.error > options.max_error && st.error.sample != kNoSample && !samples.count(st.error.sample)) {
         out.push_back(st.error.sample);
+        if (options.pick_spacing > 0) {
+          double longest = 0;
+          for (int k = 0; k < 3; ++k) {
+            const Point2 a = grid.to_grid(key[k]), b = grid.to_grid(key[(k + 1) % 3]);
+            longest = std::max(longest, (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]));
+          }
+          auto& c = candidates[st.error.sample];
+          c.first = st.error.error;
+          c.second = std::max(c.second, longest);
+        }
+      }
       splits.insert(splits.end(), st.splits.begin(), st.splits.end());
     }
     std::sort(splits.begin(), splits.end());
     splits.erase(std::unique(splits.begin(), splits.end()), splits.end());
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
+    if (options.pick_spacing > 0) out = thin_picks(candidates);
+    return out;
+  }
+
+  // The candidates that are local maxima of the error: none better (larger error, ties the smaller index)
+  // within pick_spacing times its triangle's longest edge. Distances between lattice samples are exact in
+  // integers; the candidates are a function of the TIN, so the kept ones are too, whatever their order.
+  std::vector<std::size_t> thin_picks(const std::map<std::size_t, std::pair<double, double>>& candidates) const {
+    constexpr long long kBucket = 16;  // cells per bucket side
+    std::unordered_map<long long, std::vector<std::size_t>> buckets;
+    const long long w = grid.width, span = (w + kBucket - 1) / kBucket + 1;
+    auto bucket_of = [&](long long c, long long r) { return (r / kBucket) * span + c / kBucket; };
+    for (const auto& [s, v] : candidates) buckets[bucket_of(static_cast<long long>(s) % w, static_cast<long long>(s) / w)].push_back(s);
+    auto better = [&](std::size_t a, std::size_t b) {  // a before b
+      const double ea = candidates.at(a).first, eb = candidates.at(b).first;
+      return ea > eb || (ea == eb && a < b);
+    };
+    std::vector<std::size_t> out;
+    for (const auto& [s, v] : candidates) {
+      const long long c = static_cast<long long>(s) % w, r = static_cast<long long>(s) / w;
+      const double reach2 = options.pick_spacing * options.pick_spacing * v.second;
+      const long long reach = static_cast<long long>(std::ceil(std::sqrt(reach2)));
+      bool kept = true;
+      for (long long br = std::max(0LL, r - reach) / kBucket; kept && br <= (r + reach) / kBucket; ++br)
+        for (long long bc = std::max(0LL, c - reach) / kBucket; kept && bc <= (c + reach) / kBucket; ++bc) {
+          const auto it = buckets.find(br * span + bc);
+          if (it == buckets.end()) continue;
+          for (std::size_t o : it->second) {
+            if (o == s || !better(o, s)) continue;
+            const long long dc = static_cast<long long>(o) % w - c, dr = static_cast<long long>(o) / w - r;
+            if (static_cast<double>(dc * dc + dr * dr) < reach2) {
+              kept = false;
+              break;
+            }
+          }
+        }
+      if (kept) out.push_back(s);
+    }
     return out;
   }
 
@@ -373,9 +441,13 @@ struct TerrainSession::Impl {
   // Samples become inputs (`added`) or stop being inputs (`removed`): one batch for the rectangle's splits,
   // the engine and the mesh.
   void change_samples(const std::vector<std::size_t>& added, const std::vector<std::size_t>& removed, TerrainUpdate& u,
-                      const std::vector<Point2>& splits_added = {}, const std::vector<Point2>& splits_removed = {}) {
+                      const std::vector<Point2>& splits_added = {}, const std::vector<Point2>& splits_removed = {},
+                      const std::vector<Point2>& ring_gone = {}, const std::vector<Point2>& ring_come = {},
+                      bool rings_replaced = false) {
     const auto t0 = Clock::now();
     std::vector<Point2> loose_added, loose_removed, gone(splits_removed), come(splits_added);
+    gone.insert(gone.end(), ring_gone.begin(), ring_gone.end());
+    come.insert(come.end(), ring_come.begin(), ring_come.end());
     for (const Point2& p : splits_removed) boundary_splits.erase(p);
     for (const Point2& p : splits_added) boundary_splits.insert(p);
     if (custom()) insert_splits(splits_added);
@@ -393,7 +465,25 @@ struct TerrainSession::Impl {
       come.push_back(p);
       if (!on_boundary(s)) loose_added.push_back(p);
     }
-    const SplitChange splits = refinement->update(rectangle(), loose_removed, loose_added);
+    const bool new_rings = !ring_gone.empty() || !ring_come.empty() || rings_replaced;
+    SplitChange splits;
+    if (!new_rings) {
+      splits = refinement->update(rectangle(), loose_removed, loose_added);
+    } else {
+      // The rings were traced again: the refinement is made afresh (ShoreRefinement::update matches rings
+      // by their place and keeps a ring's role, and a traced ring list reorders: a line at one index
+      // became a shore ring there, and the mesh lost its water), the split points' change by difference.
+      const std::vector<Point2> old_splits = refinement->split_points();
+      std::vector<Point2> loose;
+      for (std::size_t s : samples)
+        if (!on_boundary(s)) loose.push_back(position(s));
+      refinement.emplace(rectangle(), loose, RefinementRule::for_box(box.side));
+      const std::vector<Point2> new_splits = refinement->split_points();  // sorted
+      std::set_difference(old_splits.begin(), old_splits.end(), new_splits.begin(), new_splits.end(),
+                          std::back_inserter(splits.removed));
+      std::set_difference(new_splits.begin(), new_splits.end(), old_splits.begin(), old_splits.end(),
+                          std::back_inserter(splits.added));
+    }
     if (custom()) index_constrained();
     gone.insert(gone.end(), splits.removed.begin(), splits.removed.end());
     come.insert(come.end(), splits.added.begin(), splits.added.end());
@@ -420,16 +510,89 @@ struct TerrainSession::Impl {
     u.operations += report.operations_touched();
     u.engine_ms += ms_since(t0);
     const auto t1 = Clock::now();
-    const MeshDelta<2> delta =
-        mesh->apply(PointChange<2>::from_update(report, removed_points, added_points), refinement->refined());
+    MeshDelta<2> delta;
+    if (!new_rings) {
+      delta = mesh->apply(PointChange<2>::from_update(report, removed_points, added_points), refinement->refined());
+    } else {
+      // The rings were traced again (a land-and-water patch): the mesh is built afresh on the engine's
+      // points and the new rings, and the delta is the difference of the two triangle sets (Mesh::apply
+      // would need the rings' change as stretches of rings matched by place, which a new tracing does not
+      // give); such a patch replays every pick anyway, so an O(n) mesh costs no more than the rounds.
+      std::vector<ElementCorners<2>> before;
+      before.reserve(triangles.size());
+      for (const auto& [key, st] : triangles) before.push_back(key);
+      std::sort(before.begin(), before.end());
+      const std::vector<Point2> points = ws->points();
+      mesh.emplace(points, ws->input_count(), refinement->refined());
+      mesh->canonicalize_ties();
+      std::vector<ElementCorners<2>> after;
+      for (const auto& e : mesh->elements()) {
+        ElementCorners<2> c{points[e[0]], points[e[1]], points[e[2]]};
+        std::sort(c.begin(), c.end());
+        after.push_back(c);
+      }
+      std::sort(after.begin(), after.end());
+      std::set_difference(before.begin(), before.end(), after.begin(), after.end(), std::back_inserter(delta.removed));
+      std::set_difference(after.begin(), after.end(), before.begin(), before.end(), std::back_inserter(delta.added));
+    }
     u.mesh_ms += ms_since(t1);
     follow(delta, u);
+  }
+
+  TerrainUpdate patch(int col, int row, int w, int h, std::span<const float> z, std::span<const std::uint8_t> valid,
+                      const Domain2* domain);
+
+  // Inside rings: midpoints of the constrained edges that a Steiner point encroaches from either side (in
+  // the edge's diametral circle). measure_triangle sees only the apex of the kept triangle on an edge; a
+  // Steiner point outside the domain (the engine fills its whole box) can lie in the diametral circle and
+  // in the kept triangle's circumcircle behind the constraint, which then is not Delaunay and not covered
+  // by the angle bound (docs/terrain.md: 18.77 degrees on the synthetic valley before). Recomputed every
+  // round from the mesh's points (not cached by triangle: the encroacher is no corner of the kept
+  // triangle), so a round stays a function of the TIN and its points.
+  std::vector<Point2> encroached_from_anywhere() {
+    std::vector<Point2> out;
+    if (!custom()) return out;
+    const std::vector<Point2>& pts = mesh->points();
+    auto cell_of = [&](const Point2& p) {
+      const Point2 q = grid.to_grid(p);
+      return std::array<long long, 2>{static_cast<long long>(std::floor(q[0])), static_cast<long long>(std::floor(q[1]))};
+    };
+    std::map<std::array<long long, 2>, std::vector<std::uint32_t>> cells;
+    for (std::uint32_t i = 0; i < pts.size(); ++i)
+      if (!input_id.count(pts[i])) cells[cell_of(pts[i])].push_back(i);
+    for (const auto& [edge, at] : constrained) {
+      const auto& [a, b] = edge;
+      const Point2 mid{0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
+      const Point2 gm = grid.to_grid(mid), ga = grid.to_grid(a);
+      const double half = std::hypot(gm[0] - ga[0], gm[1] - ga[1]);  // in cells
+      if (half <= 1.0 / 1024) continue;  // no split below 1/1024 of a cell, as measure_triangle
+      const double radius = 0.5 * std::hypot(b[0] - a[0], b[1] - a[1]);
+      const double hc = radius / std::abs(grid.dx), hr = radius / std::abs(grid.dy);
+      const long long c0 = static_cast<long long>(std::floor(gm[0] - hc)), c1 = static_cast<long long>(std::floor(gm[0] + hc));
+      const long long r0 = static_cast<long long>(std::floor(gm[1] - hr)), r1 = static_cast<long long>(std::floor(gm[1] + hr));
+      bool encroached = false;
+      const Kernel::Point_2 ka(a[0], a[1]), kb(b[0], b[1]);
+      for (long long r = r0; r <= r1 && !encroached; ++r)
+        for (long long c = c0; c <= c1 && !encroached; ++c) {
+          const auto it = cells.find({c, r});
+          if (it == cells.end()) continue;
+          for (std::uint32_t i : it->second)
+            if (CGAL::angle(ka, Kernel::Point_2(pts[i][0], pts[i][1]), kb) == CGAL::OBTUSE) {
+              encroached = true;
+              break;
+            }
+        }
+      if (!encroached) continue;
+      out.push_back(mid);
+      split_edge.insert_or_assign(mid, std::make_pair(a, b));
+    }
+    return out;
   }
 
   void run_rounds(TerrainUpdate& u) {
     rounds = 0;
     for (;;) {
-      std::vector<Point2> splits;
+      std::vector<Point2> splits = encroached_from_anywhere();
       const auto t0 = Clock::now();
       std::vector<std::size_t> round = picks_of_round(splits);
       u.error_ms += ms_since(t0);
@@ -464,6 +627,8 @@ TerrainSession::TerrainSession(HeightGrid grid, const TerrainOptions& options) :
   if (custom && options.seed_fraction != 0)
     throw ParameterError("seeds are for the rectangle's TIN, not for a TIN inside rings");
   if (std::isnan(options.bound_from)) throw ParameterError("the height the error bound applies from is NaN");
+  if (!(options.pick_spacing >= 0 && std::isfinite(options.pick_spacing)))
+    throw ParameterError("the picks' spacing must be a finite number >= 0 (got " + readable(options.pick_spacing) + ")");
   if (custom)
     if (const auto defect = find_ring_defect(options.domain, true))
       throw InputError("the TIN's rings and lines: " + defect->describe());
@@ -498,8 +663,16 @@ TerrainSession::TerrainSession(HeightGrid grid, const TerrainOptions& options) :
   const std::array<std::size_t, 4> corners = m.corners();
   std::vector<Point2> corner_points;
   for (std::size_t s : corners) corner_points.push_back(m.position(s));
-  for (const Ring& ring : m.options.domain.rings) corner_points.insert(corner_points.end(), ring.points.begin(), ring.points.end());
-  m.box = BoxTransform<2>::fit(corner_points);
+  if (custom) {
+    // The box is a function of the grid alone (not of the rings), so that a patch that moves the rings
+    // keeps the engine's box, as a fresh run on the patched grid has it: the samples' rectangle grown by a
+    // cell (the traced contours lie within half a cell of it).
+    corner_points = {m.grid.position(-1, -1), m.grid.position(m.grid.width, m.grid.height)};
+    m.box = BoxTransform<2>::fit(corner_points);
+    m.check_in_box(m.options.domain);
+  } else {
+    m.box = BoxTransform<2>::fit(corner_points);
+  }
   m.build_engine(m.build);
   m.run_rounds(m.build);
 }
@@ -510,9 +683,25 @@ TerrainSession& TerrainSession::operator=(TerrainSession&&) noexcept = default;
 
 TerrainUpdate TerrainSession::patch(int col, int row, int w, int h, std::span<const float> z,
                                     std::span<const std::uint8_t> valid) {
-  Impl& m = *impl_;
+  if (impl_->custom())
+    throw ParameterError("a TIN inside rings (land and water) is patched with its rings traced on the patched grid");
+  return impl_->patch(col, row, w, h, z, valid, nullptr);
+}
+
+TerrainUpdate TerrainSession::patch(int col, int row, int w, int h, std::span<const float> z,
+                                    std::span<const std::uint8_t> valid, const Domain2& domain) {
+  if (!impl_->custom()) throw ParameterError("the rectangle's TIN takes no rings: patch it without them");
+  if (domain.empty()) throw InputError("a land-and-water TIN needs rings after the patch too");
+  if (const auto defect = find_ring_defect(domain, true))
+    throw InputError("the TIN's rings and lines after the patch: " + defect->describe());
+  impl_->check_in_box(domain);
+  return impl_->patch(col, row, w, h, z, valid, &domain);
+}
+
+TerrainUpdate TerrainSession::Impl::patch(int col, int row, int w, int h, std::span<const float> z,
+                                          std::span<const std::uint8_t> valid, const Domain2* domain) {
+  Impl& m = *this;
   HeightGrid& g = m.grid;
-  if (m.custom()) throw ParameterError("a TIN inside rings (land and water) takes no patches");
   if (w <= 0 || h <= 0 || col < 0 || row < 0 || col > g.width - w || row > g.height - h)
     throw InputError("the patch [" + std::to_string(col) + ", " + std::to_string(col + w) + ") x [" + std::to_string(row) +
                      ", " + std::to_string(row + h) + ") does not lie in the grid of " + std::to_string(g.width) + " x " +
@@ -551,15 +740,16 @@ TerrainUpdate TerrainSession::patch(int col, int row, int w, int h, std::span<co
   // The greedy rounds start again from the seeds: every pick goes (a pick that is now a seed stays).
   // The samples go from `samples` to samples - picks - seeds_removed + corners + seeds_added, computed
   // from the change alone (not a copy of every sample).
-  const std::array<std::size_t, 4> corner_samples = m.corners();
+  std::set<std::size_t> corner_samples;  // inside rings, the grid's corners are no inputs
+  if (!m.custom())
+    for (std::size_t s : m.corners()) corner_samples.insert(s);
   const std::set<std::size_t> staying(seeds_added.begin(), seeds_added.end());
   std::set<std::size_t> leaving(m.picks.begin(), m.picks.end());
   leaving.insert(seeds_removed.begin(), seeds_removed.end());
   std::vector<std::size_t> added, removed;
   for (std::size_t s : leaving)
-    if (!staying.count(s) && std::find(corner_samples.begin(), corner_samples.end(), s) == corner_samples.end())
-      removed.push_back(s);
-  for (const std::set<std::size_t>& from : {staying, std::set<std::size_t>(corner_samples.begin(), corner_samples.end())})
+    if (!staying.count(s) && !corner_samples.count(s)) removed.push_back(s);
+  for (const std::set<std::size_t>& from : {staying, corner_samples})
     for (std::size_t s : from)
       if (!m.samples.count(s)) added.push_back(s);
   u.picks_removed = m.picks.size();
@@ -577,7 +767,33 @@ TerrainUpdate TerrainSession::patch(int col, int row, int w, int h, std::span<co
     u.error_ms += ms_since(t1);
   }
   const std::vector<Point2> splits_removed(m.boundary_splits.begin(), m.boundary_splits.end());
-  if (!added.empty() || !removed.empty() || !splits_removed.empty()) m.change_samples(added, removed, u, {}, splits_removed);
+  if (domain) {
+    // The rings move to the patched grid's contours, in the batch that takes back the picks and splits:
+    // the engine then holds a fresh run's round-0 input (the new rings' points and their canonical
+    // splits), and the rounds replay. A triangle that keeps its corners but whose edge stops or starts
+    // being a constraint is measured again (its encroached midpoints change).
+    const std::vector<Point2> before = ring_points(m.options.domain), after = ring_points(*domain);
+    std::vector<Point2> ring_gone, ring_come;
+    std::set_difference(before.begin(), before.end(), after.begin(), after.end(), std::back_inserter(ring_gone));
+    std::set_difference(after.begin(), after.end(), before.begin(), before.end(), std::back_inserter(ring_come));
+    std::vector<std::pair<Point2, Point2>> edges_before;
+    for (const auto& [e, at] : m.constrained) edges_before.push_back(e);
+    m.options.domain = *domain;
+    m.current = *domain;
+    m.change_samples(added, removed, u, {}, splits_removed, ring_gone, ring_come, true);
+    std::vector<std::pair<Point2, Point2>> edges_after, edges_changed;
+    for (const auto& [e, at] : m.constrained) edges_after.push_back(e);
+    std::set_symmetric_difference(edges_before.begin(), edges_before.end(), edges_after.begin(), edges_after.end(),
+                                  std::back_inserter(edges_changed));
+    std::set<ElementCorners<2>> again;
+    for (const auto& [a, b] : edges_changed) {
+      const Point2 lo{std::min(a[0], b[0]), std::min(a[1], b[1])}, hi{std::max(a[0], b[0]), std::max(a[1], b[1])};
+      for (const auto& key : m.mesh->elements_meeting(lo, hi)) again.insert(key);
+    }
+    for (const auto& key : again) m.measure_triangle(key, u);
+  } else if (!added.empty() || !removed.empty() || !splits_removed.empty()) {
+    m.change_samples(added, removed, u, {}, splits_removed);
+  }
   m.run_rounds(u);
   return u;
 }
@@ -658,6 +874,12 @@ void TerrainSession::check_valid() const {
   terrain::Seeds fresh_seeds;
   fresh_seeds.build(m.grid, m.options.seed_fraction * m.options.max_error);
   if (fresh_seeds.sorted() != m.seeds.sorted()) throw std::logic_error("the seeds differ from a fresh quadtree");
+  // The input samples are the corners (the rectangle's TIN only), the seeds and the picks, nothing else.
+  std::set<std::size_t> inputs(m.picks.begin(), m.picks.end());
+  for (std::size_t s : m.seeds.sorted()) inputs.insert(s);
+  if (!m.custom())
+    for (std::size_t s : m.corners()) inputs.insert(s);
+  if (inputs != m.samples) throw std::logic_error("the input samples are not the corners, seeds and picks");
 }
 
 }  // namespace shoremesh

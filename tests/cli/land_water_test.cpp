@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <array>
+#include <random>
+#include <set>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -311,6 +313,128 @@ TEST(LandWater, BadInputNamesTheOption) {
   run = shoremesh(dir, "mesh --dem " + quote(kSalish) + " --land-up-to -2000 -o x.obj");
   EXPECT_NE(run.code, 0);
   EXPECT_NE(run.err.find("--land-up-to"), std::string::npos) << run.err;
+}
+
+
+// The mesh of an OBJ as sets: its nodes (x, y, z) and its triangles (corners sorted), whatever the numbering.
+struct MeshSets {
+  std::set<std::array<double, 3>> nodes;
+  std::set<std::array<std::array<double, 3>, 3>> triangles;
+};
+MeshSets sets_of(const Obj& o) {
+  MeshSets m;
+  for (const auto& v : o.v) m.nodes.insert(v);
+  for (const auto& t : o.f) {
+    std::array<std::array<double, 3>, 3> c{o.v[t[0]], o.v[t[1]], o.v[t[2]]};
+    std::sort(c.begin(), c.end());
+    m.triangles.insert(c);
+  }
+  return m;
+}
+
+// Random dem-patch lines on a DEM: each window raised or lowered (by enough to move the shoreline and the
+// contour at Z across it) or reshaped; after each, the exported mesh equals a fresh run on the DEM as
+// patched so far, node for node and triangle for triangle.
+void random_patches_equal_fresh_runs(const std::vector<float>& dem, int w, int h, std::array<double, 6> g, int epsg,
+                                     const std::string& args, unsigned seed, int steps, float swing) {
+  TempDir dir;
+  std::vector<float> z = dem;
+  write_dem(dir / "dem.tif", w, h, z, {}, g, epsg);
+  std::mt19937 rng(seed);
+  std::string edits = "# random patches\n";
+  for (int k = 0; k < steps; ++k) {
+    const int pw = std::uniform_int_distribution<int>(2, std::max(2, w / 4))(rng);
+    const int ph = std::uniform_int_distribution<int>(2, std::max(2, h / 4))(rng);
+    const int col = std::uniform_int_distribution<int>(0, w - pw)(rng), row = std::uniform_int_distribution<int>(0, h - ph)(rng);
+    const int kind = std::uniform_int_distribution<int>(0, 2)(rng);
+    std::vector<float> cells;
+    for (int r = row; r < row + ph; ++r)
+      for (int c = col; c < col + pw; ++c) {
+        float& v = z[std::size_t(r) * w + c];
+        v = kind == 0 ? v - swing : kind == 1 ? v + swing : static_cast<float>(0.5 * swing * std::sin(0.7 * (c + 2 * r)));
+        cells.push_back(v);
+      }
+    std::string name = "p";
+    name += std::to_string(k);
+    write_dem(dir / (name + ".tif"), pw, ph, cells, {}, {g[0] + col * g[1], g[1], 0, g[3] + row * g[5], 0, g[5]}, epsg);
+    std::string patched = "dem";
+    patched += std::to_string(k);
+    write_dem(dir / (patched + ".tif"), w, h, z, {}, g, epsg);
+    edits += "dem-patch " + name + ".tif\nexport after" + std::to_string(k) + ".obj\n";
+  }
+  write_file(dir / "edits.txt", edits);
+  const RunResult r = shoremesh(dir, "mesh --dem dem.tif " + args + " --quiet -o final.obj --edits edits.txt");
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  // The patches moved the contours: some reply counts ring and line vertices that went and came.
+  std::size_t moved = 0;
+  for (const std::string& line : lines_of(r.out)) moved += line.find("dem-patch") != std::string::npos &&
+                                                            line.find("line vertices -0 +0,") == std::string::npos;
+  EXPECT_GE(moved, 2u) << r.out;
+  for (int k = 0; k < steps; ++k) {
+    const std::string n = std::to_string(k);
+    EXPECT_NE(r.out.find("line " + std::to_string(2 * k + 2) + ": dem-patch p" + n + ".tif"), std::string::npos) << r.out;
+    const RunResult fresh = shoremesh(dir, "mesh --dem dem" + n + ".tif " + args + " --quiet -o fresh" + n + ".obj");
+    ASSERT_EQ(fresh.code, 0) << fresh.err;
+    const MeshSets a = sets_of(read_obj(dir / ("after" + n + ".obj"))), b = sets_of(read_obj(dir / ("fresh" + n + ".obj")));
+    EXPECT_EQ(a.nodes.size(), b.nodes.size()) << "patch " << k;
+    EXPECT_TRUE(a.nodes == b.nodes) << "patch " << k;
+    EXPECT_EQ(a.triangles.size(), b.triangles.size()) << "patch " << k;
+    EXPECT_TRUE(a.triangles == b.triangles) << "patch " << k;
+  }
+  EXPECT_EQ(read_file(dir / "final.obj"), read_file(dir / ("fresh" + std::to_string(steps - 1) + ".obj")));
+}
+
+// A coast: water on the left, a beach, hills on the right, bumps.
+std::vector<float> coast(int w, int h) {
+  std::vector<float> z;
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) {
+      const double x = double(c) / w, y = double(r) / h;
+      z.push_back(static_cast<float>(-20 + 60 * x + 8 * std::sin(9 * x) * std::cos(7 * y) + 4 * std::sin(17 * y)));
+    }
+  return z;
+}
+
+TEST(LandWaterEdits, RandomDemPatchesEqualFreshRunsOnASyntheticDem) {
+  // Seed 100 reorders the traced rings (a line's place taken by a shore ring): that once lost the water.
+  random_patches_equal_fresh_runs(coast(36, 28), 36, 28, {400000, 1000, 0, 5400000, 0, -1000}, 32610,
+                                  "--land-up-to 15 --max-error 1.5", 100, 8, 18);
+  random_patches_equal_fresh_runs(coast(36, 28), 36, 28, {400000, 1000, 0, 5400000, 0, -1000}, 32610,
+                                  "--land-up-to 25 --shoreline-level 5 --max-error 0.8", 101, 4, 18);
+}
+
+TEST(LandWaterEdits, RandomDemPatchesEqualFreshRunsOnACropOfTheSalishSea) {
+  const Raster full(kSalish);
+  const int c0 = 30, r0 = 20, w = 48, h = 40;
+  std::vector<float> z;
+  for (int r = r0; r < r0 + h; ++r)
+    for (int c = c0; c < c0 + w; ++c) z.push_back(full.at(c, r));
+  const std::array<double, 6> g{full.g[0] + c0 * full.g[1], full.g[1], 0, full.g[3] + r0 * full.g[5], 0, full.g[5]};
+  random_patches_equal_fresh_runs(z, w, h, g, 3857, "--land-up-to 100 --max-error 10 --min-area 1", 7, 4, 60);
+  random_patches_equal_fresh_runs(z, w, h, g, 3857, "--land-up-to 300 --max-error 5", 200, 4, 60);
+}
+
+TEST(LandWaterEdits, BadLinesAreRefusedAndChangeNothing) {
+  TempDir dir;
+  const int w = 20, h = 16;
+  std::vector<float> z = coast(w, h);
+  write_dem(dir / "dem.tif", w, h, z);
+  write_dem(dir / "nodata.tif", 2, 2, {1, -9999, 3, 4}, -9999.0, {405000, 1000, 0, 5395000, 0, -1000});
+  write_dem(dir / "outside.tif", 4, 4, std::vector<float>(16, 1.0f), {}, {418000, 1000, 0, 5395000, 0, -1000});
+  write_file(dir / "edits.txt", "dem-patch missing.tif\ndem-patch nodata.tif\ndem-patch outside.tif\nlevee 3\nstats\n");
+  const RunResult r = shoremesh(dir, "mesh --dem dem.tif --land-up-to 15 --max-error 2 --quiet -o e.obj --edits edits.txt");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.out.find("line 1: error: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("line 2: error: nodata.tif: a land-and-water patch must hold data in every cell"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("line 3: error: outside.tif: the patch (4 x 4 cells"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("line 4: error: unknown land-and-water edit 'levee'"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("line 5: "), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("4 edit line(s) failed"), std::string::npos) << r.err;
+  ASSERT_EQ(shoremesh(dir, "mesh --dem dem.tif --land-up-to 15 --max-error 2 --quiet -o f.obj").code, 0);
+  EXPECT_EQ(read_file(dir / "e.obj"), read_file(dir / "f.obj"));
+  const RunResult water = shoremesh(dir, "mesh --dem dem.tif -o w.obj --edits edits.txt");
+  EXPECT_NE(water.code, 0);
+  EXPECT_NE(water.err.find("--edits"), std::string::npos) << water.err;
 }
 
 }  // namespace

@@ -167,6 +167,11 @@ TEST(Terrain, BadInputIsRefusedWithAReason) {
     EXPECT_THROW(TerrainSession(synthetic_grid(10, 10), o), ParameterError);
   }
   o.max_error = 1;
+  for (double sp : std::vector<double>{-1.0, std::nan(""), INFINITY}) {
+    o.pick_spacing = sp;
+    EXPECT_THROW(TerrainSession(synthetic_grid(10, 10), o), ParameterError);
+  }
+  o.pick_spacing = 1;
   EXPECT_THROW(TerrainSession(synthetic_grid(1, 1), o), InputError);
   EXPECT_THROW(TerrainSession(synthetic_grid(1, 9), o), InputError);
   HeightGrid empty = synthetic_grid(5, 5);
@@ -214,11 +219,20 @@ TEST(Terrain, PatchesInAnyOrderGiveTheSameTin) {
 // each followed by a comparison with a fresh session on the patched grid.
 TEST(Terrain, RandomPatchesEqualAFreshRun) {
   const bool long_run = std::getenv("SHOREMESH_LONG_TESTS") != nullptr;
-  const int patches = long_run ? 60 : 12;
-  for (double fraction : {0.5, 0.0}) {
+  // Seeds or none with the default pick spacing, and every over-bound triangle's pick (spacing 0).
+  struct Case {
+    double fraction, spacing;
+    int patches;
+  };
+  const TerrainOptions defaults;
+  for (const Case& cs : {Case{0.5, defaults.pick_spacing, long_run ? 60 : 12}, Case{0.0, defaults.pick_spacing, long_run ? 60 : 12},
+                         Case{0.0, 0.0, long_run ? 20 : 4}}) {
+    const double fraction = cs.fraction;
+    const int patches = cs.patches;
     TerrainOptions o;
     o.max_error = 1.0;
     o.seed_fraction = fraction;
+    o.pick_spacing = cs.spacing;
     TerrainSession s(synthetic_grid(72, 60, 30, 11), o);
     std::mt19937 rng(1234);
     for (int k = 0; k < patches; ++k) {
@@ -244,7 +258,8 @@ TEST(Terrain, RandomPatchesEqualAFreshRun) {
       s.patch(col, row, w, h, z, valid);
       HeightGrid patched = s.grid();
       const TerrainSession fresh(patched, o);
-      SCOPED_TRACE("patch " + std::to_string(k) + " seed fraction " + std::to_string(fraction));
+      SCOPED_TRACE("patch " + std::to_string(k) + " seed fraction " + std::to_string(fraction) + " pick spacing " +
+                   std::to_string(cs.spacing));
       expect_same_tin(s, fresh);
       EXPECT_LE(independent_max_error(s), 1.0);
       if (testing::Test::HasFailure()) return;
