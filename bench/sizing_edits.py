@@ -2,12 +2,13 @@
 """Per-edit times of an `edit` session under size control (issue 35, docs/sizing.md "Lemma 7.2 under size
 control"): N random shore moves on Lake Superior with --size-from-shore, as `edit --json` reports them.
 
-    bench/sizing_edits.py SHOREMESH [N] [H0 RATE] [--seed S] [--export MESH]
+    bench/sizing_edits.py SHOREMESH [N] [H0 RATE] [--seed S] [--export MESH] [-- MORE OPTIONS]
 
 Each move takes a random shoreline vertex 30 % of the way towards the next one, a little off the segment
 (as the random-edit tests do); moves the session refuses (a crossing) are skipped. Prints the medians
 and 90th percentiles of the whole edit and of its parts as `edit` reports them (engine_ms holds h, the splits and the seeds as well as the engine's
-propagation). --export writes the mesh after the last move (to compare two builds' results).
+propagation). --export writes the mesh (or with .csv the point set) after the last move (to compare two
+builds' results). Options after `--` go to both runs (for example `-- --max-size 5000 --grade 0.15`).
 """
 import json
 import os
@@ -39,6 +40,12 @@ def rings_of(path):
 
 
 def main():
+    argv = sys.argv[1:]
+    extra = []
+    if "--" in argv:
+        extra = argv[argv.index("--") + 1:]
+        argv = argv[:argv.index("--")]
+    sys.argv = sys.argv[:1] + argv
     args = [a for a in sys.argv[1:] if not a.startswith("--")]
     seed = int(sys.argv[sys.argv.index("--seed") + 1]) if "--seed" in sys.argv else 35
     if "--seed" in sys.argv:
@@ -49,7 +56,7 @@ def main():
     binary = args[0]
     n = int(args[1]) if len(args) > 1 else 40
     h0, rate = (args[2], args[3]) if len(args) > 3 else ("1000", "0.05")
-    common = [MASK, "--largest-water", "--spacing", "4000", "--size-from-shore", h0, rate, "-q"]
+    common = [MASK, "--largest-water", "--spacing", "4000", "--size-from-shore", h0, rate, "-q", *extra]
     with tempfile.TemporaryDirectory() as work:
         rings_path = os.path.join(work, "r.rings")
         subprocess.run([binary, "edit", *common, "--edits", "-"], input=f"export {rings_path}\n", text=True,
@@ -78,7 +85,8 @@ def main():
         replies = [json.loads(l) for l in out.stdout.splitlines() if l.startswith("{")]
         edits = [r for r in replies if "engine_ms" in r]
         refused = sum(1 for r in replies if "error" in r)
-        print(f"binary {binary}: --size-from-shore {h0} {rate}, {len(edits)} moves timed, {refused} refused")
+        print(f"binary {binary}: --size-from-shore {h0} {rate} {' '.join(extra)}, {len(edits)} moves timed, "
+              f"{refused} refused")
         if replies and "engine_ms" not in replies[0]:
             print("start:", json.dumps(replies[0])[:300])
 
