@@ -305,7 +305,7 @@ struct ShoreSession<D>::Impl {
     if constexpr (D == 2) {
       // Size control recomputes its seeds from all the refined rings anyway: the rings whole.
       if (size)
-        return apply_sized(std::move(edits), rings, undo, loose_removed, loose_added, nullptr, {}, removed, added, report);
+        return apply_sized(std::move(edits), rings, undo, loose_removed, loose_added, {}, nullptr, removed, added, report);
       if (refinement) {
         const auto one = [](const RingStretch* s) { return s ? std::span<const RingStretch>(s, 1) : std::span<const RingStretch>(); };
         SplitChange change = refinement->update(one(rings), loose_removed, loose_added);
@@ -358,31 +358,32 @@ struct ShoreSession<D>::Impl {
     return out;
   }
 
+  // The session's field, which its updates change in place (it was made mutable; the refinement's rule
+  // shares it).
+  SizeField& size_field() { return *std::const_pointer_cast<SizeField>(size); }
+
   // apply_edits under size control: h follows the rings (--size-from-shore: `stretch` made in rings_now,
-  // `undo` its inverse) or `new_size` (a size edit, which changed h at `size_change`), updated only where
-  // the change reaches; when h changed, the refinement resets the edges whose rule reads a changed node of
-  // h as well as those the edit reaches, and closes again; the seeds are updated where h or the refined
-  // rings changed. All the differences go to the engine in one propagation. On an error nothing changed.
+  // `undo` its inverse) or a size edit (already made in the field, which changed h at `size_change` and
+  // recorded what it overwrote in `size_undo`), updated in place only where the change reaches; when h
+  // changed, the refinement resets the edges whose rule reads a changed node of h as well as those the edit
+  // reaches, and closes again; the seeds are updated where h or the refined rings changed. All the
+  // differences go to the engine in one propagation. On an error nothing changed.
   std::vector<std::size_t> apply_sized(std::vector<Edit<D>> edits, const RingStretch* stretch, const RingStretch* undo,
                                        const std::vector<Point<D>>& loose_removed,
-                                       const std::vector<Point<D>>& loose_added,
-                                       std::shared_ptr<const SizeField> new_size, SizeChange size_change,
-                                       std::vector<Point<D>>& removed, std::vector<Point<D>>& added,
-                                       UpdateReport<D>& report) {
+                                       const std::vector<Point<D>>& loose_added, SizeChange size_change,
+                                       SizeUndo* size_undo, std::vector<Point<D>>& removed,
+                                       std::vector<Point<D>>& added, UpdateReport<D>& report) {
     if constexpr (D != 2) {
-      (void)stretch, (void)undo, (void)loose_removed, (void)loose_added, (void)new_size, (void)size_change, (void)removed,
-          (void)added;
+      (void)stretch, (void)undo, (void)loose_removed, (void)loose_added, (void)size_change, (void)size_undo,
+          (void)removed, (void)added;
       return set->apply(edits, &report);
     } else {
       const std::size_t user_adds = static_cast<std::size_t>(
           std::count_if(edits.begin(), edits.end(), [](const Edit<D>& e) { return e.kind == Edit<D>::Kind::Add; }));
-      const auto old_size = size;
-      if (!new_size && stretch && size->depends_on_rings()) {
-        // The new field holds the new rings even where h did not change: a later size edit reads them.
-        auto field = std::make_shared<SizeField>(*size);
-        size_change = field->set_rings(rings_now);
-        new_size = std::move(field);
-      }
+      SizeUndo ring_undo;
+      if (!size_undo) size_undo = &ring_undo;
+      // The field holds the new rings even where h did not change: a later size edit reads them.
+      if (stretch && size->depends_on_rings()) size_change = size_field().set_rings(rings_now, size_undo);
       const bool h_changed = size_change.changed;
       const auto one = [](const RingStretch* s) { return s ? std::span<const RingStretch>(s, 1) : std::span<const RingStretch>(); };
       // The rule reads h over a subsegment's box: it may differ only where that reads a changed node.
@@ -394,27 +395,26 @@ struct ShoreSession<D>::Impl {
         rule.max_length = shore_max_length(field);
         return rule;
       };
-      if (new_size) size = new_size;
       SplitChange splits;
       try {
         if (refinement)
           splits = h_changed ? refinement->update(one(stretch), loose_removed, loose_added, rule_of(size), rule_changed)
                              : refinement->update(one(stretch), loose_removed, loose_added);
       } catch (...) {
-        size = old_size;
+        size_field().take_back(std::move(*size_undo));
         throw;
       }
       auto take_back = [&] {
+        size_field().take_back(std::move(*size_undo));
         if (refinement) {
-          if (h_changed) refinement->update(one(undo), loose_added, loose_removed, rule_of(old_size), rule_changed);
+          if (h_changed) refinement->update(one(undo), loose_added, loose_removed, rule_of(size), rule_changed);
           else refinement->update(one(undo), loose_added, loose_removed);
         }
-        size = old_size;
       };
       std::vector<Point2> new_seeds;
       try {
         // Only the quadtree's nodes that the change of h or of the refined rings reaches (update_size_seeds).
-        new_seeds = update_size_seeds(*old_size, seeds, size_change, splits.segments, *size,
+        new_seeds = update_size_seeds(*size, *size_undo, seeds, size_change, splits.segments,
                                       refinement ? refinement->refined() : Domain2{});
       } catch (...) {
         take_back();
@@ -543,7 +543,7 @@ ShoreSession<D>::ShoreSession(const SessionInput<D>& input, const Options& optio
     if (options.size) {
       // The box is fixed before the seeds join the input (a fresh run fits it to the input points alone).
       box = run_box(input, options.box);
-      m.size = std::make_shared<const SizeField>(*options.size, *box, input.rings);
+      m.size = std::make_shared<SizeField>(*options.size, *box, input.rings);  // mutable: edits update it in place
     }
     if (!input.rings.empty()) {
       m.refinement = refine_input(input, options.box, m.size);  // checks that the ring ids name the rings' points
@@ -817,15 +817,15 @@ SessionEdit<D> ShoreSession<D>::set_polygon_size(std::size_t polygon, double siz
   } else {
     if (!m.size || m.size->terms().polygons.empty())
       throw InputError("this session has no size polygons (--size-polygons FILE.geojson)");
-    auto field = std::make_shared<SizeField>(*m.size);
     const auto edit_start = Clock::now();
-    const SizeChange change = field->set_polygon_size(polygon, size);
+    SizeUndo undo;
+    const SizeChange change = m.size_field().set_polygon_size(polygon, size, &undo);
     SessionEdit<D> out;
     out.id = polygon;
     const auto start = Clock::now();
     std::vector<Point<D>> removed, added;
     m.shore_change.reset();
-    m.apply_sized({}, nullptr, nullptr, {}, {}, std::move(field), change, removed, added, out.engine);
+    m.apply_sized({}, nullptr, nullptr, {}, {}, change, &undo, removed, added, out.engine);
     m.update_mesh(std::move(removed), std::move(added), edit_start, start, out);
     return out;
   }

@@ -401,6 +401,11 @@ void SizeField::water_mask(std::size_t c0, std::size_t r0, std::size_t c1, std::
   const std::size_t w = n_ + 1;
   const bool any = std::any_of(rings_.rings.begin(), rings_.rings.end(),
                                [](const Ring& r) { return r.closed() && !r.points.empty(); });
+  if (undo_) {
+    undo_->water_box[0] = c0, undo_->water_box[1] = r0, undo_->water_box[2] = c1, undo_->water_box[3] = r1;
+    for (std::size_t j = r0; j <= r1; ++j)
+      for (std::size_t i = c0; i <= c1; ++i) undo_->water.push_back(water_[node(i, j)]);
+  }
   if (!any) {
     for (std::size_t j = r0; j <= r1; ++j)
       for (std::size_t i = c0; i <= c1; ++i) water_[node(i, j)] = 1;
@@ -499,7 +504,8 @@ double SizeField::min_over_segment(const Point2& a, const Point2& b) const {
 
 // The bilinear h over a cell lies between its nodes' values: the least over the cells the box meets, read
 // from the coarsest pyramid level whose blocks stay at most about half the box.
-double SizeField::min_over_box(const Point2& lo, const Point2& hi) const {
+double SizeField::min_over_box(const Point2& lo, const Point2& hi,
+                               const std::function<double(std::size_t, std::size_t)>& before) const {
   auto cell_range = [&](int axis) {
     const double a = std::floor((lo[axis] - box_.origin[axis]) / cell_);
     const double b = std::floor((hi[axis] - box_.origin[axis]) / cell_);
@@ -514,25 +520,54 @@ double SizeField::min_over_box(const Point2& lo, const Point2& hi) const {
   const std::size_t m = n_ >> l;
   double out = kInf;
   for (std::size_t j = j0 >> l; j <= j1 >> l; ++j)
-    for (std::size_t i = i0 >> l; i <= i1 >> l; ++i) out = std::min(out, pyramid_[l][j * m + i]);
+    for (std::size_t i = i0 >> l; i <= i1 >> l; ++i) out = std::min(out, before ? before(l, j * m + i) : pyramid_[l][j * m + i]);
   return out;
+}
+
+double SizeField::min_over_before(const SizeUndo& undo, const Point2& lo, double side) const {
+  const std::function<double(std::size_t, std::size_t)> before = [&](std::size_t l, std::size_t b) {
+    if (undo.whole_pyramid) return (*undo.whole_pyramid)[l][b];
+    const auto it = undo.pyramid.find(static_cast<std::uint64_t>(l) << 56 | b);
+    return it == undo.pyramid.end() ? pyramid_[l][b] : it->second;
+  };
+  return min_over_box(lo, {lo[0] + side, lo[1] + side}, before);
+}
+
+void SizeField::take_back(SizeUndo&& u) {
+  if (u.whole_h) h_ = std::move(*u.whole_h);
+  if (u.whole_shore) shore_ = std::move(*u.whole_shore);
+  if (u.whole_src) shore_src_ = std::move(*u.whole_src);
+  if (u.whole_water) water_ = std::move(*u.whole_water);
+  if (u.whole_pyramid) pyramid_ = std::move(*u.whole_pyramid);
+  for (const auto& [v, x] : u.h) h_[v] = x;
+  for (const auto& [v, x] : u.shore) shore_[v] = x;
+  for (const auto& [v, x] : u.shore_src) shore_src_[v] = x;
+  for (std::size_t j = u.water_box[1], k = 0; !u.water.empty() && j <= u.water_box[3]; ++j)
+    for (std::size_t i = u.water_box[0]; i <= u.water_box[2]; ++i) water_[node(i, j)] = u.water[k++];
+  for (const auto& [key, x] : u.pyramid) pyramid_[key >> 56][key & ((std::uint64_t{1} << 56) - 1)] = x;
+  if (u.polygon) terms_.polygons[u.polygon->first].size = u.polygon->second;
+  if (u.rings) rings_ = std::move(*u.rings);
 }
 
 void SizeField::update_pyramid(std::size_t i0, std::size_t j0, std::size_t i1, std::size_t j1) {
   // The cells with a changed node: [i0 - 1, i1] x [j0 - 1, j1] within the grid, then their blocks upward.
   std::size_t c0 = i0 > 0 ? i0 - 1 : 0, d0 = j0 > 0 ? j0 - 1 : 0;
   std::size_t c1 = std::min(i1, n_ - 1), d1 = std::min(j1, n_ - 1);
+  auto write = [&](std::size_t l, std::size_t b, double x) {
+    double& y = pyramid_[l][b];
+    if (undo_ && !(x == y)) undo_->pyramid.emplace(static_cast<std::uint64_t>(l) << 56 | b, y);
+    y = x;
+  };
   for (std::size_t j = d0; j <= d1; ++j)
     for (std::size_t i = c0; i <= c1; ++i)
-      pyramid_[0][j * n_ + i] = std::min({h_[node(i, j)], h_[node(i + 1, j)], h_[node(i, j + 1)], h_[node(i + 1, j + 1)]});
+      write(0, j * n_ + i, std::min({h_[node(i, j)], h_[node(i + 1, j)], h_[node(i, j + 1)], h_[node(i + 1, j + 1)]}));
   for (std::size_t l = 1, m = n_ / 2; l < pyramid_.size(); ++l, m /= 2) {
     c0 /= 2, d0 /= 2, c1 /= 2, d1 /= 2;
     const auto& below = pyramid_[l - 1];
-    auto& up = pyramid_[l];
     for (std::size_t j = d0; j <= d1; ++j)
       for (std::size_t i = c0; i <= c1; ++i)
-        up[j * m + i] = std::min({below[2 * j * 2 * m + 2 * i], below[2 * j * 2 * m + 2 * i + 1],
-                                  below[(2 * j + 1) * 2 * m + 2 * i], below[(2 * j + 1) * 2 * m + 2 * i + 1]});
+        write(l, j * m + i, std::min({below[2 * j * 2 * m + 2 * i], below[2 * j * 2 * m + 2 * i + 1],
+                                      below[(2 * j + 1) * 2 * m + 2 * i], below[(2 * j + 1) * 2 * m + 2 * i + 1]}));
   }
 }
 
@@ -563,7 +598,14 @@ double SizeField::finite_bound() const {
 
 SizeChange SizeField::recompute_whole() {
   const std::vector<double> before = h_;
+  SizeUndo* const undo = undo_;
+  if (undo) {
+    undo->whole_h = h_, undo->whole_shore = shore_, undo->whole_src = shore_src_;
+    undo->whole_water = water_, undo->whole_pyramid = pyramid_;
+  }
+  undo_ = nullptr;  // the arrays are kept whole
   compute();
+  undo_ = undo;
   clamp_shore();
   SizeChange c;
   c.whole = true;
@@ -595,6 +637,7 @@ SizeChange SizeField::update_h(const std::vector<std::size_t>& nodes, const std:
     }
     c.visited = nodes.size();
   }
+  if (undo_) undo_->h.insert(undo_->h.end(), changed.begin(), changed.end());
   for (const auto& [v, x] : changed) {
     const std::size_t i = v % w, j = v / w;
     if (!c.changed) c.i0 = c.i1 = i, c.j0 = c.j1 = j;
@@ -608,9 +651,15 @@ SizeChange SizeField::update_h(const std::vector<std::size_t>& nodes, const std:
 // Only where the changed segments reach (docs/sizing.md): the water inside their bounding box (the two
 // even-odd regions differ by the changed segments' own, empty outside their box), the shore term's values
 // beside them and what its sweeps carry from there, and h where the shore term changed.
-SizeChange SizeField::set_rings(const Domain2& rings) {
+SizeChange SizeField::set_rings(const Domain2& rings, SizeUndo* undo) {
+  undo_ = undo;
+  struct Done {
+    SizeUndo*& u;
+    ~Done() { u = nullptr; }
+  } done{undo_};
   const std::vector<std::pair<Point2, Point2>> segs = changed_segments(rings_, rings);
   const bool emptiness = rings_.empty() != rings.empty();
+  if (undo) undo->rings = std::move(rings_);
   rings_ = rings;
   if (segs.empty()) return {};
   const std::size_t w = n_ + 1;
@@ -664,6 +713,7 @@ SizeChange SizeField::set_rings(const Domain2& rings) {
       const double x = src[(j - R[1]) * rw + (i - R[0])];
       if (x == shore_src_[v]) continue;
       if (std::min(x, cap) != std::min(shore_src_[v], cap)) nodes.push_back(v), before.push_back(std::min(shore_src_[v], cap));
+      if (undo) undo->shore_src.push_back({v, shore_src_[v]});
       shore_src_[v] = x;
     }
   std::vector<std::pair<std::size_t, double>> shore_changed;
@@ -671,6 +721,7 @@ SizeChange SizeField::set_rings(const Domain2& rings) {
       repair_gradient(shore_, Stencil{w, rate * cell_, rate * cell_ * std::numbers::sqrt2}, nodes, before,
                       [&](std::size_t v) { return std::min(shore_src_[v], cap); }, shore_changed) +
       rw * (R[3] - R[1] + 1);
+  if (undo) undo->shore = shore_changed;
   std::vector<std::size_t> hn;
   std::vector<double> hb;
   for (const auto& [v, x] : shore_changed) hn.push_back(v), hb.push_back(raw(v, x));
@@ -679,7 +730,7 @@ SizeChange SizeField::set_rings(const Domain2& rings) {
   return c;
 }
 
-SizeChange SizeField::set_polygon_size(std::size_t index, double size) {
+SizeChange SizeField::set_polygon_size(std::size_t index, double size, SizeUndo* undo) {
   if (index >= terms_.polygons.size())
     throw InputError("no size polygon " + std::to_string(index) + " (size polygons: " +
                      (terms_.polygons.empty() ? std::string("none") : "0.." + std::to_string(terms_.polygons.size() - 1)) + ")");
@@ -690,6 +741,12 @@ SizeChange SizeField::set_polygon_size(std::size_t index, double size) {
   std::vector<double> before;
   before.reserve(nodes.size());
   for (std::size_t v : nodes) before.push_back(raw(v, shore_.empty() ? kInf : shore_[v]));
+  undo_ = undo;
+  struct Done {
+    SizeUndo*& u;
+    ~Done() { u = nullptr; }
+  } done{undo_};
+  if (undo) undo->polygon = {index, terms_.polygons[index].size};
   terms_.polygons[index].size = size;
   return update_h(nodes, before);
 }
@@ -866,11 +923,13 @@ class SeedShore {
 };
 
 // The split rule of a node (retries aside): -1 no term sets a size there (no seed), 1 split, 0 a leaf.
-int seed_split(const SizeField& field, double root, const SeedNode& n) {
+// With `before`: as the field was before the update that filled it.
+int seed_split(const SizeField& field, double root, const SeedNode& n, const SizeUndo* before = nullptr) {
   const double side = std::ldexp(root, -n.level);
   const BoxTransform<2>& box = field.box();
   const Point2 lo{box.origin[0] + static_cast<double>(n.ix) * side, box.origin[1] + static_cast<double>(n.iy) * side};
-  const double h = field.min_over({lo[0] - side, lo[1] - side}, 3 * side);
+  const double h = before ? field.min_over_before(*before, {lo[0] - side, lo[1] - side}, 3 * side)
+                          : field.min_over({lo[0] - side, lo[1] - side}, 3 * side);
   if (!std::isfinite(h)) return -1;
   return side > kSeedFactor * h && n.level < 60 ? 1 : 0;
 }
@@ -948,7 +1007,7 @@ namespace {
 
 // update_size_seeds with where h changed (the grid nodes [i0, i1] x [j0, j1]) and the refined segments
 // that went or came.
-std::vector<Point2> update_seeds(const SizeField& old_field, const std::vector<Point2>& old_seeds,
+std::vector<Point2> update_seeds(const std::function<int(const SeedNode&)>& old_split, const std::vector<Point2>& old_seeds,
                                  const SizeChange& h_change, const std::vector<std::pair<Point2, Point2>>& changed,
                                  const SizeField& field, const Domain2& refined, double gamma, SeedUpdate* stats) {
   const double root = seed_root(field);
@@ -998,7 +1057,7 @@ std::vector<Point2> update_seeds(const SizeField& old_field, const std::vector<P
     work.pop_back();
     ++visited;
     if (beyond_box(field, root, n) || !dirty(n)) continue;
-    if (seed_split(field, root, n) == 1 && seed_split(old_field, root, n) == 1) {
+    if (seed_split(field, root, n) == 1 && old_split(n) == 1) {
       push_children(work, n, 0);
       continue;
     }
@@ -1069,7 +1128,9 @@ std::vector<Point2> update_size_seeds(const SizeField& old_field, const std::vec
   std::vector<std::pair<Point2, Point2>> changed;
   segments_not_in(old_refined, refined, changed);
   segments_not_in(refined, old_refined, changed);
-  return update_seeds(old_field, old_seeds, h_change, changed, field, refined, gamma, stats);
+  const double root = seed_root(field);
+  return update_seeds([&](const SeedNode& n) { return seed_split(old_field, root, n); }, old_seeds, h_change, changed,
+                      field, refined, gamma, stats);
 }
 
 std::vector<Point2> update_size_seeds(const SizeField& old_field, const std::vector<Point2>& old_seeds,
@@ -1082,7 +1143,20 @@ std::vector<Point2> update_size_seeds(const SizeField& old_field, const std::vec
   std::vector<std::pair<Point2, Point2>> changed;
   for (const auto* list : {&refined_change.removed, &refined_change.added})
     for (const ShoreSegment& s : *list) changed.push_back({s.a, s.b});
-  return update_seeds(old_field, old_seeds, h_change, changed, field, refined, gamma, stats);
+  const double root = seed_root(field);
+  return update_seeds([&](const SeedNode& n) { return seed_split(old_field, root, n); }, old_seeds, h_change, changed,
+                      field, refined, gamma, stats);
+}
+
+std::vector<Point2> update_size_seeds(const SizeField& field, const SizeUndo& before, const std::vector<Point2>& old_seeds,
+                                      const SizeChange& h_change, const ShoreChange& refined_change,
+                                      const Domain2& refined, double gamma, SeedUpdate* stats) {
+  std::vector<std::pair<Point2, Point2>> changed;
+  for (const auto* list : {&refined_change.removed, &refined_change.added})
+    for (const ShoreSegment& s : *list) changed.push_back({s.a, s.b});
+  const double root = seed_root(field);
+  return update_seeds([&](const SeedNode& n) { return seed_split(field, root, n, &before); }, old_seeds, h_change,
+                      changed, field, refined, gamma, stats);
 }
 
 std::function<double(const Point2&, const Point2&)> shore_max_length(std::shared_ptr<const SizeField> field) {
