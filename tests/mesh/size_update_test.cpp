@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <memory>
 #include <numbers>
 #include <random>
@@ -37,7 +38,8 @@ SizePolygon square(double x0, double y0, double side, double size) {
 
 // Random edits of the rings (moves, insertions, removals of a vertex, the island going and coming) and
 // of the polygons' sizes; after each, the updated field equals a fresh one on the new input: h, the water
-// and the summary, exactly.
+// and the summary, exactly. What each update recorded (SizeUndo) reads min_over as it was and, every third
+// edit, takes the update back to the field before it, exactly.
 void expect_updates_equal_fresh(SizeTerms t, int edits, unsigned seed) {
   Domain2 rings = lake(90);
   const BoxTransform<2> box = BoxTransform<2>::fit(mesh_test::session_input(rings).points);
@@ -50,11 +52,14 @@ void expect_updates_equal_fresh(SizeTerms t, int edits, unsigned seed) {
     const double what = u(rng);
     std::string kind;
     SizeChange c;
+    const SizeField before = field;
+    SizeUndo undo;
+    std::function<SizeChange(SizeUndo*)> redo;
     if (what < 0.3 && !t.polygons.empty()) {
       kind = "size";
       const std::size_t q = rng() % t.polygons.size();
       t.polygons[q].size = 800 + 7000 * u(rng);
-      c = field.set_polygon_size(q, t.polygons[q].size);
+      redo = [&field, q, size = t.polygons[q].size](SizeUndo* un) { return field.set_polygon_size(q, size, un); };
     } else {
       auto& ring = rings.rings[0].points;
       const std::size_t k = rng() % ring.size();
@@ -70,7 +75,25 @@ void expect_updates_equal_fresh(SizeTerms t, int edits, unsigned seed) {
         kind = "island";
         rings.rings[1].points = rings.rings[1].points.empty() ? island.rings[0].points : std::vector<Point2>{};
       }
-      c = field.set_rings(rings);
+      redo = [&field, &rings](SizeUndo* un) { return field.set_rings(rings, un); };
+    }
+    c = redo(&undo);
+    // What the update recorded reads h as it was, and takes it back exactly; then the edit again.
+    for (int k = 0; k < 20; ++k) {
+      const Point2 lo{box.origin[0] + u(rng) * box.side, box.origin[1] + u(rng) * box.side};
+      const double side = std::ldexp(box.side, -static_cast<int>(rng() % 10));
+      ASSERT_EQ(field.min_over_before(undo, lo, side), before.min_over(lo, side)) << "edit " << e;
+    }
+    if (e % 3 == 0) {
+      field.take_back(std::move(undo));
+      ASSERT_EQ(field.nodes(), before.nodes()) << "edit " << e << " (" << kind << ") taken back";
+      ASSERT_EQ(field.water(), before.water()) << "edit " << e << " (" << kind << ") taken back";
+      for (int k = 0; k < 20; ++k) {
+        const Point2 lo{box.origin[0] + u(rng) * box.side, box.origin[1] + u(rng) * box.side};
+        const double side = std::ldexp(box.side, -static_cast<int>(rng() % 10));
+        ASSERT_EQ(field.min_over(lo, side), before.min_over(lo, side)) << "edit " << e;
+      }
+      c = redo(nullptr);
     }
     const SizeField fresh(t, box, rings);
     ASSERT_TRUE(field == fresh) << "edit " << e << " (" << kind << ")";
