@@ -303,7 +303,7 @@ struct ShoreSession<D>::Impl {
         std::count_if(edits.begin(), edits.end(), [](const Edit<D>& e) { return e.kind == Edit<D>::Kind::Add; }));
     shore_change.reset();
     if constexpr (D == 2) {
-      // Size control recomputes its seeds from all the refined rings anyway: the rings whole.
+      // Size control: h, the splits under its rule and the seeds, in apply_sized.
       if (size)
         return apply_sized(std::move(edits), rings, undo, loose_removed, loose_added, {}, nullptr, removed, added, report);
       if (refinement) {
@@ -347,15 +347,6 @@ struct ShoreSession<D>::Impl {
       if (change) apply_stretch(rings_now, change->undo_now);
       throw;
     }
-  }
-
-  // The loose input points now (2D): the live ones on no ring.
-  std::vector<Point2> loose_points() const {
-    std::vector<Point2> out;
-    if constexpr (D == 2)
-      for (std::size_t id = 0; id < engine_of_user.size(); ++id)
-        if (engine_of_user[id] != kRemoved && !ring_of.count(id)) out.push_back(set->input_point(engine_of_user[id]));
-    return out;
   }
 
   // The session's field, which its updates change in place (it was made mutable; the refinement's rule
