@@ -97,6 +97,8 @@ struct ShoreRefinement::Impl {
   std::vector<ShoreSegment> segments_before;
   std::unordered_set<std::uint32_t> snapped;
   std::vector<std::uint32_t> touched;
+  // Set by the rule-change update for the update it calls: which edges the new rule may treat otherwise.
+  const std::function<bool(const Point2&, const Point2&)>* rule_changed = nullptr;
 
   void segments_of(std::uint32_t i, std::vector<ShoreSegment>& out) const {
     const Edge& e = edges[i];
@@ -439,6 +441,19 @@ SplitChange ShoreRefinement::update(const Domain2& rings, std::span<const Point2
 }
 
 SplitChange ShoreRefinement::update(std::span<const RingStretch> edits, std::span<const Point2> loose_removed,
+                                    std::span<const Point2> loose_added, RefinementRule rule,
+                                    const std::function<bool(const Point2&, const Point2&)>& rule_changed) {
+  Impl& m = *impl_;
+  m.rule = std::move(rule);
+  m.rule_changed = &rule_changed;
+  struct Clear {
+    Impl& m;
+    ~Clear() { m.rule_changed = nullptr; }
+  } clear{m};
+  return update(edits, loose_removed, loose_added);
+}
+
+SplitChange ShoreRefinement::update(std::span<const RingStretch> edits, std::span<const Point2> loose_removed,
                                     std::span<const Point2> loose_added) {
   Impl& m = *impl_;
   m.made.clear();
@@ -455,6 +470,11 @@ SplitChange ShoreRefinement::update(std::span<const RingStretch> edits, std::spa
   std::vector<std::pair<EdgeKey, bool>> new_edges;  // with whether it bounds water
   std::vector<Point2> removed_points(loose_removed.begin(), loose_removed.end());
   std::vector<Point2> added_points(loose_added.begin(), loose_added.end());
+  // Under a new rule: the edges it may treat otherwise lose their splits (the cascade below takes what
+  // those justified); every other subsegment meets the same test as before.
+  if (m.rule_changed)
+    for (std::uint32_t i = 0; i < m.edges.size(); ++i)
+      if (m.edges[i].alive && (*m.rule_changed)(m.edges[i].a, m.edges[i].b) && is_dirty.insert(i).second) dirty.push_back(i);
   for (const RingStretch& edit : edits) {
     const std::size_t r = edit.ring;
     if (r >= m.rings.rings.size()) m.rings.rings.resize(r + 1);

@@ -303,10 +303,9 @@ struct ShoreSession<D>::Impl {
         std::count_if(edits.begin(), edits.end(), [](const Edit<D>& e) { return e.kind == Edit<D>::Kind::Add; }));
     shore_change.reset();
     if constexpr (D == 2) {
-      // Size control recomputes its seeds from all the refined rings anyway: the rings whole.
+      // Size control: h, the splits under its rule and the seeds, in apply_sized.
       if (size)
-        return apply_sized(std::move(edits), rings ? &rings_now : nullptr, loose_removed, loose_added, nullptr, removed,
-                           added, report);
+        return apply_sized(std::move(edits), rings, undo, loose_removed, loose_added, {}, nullptr, removed, added, report);
       if (refinement) {
         const auto one = [](const RingStretch* s) { return s ? std::span<const RingStretch>(s, 1) : std::span<const RingStretch>(); };
         SplitChange change = refinement->update(one(rings), loose_removed, loose_added);
@@ -353,65 +352,68 @@ struct ShoreSession<D>::Impl {
     }
   }
 
-  // The loose input points now (2D): the live ones on no ring.
-  std::vector<Point2> loose_points() const {
-    std::vector<Point2> out;
-    if constexpr (D == 2)
-      for (std::size_t id = 0; id < engine_of_user.size(); ++id)
-        if (engine_of_user[id] != kRemoved && !ring_of.count(id)) out.push_back(set->input_point(engine_of_user[id]));
-    return out;
-  }
+  // The session's field, which its updates change in place (it was made mutable; the refinement's rule
+  // shares it).
+  SizeField& size_field() { return *std::const_pointer_cast<SizeField>(size); }
 
-  // apply_edits under size control: h follows the rings (--size-from-shore) or `new_size` (a size edit);
-  // when h changed, the splits are a fresh refinement's (the rule changed everywhere it did), otherwise
-  // the refinement's update; the seeds are recomputed from h and the refined rings. All the differences go
-  // to the engine in one propagation. On an error nothing changed.
-  std::vector<std::size_t> apply_sized(std::vector<Edit<D>> edits, const Domain2* rings,
+  // apply_edits under size control: h follows the rings (--size-from-shore: `stretch` made in rings_now,
+  // `undo` its inverse) or a size edit (already made in the field, which changed h at `size_change` and
+  // recorded what it overwrote in `size_undo`), updated in place only where the change reaches; when h
+  // changed, the refinement resets the edges whose rule reads a changed node of h as well as those the edit
+  // reaches, and closes again; the seeds are updated where h or the refined rings changed. All the
+  // differences go to the engine in one propagation. On an error nothing changed.
+  std::vector<std::size_t> apply_sized(std::vector<Edit<D>> edits, const RingStretch* stretch, const RingStretch* undo,
                                        const std::vector<Point<D>>& loose_removed,
-                                       const std::vector<Point<D>>& loose_added,
-                                       std::shared_ptr<const SizeField> new_size, std::vector<Point<D>>& removed,
+                                       const std::vector<Point<D>>& loose_added, SizeChange size_change,
+                                       SizeUndo* size_undo, std::vector<Point<D>>& removed,
                                        std::vector<Point<D>>& added, UpdateReport<D>& report) {
     if constexpr (D != 2) {
-      (void)rings, (void)loose_removed, (void)loose_added, (void)new_size, (void)removed, (void)added;
+      (void)stretch, (void)undo, (void)loose_removed, (void)loose_added, (void)size_change, (void)size_undo,
+          (void)removed, (void)added;
       return set->apply(edits, &report);
     } else {
       const std::size_t user_adds = static_cast<std::size_t>(
           std::count_if(edits.begin(), edits.end(), [](const Edit<D>& e) { return e.kind == Edit<D>::Kind::Add; }));
-      const auto old_size = size;
-      std::optional<ShoreRefinement> old_refinement;
-      const Domain2 rings_before = refinement ? refinement->rings() : Domain2{};
-      const Domain2 refined_before = refinement ? refinement->refined() : Domain2{};
-      const Domain2 rings_after = rings ? *rings : rings_before;
-      bool h_changed = new_size != nullptr;
-      if (!new_size && rings && size->depends_on_rings()) {
-        // The new field holds the new rings even where h did not change: a later size edit reads them.
-        auto field = std::make_shared<SizeField>(*size);
-        h_changed = field->set_rings(rings_after);
-        new_size = std::move(field);
-      }
+      SizeUndo ring_undo;
+      if (!size_undo) size_undo = &ring_undo;
+      // The field holds the new rings even where h did not change: a later size edit reads them.
+      if (stretch && size->depends_on_rings()) size_change = size_field().set_rings(rings_now, size_undo);
+      const bool h_changed = size_change.changed;
+      const auto one = [](const RingStretch* s) { return s ? std::span<const RingStretch>(s, 1) : std::span<const RingStretch>(); };
+      // The rule reads h over a subsegment's box: it may differ only where that reads a changed node.
+      const std::function<bool(const Point2&, const Point2&)> rule_changed = [&](const Point2& a, const Point2& b) {
+        return size->reads(a, b, size_change);
+      };
+      auto rule_of = [&](const std::shared_ptr<const SizeField>& field) {
+        RefinementRule rule = RefinementRule::for_box(set->box().side);
+        rule.max_length = shore_max_length(field);
+        return rule;
+      };
       SplitChange splits;
-      if (refinement) {
-        if (h_changed) {
-          // The rule changed: a fresh refinement of the new input, and the difference of the splits.
-          std::vector<Point2> loose = loose_points();
-          for (const Point2& p : loose_removed) loose.erase(std::find(loose.begin(), loose.end(), p));
-          loose.insert(loose.end(), loose_added.begin(), loose_added.end());
-          RefinementRule rule = RefinementRule::for_box(set->box().side);
-          rule.max_length = shore_max_length(new_size);
-          ShoreRefinement fresh(rings_after, loose, rule);
-          const auto before = refinement->split_points(), after = fresh.split_points();
-          std::set_difference(before.begin(), before.end(), after.begin(), after.end(), std::back_inserter(splits.removed));
-          std::set_difference(after.begin(), after.end(), before.begin(), before.end(), std::back_inserter(splits.added));
-          old_refinement.emplace(std::move(*refinement));
-          refinement.emplace(std::move(fresh));
-        } else {
-          splits = refinement->update(rings_after, loose_removed, loose_added);
-        }
+      try {
+        if (refinement)
+          splits = h_changed ? refinement->update(one(stretch), loose_removed, loose_added, rule_of(size), rule_changed)
+                             : refinement->update(one(stretch), loose_removed, loose_added);
+      } catch (...) {
+        size_field().take_back(std::move(*size_undo));
+        throw;
       }
-      if (new_size) size = new_size;
-      // Only the quadtree's nodes that the change of h or of the refined rings reaches (update_size_seeds).
-      const std::vector<Point2> new_seeds =
-          update_size_seeds(*old_size, seeds, refined_before, *size, refinement ? refinement->refined() : Domain2{});
+      auto take_back = [&] {
+        size_field().take_back(std::move(*size_undo));
+        if (refinement) {
+          if (h_changed) refinement->update(one(undo), loose_added, loose_removed, rule_of(size), rule_changed);
+          else refinement->update(one(undo), loose_added, loose_removed);
+        }
+      };
+      std::vector<Point2> new_seeds;
+      try {
+        // Only the quadtree's nodes that the change of h or of the refined rings reaches (update_size_seeds).
+        new_seeds = update_size_seeds(*size, *size_undo, seeds, size_change, splits.segments,
+                                      refinement ? refinement->refined() : Domain2{});
+      } catch (...) {
+        take_back();
+        throw;
+      }
       std::vector<Point2> seeds_removed, seeds_added;
       std::set_difference(seeds.begin(), seeds.end(), new_seeds.begin(), new_seeds.end(), std::back_inserter(seeds_removed));
       std::set_difference(new_seeds.begin(), new_seeds.end(), seeds.begin(), seeds.end(), std::back_inserter(seeds_added));
@@ -423,11 +425,10 @@ struct ShoreSession<D>::Impl {
       try {
         ids = set->apply(edits, &report);
       } catch (...) {
-        size = old_size;
-        if (old_refinement) refinement.emplace(std::move(*old_refinement));
-        else if (refinement) refinement->update(rings_before, loose_added, loose_removed);
+        take_back();
         throw;
       }
+      shore_change = std::move(splits.segments);
       for (const Point2& p : splits.removed) split_id.erase(p), removed.push_back(p);
       for (const Point2& p : seeds_removed) seed_id.erase(p), removed.push_back(p);
       std::size_t next = user_adds;
@@ -536,7 +537,7 @@ ShoreSession<D>::ShoreSession(const SessionInput<D>& input, const Options& optio
     if (options.size) {
       // The box is fixed before the seeds join the input (a fresh run fits it to the input points alone).
       box = run_box(input, options.box);
-      m.size = std::make_shared<const SizeField>(*options.size, *box, input.rings);
+      m.size = std::make_shared<SizeField>(*options.size, *box, input.rings);  // mutable: edits update it in place
     }
     if (!input.rings.empty()) {
       m.refinement = refine_input(input, options.box, m.size);  // checks that the ring ids name the rings' points
@@ -810,15 +811,15 @@ SessionEdit<D> ShoreSession<D>::set_polygon_size(std::size_t polygon, double siz
   } else {
     if (!m.size || m.size->terms().polygons.empty())
       throw InputError("this session has no size polygons (--size-polygons FILE.geojson)");
-    auto field = std::make_shared<SizeField>(*m.size);
     const auto edit_start = Clock::now();
-    field->set_polygon_size(polygon, size);
+    SizeUndo undo;
+    const SizeChange change = m.size_field().set_polygon_size(polygon, size, &undo);
     SessionEdit<D> out;
     out.id = polygon;
     const auto start = Clock::now();
     std::vector<Point<D>> removed, added;
     m.shore_change.reset();
-    m.apply_sized({}, nullptr, {}, {}, std::move(field), removed, added, out.engine);
+    m.apply_sized({}, nullptr, nullptr, {}, {}, change, &undo, removed, added, out.engine);
     m.update_mesh(std::move(removed), std::move(added), edit_start, start, out);
     return out;
   }

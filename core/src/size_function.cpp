@@ -10,7 +10,9 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <queue>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "ring_geometry.hpp"
 #include "shoremesh/engine/predicates.hpp"
@@ -80,6 +82,125 @@ void limit_gradient(std::vector<double>& h, std::size_t n, double cell, double g
   }
 }
 
+// limgrad's result is one function of the sources s: F(v) = the least, over the grid paths y = p0 .. pk = v,
+// of s(y) + step_1 + ... + step_k added in path order in doubles. fl(x + step) is monotone in x, so any
+// sequence of relaxations from s that ends where no edge relaxes ends there (every value it holds is such a
+// sum, and a state where nothing relaxes is below every sum): the raster sweeps of a fresh field and the
+// local repair below give the same doubles.
+struct Stencil {
+  std::size_t w;
+  double a, d;  // the steps along an axis and along a diagonal
+  template <class F>
+  void each(std::size_t v, F&& f) const {
+    const std::size_t i = v % w, j = v / w;
+    if (i > 0) f(v - 1, a);
+    if (i + 1 < w) f(v + 1, a);
+    if (j > 0) {
+      f(v - w, a);
+      if (i > 0) f(v - w - 1, d);
+      if (i + 1 < w) f(v - w + 1, d);
+    }
+    if (j + 1 < w) {
+      f(v + w, a);
+      if (i > 0) f(v + w - 1, d);
+      if (i + 1 < w) f(v + w + 1, d);
+    }
+  }
+};
+
+// The fixed point F of the sources `source` (now), after they changed at `nodes` from `before`, repaired
+// where the change reaches: A, the nodes whose source rose and every node a tight step (F(v) == F(u) + step,
+// F(v) below its own source) leads to from them, takes its source again; then relaxations, smallest value
+// first, from A, from the nodes whose source fell and from A's neighbours, until nothing relaxes. A node
+// outside A keeps a path of its old value that avoids the risen sources (follow tight steps back to a node
+// at its own source: F falls strictly along them, `strict` below), so the state starts above the new F and
+// every value in it is a path's sum: it ends at the new F. Appends (node, old value) for every node whose
+// value changed; returns the nodes popped.
+std::size_t repair_gradient(std::vector<double>& F, const Stencil& st, const std::vector<std::size_t>& nodes,
+                            const std::vector<double>& before, const std::function<double(std::size_t)>& source,
+                            std::vector<std::pair<std::size_t, double>>& changed) {
+  std::unordered_map<std::size_t, double> old_source;
+  for (std::size_t k = 0; k < nodes.size(); ++k) old_source.emplace(nodes[k], before[k]);
+  auto old_src = [&](std::size_t v) {
+    const auto it = old_source.find(v);
+    return it == old_source.end() ? source(v) : it->second;
+  };
+  std::vector<std::size_t> A;
+  std::unordered_set<std::size_t> in_a;
+  for (std::size_t k = 0; k < nodes.size(); ++k)
+    if (source(nodes[k]) > before[k] && in_a.insert(nodes[k]).second) A.push_back(nodes[k]);
+  for (std::size_t q = 0; q < A.size(); ++q) {
+    const std::size_t u = A[q];
+    st.each(u, [&](std::size_t v, double step) {
+      if (!in_a.count(v) && std::isfinite(F[v]) && F[v] == F[u] + step && F[v] < old_src(v) && in_a.insert(v).second)
+        A.push_back(v);
+    });
+  }
+  std::unordered_map<std::size_t, double> saved;
+  auto set = [&](std::size_t v, double x) {
+    saved.try_emplace(v, F[v]);
+    F[v] = x;
+  };
+  using Item = std::pair<double, std::size_t>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> heap;
+  for (std::size_t v : A) set(v, source(v));
+  for (std::size_t v : nodes)
+    if (!in_a.count(v) && source(v) < F[v]) set(v, source(v));
+  for (std::size_t v : A) {
+    heap.push({F[v], v});
+    st.each(v, [&](std::size_t u, double) {
+      if (!in_a.count(u)) heap.push({F[u], u});
+    });
+  }
+  for (std::size_t v : nodes)
+    if (!in_a.count(v)) heap.push({F[v], v});
+  std::size_t popped = 0;
+  while (!heap.empty()) {
+    const auto [x, u] = heap.top();
+    heap.pop();
+    if (x != F[u]) continue;
+    ++popped;
+    st.each(u, [&](std::size_t v, double step) {
+      const double c = F[u] + step;
+      if (c < F[v]) {
+        set(v, c);
+        heap.push({c, v});
+      }
+    });
+  }
+  for (const auto& [v, x] : saved)
+    if (!(F[v] == x)) changed.push_back({v, x});
+  return popped + A.size();
+}
+
+// Steps fall strictly along tight steps when every finite value x <= bound has x + step > x (with margin:
+// half a step already moves the bound).
+bool strict(double bound, double step) { return bound + 0.5 * step > bound; }
+
+// The segments in one of a and b only (as unordered pairs), by ring.
+std::vector<std::pair<Point2, Point2>> changed_segments(const Domain2& a, const Domain2& b) {
+  std::vector<std::pair<Point2, Point2>> out;
+  auto key = [](const Point2& p, const Point2& q) { return p < q ? std::pair{p, q} : std::pair{q, p}; };
+  static const Ring none;
+  for (std::size_t r = 0; r < std::max(a.rings.size(), b.rings.size()); ++r) {
+    const Ring& ra = r < a.rings.size() ? a.rings[r] : none;
+    const Ring& rb = r < b.rings.size() ? b.rings[r] : none;
+    if (ra.points == rb.points && ra.role == rb.role) continue;
+    std::vector<std::pair<Point2, Point2>> x, y;
+    if (ra.role != rb.role) {  // a ring that becomes a line or back: what it bounds changes whole
+      for (std::size_t k = 0; k < ra.segment_count(); ++k) out.push_back(key(ra.points[k], ra.points[(k + 1) % ra.points.size()]));
+      for (std::size_t k = 0; k < rb.segment_count(); ++k) out.push_back(key(rb.points[k], rb.points[(k + 1) % rb.points.size()]));
+      continue;
+    }
+    for (std::size_t k = 0; k < ra.segment_count(); ++k) x.push_back(key(ra.points[k], ra.points[(k + 1) % ra.points.size()]));
+    for (std::size_t k = 0; k < rb.segment_count(); ++k) y.push_back(key(rb.points[k], rb.points[(k + 1) % rb.points.size()]));
+    std::sort(x.begin(), x.end());
+    std::sort(y.begin(), y.end());
+    std::set_symmetric_difference(x.begin(), x.end(), y.begin(), y.end(), std::back_inserter(out));
+  }
+  return out;
+}
+
 // A leaf's canonical jitter in [-1, 1]^2 from its level and place (splitmix64): a grid of seeds would put
 // four points on every circle, where the Delaunay mesh is not unique.
 std::array<double, 2> jitter(int level, std::uint64_t ix, std::uint64_t iy) {
@@ -137,8 +258,9 @@ SizeField::SizeField(SizeTerms terms, const BoxTransform<2>& box, const Domain2&
   cell_ = box_.side / static_cast<double>(n_);
   const std::size_t w = n_ + 1;
 
-  // Sampled terms, once (they do not read the rings).
-  sampled_.assign(w * w, kInf);
+  // Sampled terms, once (they do not read the rings; copies of the field share them).
+  auto sampled = std::make_shared<std::vector<double>>(w * w, kInf);
+  std::vector<double>& sampled_at = *sampled;
   for (const SampledSizeTerm& t : terms_.sampled)
     for (std::size_t j = 0; j < w; ++j)
       for (std::size_t i = 0; i < w; ++i) {
@@ -148,8 +270,11 @@ SizeField::SizeField(SizeTerms terms, const BoxTransform<2>& box, const Domain2&
         if (!(v > 0))
           throw InputError(t.name + ": size " + number(v) + " at (" + number(p[0]) + ", " + number(p[1]) +
                            ") is not above 0");
-        sampled_[node(i, j)] = std::min(sampled_[node(i, j)], v);
+        sampled_at[node(i, j)] = std::min(sampled_at[node(i, j)], v);
       }
+  for (double x : sampled_at)
+    if (std::isfinite(x)) sampled_top_ = std::max(sampled_top_, x);
+  sampled_ = std::move(sampled);
   compute();
 
   // The point cap, term by term: about area / (sqrt(3)/4 h^2) triangles, half as many points.
@@ -184,10 +309,19 @@ SizeField::SizeField(SizeTerms terms, const BoxTransform<2>& box, const Domain2&
   if (!terms_.sampled.empty()) {
     std::string names;
     for (const auto& t : terms_.sampled) names += (names.empty() ? "" : ", ") + t.name;
-    check_cap(estimate([&](std::size_t v) { return sampled_[v]; }), names);
+    check_cap(estimate([&](std::size_t v) { return (*sampled_)[v]; }), names);
   }
   check_cap(estimate([&](std::size_t v) { return h_[v]; }),
             terms_.grade ? "the graded size (--grade " + number(*terms_.grade) + ")" : "the size function");
+  clamp_shore();
+}
+
+// h reads the shore term only below --max-size: kept there at most, the term's change stays where it
+// binds. min(F(s), M) is the sweeps' fixed point of min(s, M) with M at every node (a path from a node at M
+// sums to M or more), so a repair of the clamped term equals a fresh field's clamped term.
+void SizeField::clamp_shore() {
+  if (terms_.max_size)
+    for (double& x : shore_) x = std::min(x, *terms_.max_size);
 }
 
 void SizeField::compute() {
@@ -195,7 +329,8 @@ void SizeField::compute() {
   auto position = [&](std::size_t v) {
     return Point2{box_.origin[0] + static_cast<double>(v % w) * cell_, box_.origin[1] + static_cast<double>(v / w) * cell_};
   };
-  water_mask();
+  water_.assign(w * w, 0);
+  water_mask(0, 0, n_, n_);
 
   // Polygons: the nodes inside each (kept, so that a size edit reads no geometry again).
   if (polygon_nodes_.size() != terms_.polygons.size()) {
@@ -217,6 +352,7 @@ void SizeField::compute() {
 
   // The shore term: H0 + RATE * distance, exact beside each segment, carried on by the same sweeps.
   shore_.clear();
+  shore_src_.clear();
   if (terms_.shore_size) {
     shore_.assign(w * w, kInf);
     for (const Ring& ring : rings_.rings)
@@ -237,11 +373,12 @@ void SizeField::compute() {
             shore_[v] = std::min(shore_[v], *terms_.shore_size + *terms_.shore_rate * dist_to_segment(position(v), a, b));
           }
       }
+    shore_src_ = shore_;
     if (*terms_.shore_rate > 0) limit_gradient(shore_, n_, cell_, *terms_.shore_rate);
     else std::fill(shore_.begin(), shore_.end(), rings_.empty() ? kInf : *terms_.shore_size);
   }
 
-  h_ = sampled_;
+  h_ = *sampled_;
   if (terms_.max_size)
     for (double& x : h_) x = std::min(x, *terms_.max_size);
   if (!shore_.empty())
@@ -254,26 +391,36 @@ void SizeField::compute() {
   build_pyramid();
 }
 
-// Water at the nodes, for the estimates and the summary only (without closed rings: everywhere): exactly
-// WaterTest::in_water at every node, by its rule (even-odd over the edges that cross the node's row half-open,
-// a node on an edge is on the ring, not in the water) with its exact orientation tests, but along each row
-// of nodes at once: an edge crossing the row has its crossing strictly right of the nodes 0 .. f - 1, f
-// found from a double estimate and settled by orient2d (the test is monotone along the row).
-void SizeField::water_mask() {
+// Water at the nodes [c0, c1] x [r0, r1], for the estimates and the summary only (without closed rings:
+// everywhere): exactly WaterTest::in_water at every node, by its rule (even-odd over the edges that cross
+// the node's row half-open, a node on an edge is on the ring, not in the water) with its exact orientation
+// tests, but along each row of nodes at once: an edge crossing the row has its crossing strictly right of
+// the nodes 0 .. f - 1, f found from a double estimate and settled by orient2d (the test is monotone along
+// the row).
+void SizeField::water_mask(std::size_t c0, std::size_t r0, std::size_t c1, std::size_t r1) {
   const std::size_t w = n_ + 1;
   const bool any = std::any_of(rings_.rings.begin(), rings_.rings.end(),
                                [](const Ring& r) { return r.closed() && !r.points.empty(); });
-  water_.assign(w * w, any ? 0 : 1);
-  if (!any) return;
+  if (undo_) {
+    undo_->water_box[0] = c0, undo_->water_box[1] = r0, undo_->water_box[2] = c1, undo_->water_box[3] = r1;
+    for (std::size_t j = r0; j <= r1; ++j)
+      for (std::size_t i = c0; i <= c1; ++i) undo_->water.push_back(water_[node(i, j)]);
+  }
+  if (!any) {
+    for (std::size_t j = r0; j <= r1; ++j)
+      for (std::size_t i = c0; i <= c1; ++i) water_[node(i, j)] = 1;
+    return;
+  }
   auto x_of = [&](std::size_t i) { return box_.origin[0] + static_cast<double>(i) * cell_; };
   auto y_of = [&](std::size_t j) { return box_.origin[1] + static_cast<double>(j) * cell_; };
-  // Per row: toggle[f] flips the parity of the nodes left of f; on_ring marks nodes on an edge.
-  std::vector<std::vector<std::uint8_t>> toggle(w);
-  std::vector<std::uint8_t> on_ring(w * w, 0);
+  // Per window row: toggle[f - c0] flips the parity of the nodes left of f (c0 < f <= c1), base the
+  // crossings right of the window; on_ring marks nodes on an edge.
+  const std::size_t cols = c1 - c0 + 1, rows = r1 - r0 + 1;
+  std::vector<std::uint8_t> toggle(rows * cols, 0), base(rows, 0), on_ring(rows * cols, 0);
   auto row_range = [&](double y0, double y1) {
     const double lo = std::floor((y0 - box_.origin[1]) / cell_) - 1, hi = std::ceil((y1 - box_.origin[1]) / cell_) + 1;
-    return std::pair{static_cast<std::size_t>(std::clamp(lo, 0.0, double(n_))),
-                     static_cast<std::size_t>(std::clamp(hi, 0.0, double(n_)))};
+    return std::pair{std::max(r0, static_cast<std::size_t>(std::clamp(lo, 0.0, double(n_)))),
+                     std::min(r1, static_cast<std::size_t>(std::clamp(hi, 0.0, double(n_))))};
   };
   for (const Ring& ring : rings_.rings) {
     if (!ring.closed()) continue;
@@ -281,15 +428,16 @@ void SizeField::water_mask() {
       const Point2& a = ring.points[k];
       const Point2& b = ring.points[(k + 1) % ring.points.size()];
       const auto [j0, j1] = row_range(std::min(a[1], b[1]), std::max(a[1], b[1]));
-      for (std::size_t j = j0; j <= j1; ++j) {
+      for (std::size_t j = j0; j <= j1 && j0 <= j1; ++j) {
+        const std::size_t row = j - r0;
         const double y = y_of(j);
         if ((a[1] > y) == (b[1] > y)) {
           if (a[1] == y && b[1] == y) {  // a horizontal edge on the row: the nodes on it
             const double x0 = std::min(a[0], b[0]), x1 = std::max(a[0], b[0]);
             const auto lo = static_cast<std::size_t>(std::clamp(std::floor((x0 - box_.origin[0]) / cell_) - 1, 0.0, double(n_)));
             const auto hi = static_cast<std::size_t>(std::clamp(std::ceil((x1 - box_.origin[0]) / cell_) + 1, 0.0, double(n_)));
-            for (std::size_t i = lo; i <= hi; ++i)
-              if (x0 <= x_of(i) && x_of(i) <= x1) on_ring[node(i, j)] = 1;
+            for (std::size_t i = std::max(lo, c0); i <= std::min(hi, c1); ++i)
+              if (x0 <= x_of(i) && x_of(i) <= x1) on_ring[row * cols + (i - c0)] = 1;
           }
           continue;
         }
@@ -301,18 +449,17 @@ void SizeField::water_mask() {
         auto f = std::isnan(estimate) ? 0 : static_cast<std::size_t>(std::clamp(std::ceil(estimate), 0.0, double(w)));
         while (f > 0 && !left(f - 1)) --f;
         while (f < w && left(f)) ++f;
-        if (f < w && detail::orient(down, up, Point2{x_of(f), y}) == 0) on_ring[node(f, j)] = 1;
-        if (toggle[j].empty()) toggle[j].assign(w + 1, 0);
-        toggle[j][f] ^= 1;
+        if (f < w && f >= c0 && f <= c1 && detail::orient(down, up, Point2{x_of(f), y}) == 0) on_ring[row * cols + (f - c0)] = 1;
+        if (f > c1) base[row] ^= 1;
+        else if (f > c0) toggle[row * cols + (f - c0)] ^= 1;
       }
     }
   }
-  for (std::size_t j = 0; j < w; ++j) {
-    if (toggle[j].empty()) continue;
-    std::uint8_t parity = 0;
-    for (std::size_t i = w; i-- > 0;) {
-      parity ^= toggle[j][i + 1];  // the crossings right of node i
-      water_[node(i, j)] = parity && !on_ring[node(i, j)];
+  for (std::size_t row = 0; row < rows; ++row) {
+    std::uint8_t parity = base[row];
+    for (std::size_t i = c1 + 1; i-- > c0;) {
+      if (i + 1 <= c1) parity ^= toggle[row * cols + (i + 1 - c0)];  // the crossings right of node i
+      water_[node(i, r0 + row)] = parity && !on_ring[row * cols + (i - c0)];
     }
   }
 }
@@ -357,7 +504,8 @@ double SizeField::min_over_segment(const Point2& a, const Point2& b) const {
 
 // The bilinear h over a cell lies between its nodes' values: the least over the cells the box meets, read
 // from the coarsest pyramid level whose blocks stay at most about half the box.
-double SizeField::min_over_box(const Point2& lo, const Point2& hi) const {
+double SizeField::min_over_box(const Point2& lo, const Point2& hi,
+                               const std::function<double(std::size_t, std::size_t)>& before) const {
   auto cell_range = [&](int axis) {
     const double a = std::floor((lo[axis] - box_.origin[axis]) / cell_);
     const double b = std::floor((hi[axis] - box_.origin[axis]) / cell_);
@@ -372,34 +520,261 @@ double SizeField::min_over_box(const Point2& lo, const Point2& hi) const {
   const std::size_t m = n_ >> l;
   double out = kInf;
   for (std::size_t j = j0 >> l; j <= j1 >> l; ++j)
-    for (std::size_t i = i0 >> l; i <= i1 >> l; ++i) out = std::min(out, pyramid_[l][j * m + i]);
+    for (std::size_t i = i0 >> l; i <= i1 >> l; ++i) out = std::min(out, before ? before(l, j * m + i) : pyramid_[l][j * m + i]);
   return out;
 }
 
-bool SizeField::set_rings(const Domain2& rings) {
-  rings_ = rings;
-  if (!depends_on_rings()) {
-    // The water changes the summary only: recompute the mask cheaply enough through compute().
-    const std::vector<double> before = h_;
-    compute();
-    return before != h_;
-  }
-  const std::vector<double> before = h_;
-  compute();
-  return before != h_;
+double SizeField::min_over_before(const SizeUndo& undo, const Point2& lo, double side) const {
+  const std::function<double(std::size_t, std::size_t)> before = [&](std::size_t l, std::size_t b) {
+    if (undo.whole_pyramid) return (*undo.whole_pyramid)[l][b];
+    const auto it = undo.pyramid.find(static_cast<std::uint64_t>(l) << 56 | b);
+    return it == undo.pyramid.end() ? pyramid_[l][b] : it->second;
+  };
+  return min_over_box(lo, {lo[0] + side, lo[1] + side}, before);
 }
 
-bool SizeField::set_polygon_size(std::size_t index, double size) {
+void SizeField::take_back(SizeUndo&& u) {
+  if (u.whole_h) h_ = std::move(*u.whole_h);
+  if (u.whole_shore) shore_ = std::move(*u.whole_shore);
+  if (u.whole_src) shore_src_ = std::move(*u.whole_src);
+  if (u.whole_water) water_ = std::move(*u.whole_water);
+  if (u.whole_pyramid) pyramid_ = std::move(*u.whole_pyramid);
+  for (const auto& [v, x] : u.h) h_[v] = x;
+  for (const auto& [v, x] : u.shore) shore_[v] = x;
+  for (const auto& [v, x] : u.shore_src) shore_src_[v] = x;
+  for (std::size_t j = u.water_box[1], k = 0; !u.water.empty() && j <= u.water_box[3]; ++j)
+    for (std::size_t i = u.water_box[0]; i <= u.water_box[2]; ++i) water_[node(i, j)] = u.water[k++];
+  for (const auto& [key, x] : u.pyramid) pyramid_[key >> 56][key & ((std::uint64_t{1} << 56) - 1)] = x;
+  if (u.polygon) terms_.polygons[u.polygon->first].size = u.polygon->second;
+  if (u.rings) rings_ = std::move(*u.rings);
+}
+
+void SizeField::update_pyramid(std::size_t i0, std::size_t j0, std::size_t i1, std::size_t j1) {
+  // The cells with a changed node: [i0 - 1, i1] x [j0 - 1, j1] within the grid, then their blocks upward.
+  std::size_t c0 = i0 > 0 ? i0 - 1 : 0, d0 = j0 > 0 ? j0 - 1 : 0;
+  std::size_t c1 = std::min(i1, n_ - 1), d1 = std::min(j1, n_ - 1);
+  auto write = [&](std::size_t l, std::size_t b, double x) {
+    double& y = pyramid_[l][b];
+    if (undo_ && !(x == y)) undo_->pyramid.emplace(static_cast<std::uint64_t>(l) << 56 | b, y);
+    y = x;
+  };
+  for (std::size_t j = d0; j <= d1; ++j)
+    for (std::size_t i = c0; i <= c1; ++i)
+      write(0, j * n_ + i, std::min({h_[node(i, j)], h_[node(i + 1, j)], h_[node(i, j + 1)], h_[node(i + 1, j + 1)]}));
+  for (std::size_t l = 1, m = n_ / 2; l < pyramid_.size(); ++l, m /= 2) {
+    c0 /= 2, d0 /= 2, c1 /= 2, d1 /= 2;
+    const auto& below = pyramid_[l - 1];
+    for (std::size_t j = d0; j <= d1; ++j)
+      for (std::size_t i = c0; i <= c1; ++i)
+        write(l, j * m + i, std::min({below[2 * j * 2 * m + 2 * i], below[2 * j * 2 * m + 2 * i + 1],
+                                      below[(2 * j + 1) * 2 * m + 2 * i], below[(2 * j + 1) * 2 * m + 2 * i + 1]}));
+  }
+}
+
+double SizeField::raw(std::size_t v, double shore) const {
+  double x = (*sampled_)[v];
+  if (terms_.max_size) x = std::min(x, *terms_.max_size);
+  x = std::min(x, shore);
+  for (std::size_t q = 0; q < terms_.polygons.size(); ++q)
+    if (std::binary_search(polygon_nodes_[q].begin(), polygon_nodes_[q].end(), v)) x = std::min(x, terms_.polygons[q].size);
+  if (terms_.min_size) x = std::max(x, *terms_.min_size);
+  return x;
+}
+
+double SizeField::shore_bound() const {
+  // A source lies within a cell's diagonal of its segment's box; a grid path between two nodes is at
+  // most two sides long.
+  if (!terms_.shore_size) return 0;
+  if (terms_.max_size) return *terms_.max_size;
+  return *terms_.shore_size + *terms_.shore_rate * 8 * box_.side;
+}
+
+double SizeField::finite_bound() const {
+  if (terms_.max_size) return *terms_.max_size;
+  double b = std::max(sampled_top_, shore_bound());
+  for (const SizePolygon& p : terms_.polygons) b = std::max(b, p.size);
+  return std::max(b, terms_.min_size.value_or(0));
+}
+
+SizeChange SizeField::recompute_whole() {
+  const std::vector<double> before = h_;
+  SizeUndo* const undo = undo_;
+  if (undo) {
+    undo->whole_h = h_, undo->whole_shore = shore_, undo->whole_src = shore_src_;
+    undo->whole_water = water_, undo->whole_pyramid = pyramid_;
+  }
+  undo_ = nullptr;  // the arrays are kept whole
+  compute();
+  undo_ = undo;
+  clamp_shore();
+  SizeChange c;
+  c.whole = true;
+  c.visited = h_.size();
+  const std::size_t w = n_ + 1;
+  for (std::size_t v = 0; v < h_.size(); ++v) {
+    if (before[v] == h_[v]) continue;
+    const std::size_t i = v % w, j = v / w;
+    if (!c.changed) c.i0 = c.i1 = i, c.j0 = c.j1 = j;
+    c.changed = true;
+    c.i0 = std::min(c.i0, i), c.i1 = std::max(c.i1, i), c.j0 = std::min(c.j0, j), c.j1 = std::max(c.j1, j);
+  }
+  return c;
+}
+
+SizeChange SizeField::update_h(const std::vector<std::size_t>& nodes, const std::vector<double>& before) {
+  SizeChange c;
+  const std::size_t w = n_ + 1;
+  auto now = [&](std::size_t v) { return raw(v, shore_.empty() ? kInf : shore_[v]); };
+  std::vector<std::pair<std::size_t, double>> changed;
+  if (terms_.grade) {
+    if (!strict(finite_bound(), *terms_.grade * cell_)) return recompute_whole();
+    c.visited = repair_gradient(h_, Stencil{w, *terms_.grade * cell_, *terms_.grade * cell_ * std::numbers::sqrt2}, nodes,
+                                before, now, changed);
+  } else {
+    for (std::size_t v : nodes) {
+      const double x = now(v);
+      if (!(x == h_[v])) changed.push_back({v, h_[v]}), h_[v] = x;
+    }
+    c.visited = nodes.size();
+  }
+  if (undo_) undo_->h.insert(undo_->h.end(), changed.begin(), changed.end());
+  for (const auto& [v, x] : changed) {
+    const std::size_t i = v % w, j = v / w;
+    if (!c.changed) c.i0 = c.i1 = i, c.j0 = c.j1 = j;
+    c.changed = true;
+    c.i0 = std::min(c.i0, i), c.i1 = std::max(c.i1, i), c.j0 = std::min(c.j0, j), c.j1 = std::max(c.j1, j);
+  }
+  if (c.changed) update_pyramid(c.i0, c.j0, c.i1, c.j1);
+  return c;
+}
+
+// Only where the changed segments reach (docs/sizing.md): the water inside their bounding box (the two
+// even-odd regions differ by the changed segments' own, empty outside their box), the shore term's values
+// beside them and what its sweeps carry from there, and h where the shore term changed.
+SizeChange SizeField::set_rings(const Domain2& rings, SizeUndo* undo) {
+  undo_ = undo;
+  struct Done {
+    SizeUndo*& u;
+    ~Done() { u = nullptr; }
+  } done{undo_};
+  const std::vector<std::pair<Point2, Point2>> segs = changed_segments(rings_, rings);
+  const bool emptiness = rings_.empty() != rings.empty();
+  if (undo) undo->rings = std::move(rings_);
+  rings_ = rings;
+  if (segs.empty()) return {};
+  const std::size_t w = n_ + 1;
+  auto index = [&](double x, int axis, double grow) {
+    return static_cast<std::size_t>(std::clamp(std::floor((x - box_.origin[axis]) / cell_ + grow), 0.0, double(n_)));
+  };
+  double lo[2] = {kInf, kInf}, hi[2] = {-kInf, -kInf};
+  for (const auto& [a, b] : segs)
+    for (int x = 0; x < 2; ++x) lo[x] = std::min({lo[x], a[x], b[x]}), hi[x] = std::max({hi[x], a[x], b[x]});
+  water_mask(index(lo[0], 0, 0), index(lo[1], 1, 0), std::min(n_, index(hi[0], 0, 0) + 1), std::min(n_, index(hi[1], 1, 0) + 1));
+  if (!terms_.shore_size) return {};
+  const double h0 = *terms_.shore_size, rate = *terms_.shore_rate;
+  if (emptiness) return recompute_whole();
+  if (rate == 0) return {};  // H0 wherever there are rings
+  if (!strict(shore_bound(), rate * cell_)) return recompute_whole();
+  // The sources beside the changed segments, from every segment (compute()'s ranges).
+  auto range = [&](const Point2& a, const Point2& b, int axis) {
+    const double l = (std::min(a[axis], b[axis]) - box_.origin[axis]) / cell_ - 1;
+    const double h = (std::max(a[axis], b[axis]) - box_.origin[axis]) / cell_ + 1;
+    return std::pair{static_cast<std::size_t>(std::clamp(std::floor(l), 0.0, double(n_))),
+                     static_cast<std::size_t>(std::clamp(std::ceil(h), 0.0, double(n_)))};
+  };
+  std::size_t R[4] = {n_, n_, 0, 0};  // i0, j0, i1, j1
+  for (const auto& [a, b] : segs) {
+    const auto [i0, i1] = range(a, b, 0);
+    const auto [j0, j1] = range(a, b, 1);
+    R[0] = std::min(R[0], i0), R[1] = std::min(R[1], j0), R[2] = std::max(R[2], i1), R[3] = std::max(R[3], j1);
+  }
+  const std::size_t rw = R[2] - R[0] + 1;
+  std::vector<double> src((R[3] - R[1] + 1) * rw, kInf);
+  for (const Ring& ring : rings_.rings)
+    for (std::size_t k = 0; k < ring.segment_count(); ++k) {
+      const Point2& a = ring.points[k];
+      const Point2& b = ring.points[(k + 1) % ring.points.size()];
+      auto [i0, i1] = range(a, b, 0);
+      auto [j0, j1] = range(a, b, 1);
+      i0 = std::max(i0, R[0]), j0 = std::max(j0, R[1]), i1 = std::min(i1, R[2]), j1 = std::min(j1, R[3]);
+      for (std::size_t j = j0; j <= j1 && i0 <= i1; ++j)
+        for (std::size_t i = i0; i <= i1; ++i) {
+          const Point2 p{box_.origin[0] + static_cast<double>(i) * cell_, box_.origin[1] + static_cast<double>(j) * cell_};
+          double& x = src[(j - R[1]) * rw + (i - R[0])];
+          x = std::min(x, h0 + rate * dist_to_segment(p, a, b));
+        }
+    }
+  const double cap = terms_.max_size.value_or(kInf);
+  std::vector<std::size_t> nodes;
+  std::vector<double> before;
+  for (std::size_t j = R[1]; j <= R[3]; ++j)
+    for (std::size_t i = R[0]; i <= R[2]; ++i) {
+      const std::size_t v = node(i, j);
+      const double x = src[(j - R[1]) * rw + (i - R[0])];
+      if (x == shore_src_[v]) continue;
+      if (std::min(x, cap) != std::min(shore_src_[v], cap)) nodes.push_back(v), before.push_back(std::min(shore_src_[v], cap));
+      if (undo) undo->shore_src.push_back({v, shore_src_[v]});
+      shore_src_[v] = x;
+    }
+  std::vector<std::pair<std::size_t, double>> shore_changed;
+  const std::size_t visited =
+      repair_gradient(shore_, Stencil{w, rate * cell_, rate * cell_ * std::numbers::sqrt2}, nodes, before,
+                      [&](std::size_t v) { return std::min(shore_src_[v], cap); }, shore_changed) +
+      rw * (R[3] - R[1] + 1);
+  if (undo) undo->shore = shore_changed;
+  std::vector<std::size_t> hn;
+  std::vector<double> hb;
+  for (const auto& [v, x] : shore_changed) hn.push_back(v), hb.push_back(raw(v, x));
+  SizeChange c = update_h(hn, hb);
+  if (!c.whole) c.visited += visited;
+  return c;
+}
+
+SizeChange SizeField::set_polygon_size(std::size_t index, double size, SizeUndo* undo) {
   if (index >= terms_.polygons.size())
     throw InputError("no size polygon " + std::to_string(index) + " (size polygons: " +
                      (terms_.polygons.empty() ? std::string("none") : "0.." + std::to_string(terms_.polygons.size() - 1)) + ")");
   if (!(std::isfinite(size) && size > 0))
     throw ParameterError("size of polygon " + std::to_string(index) + " must be a positive finite number (got " +
                          number(size) + ")");
-  const std::vector<double> before = h_;
+  const std::vector<std::size_t>& nodes = polygon_nodes_[index];
+  std::vector<double> before;
+  before.reserve(nodes.size());
+  for (std::size_t v : nodes) before.push_back(raw(v, shore_.empty() ? kInf : shore_[v]));
+  undo_ = undo;
+  struct Done {
+    SizeUndo*& u;
+    ~Done() { u = nullptr; }
+  } done{undo_};
+  if (undo) undo->polygon = {index, terms_.polygons[index].size};
   terms_.polygons[index].size = size;
-  compute();
-  return before != h_;
+  return update_h(nodes, before);
+}
+
+// The pyramid blocks min_over_box reads for the box [lo, hi]: cells c[0] .. c[1] by c[2] .. c[3].
+void SizeField::read_cells(const Point2& lo, const Point2& hi, std::size_t c[4]) const {
+  auto cell_range = [&](int axis) {
+    const double a = std::floor((lo[axis] - box_.origin[axis]) / cell_);
+    const double b = std::floor((hi[axis] - box_.origin[axis]) / cell_);
+    return std::pair{static_cast<std::size_t>(std::clamp(a, 0.0, double(n_ - 1))),
+                     static_cast<std::size_t>(std::clamp(b, 0.0, double(n_ - 1)))};
+  };
+  const auto [i0, i1] = cell_range(0);
+  const auto [j0, j1] = cell_range(1);
+  const std::size_t span = std::max(i1 - i0, j1 - j0) + 1;
+  std::size_t l = 0;
+  while (l + 1 < pyramid_.size() && (std::size_t{2} << l) * 2 <= span) ++l;
+  c[0] = (i0 >> l) << l, c[1] = (((i1 >> l) + 1) << l) - 1, c[2] = (j0 >> l) << l, c[3] = (((j1 >> l) + 1) << l) - 1;
+}
+
+bool SizeField::reads(const Point2& a, const Point2& b, const SizeChange& change) const {
+  if (!change.changed) return false;
+  // The box grown by a cell: a subsegment's box (its ends computed in doubles) stays inside its edge's.
+  std::size_t c[4];
+  read_cells({std::min(a[0], b[0]) - cell_, std::min(a[1], b[1]) - cell_},
+             {std::max(a[0], b[0]) + cell_, std::max(a[1], b[1]) + cell_}, c);
+  // Cells c0 .. c1 hold the nodes c0 .. c1 + 1.
+  return c[0] <= change.i1 && change.i0 <= c[1] + 1 && c[2] <= change.j1 && change.j0 <= c[3] + 1;
 }
 
 SizeSummary SizeField::summary() const {
@@ -548,11 +923,13 @@ class SeedShore {
 };
 
 // The split rule of a node (retries aside): -1 no term sets a size there (no seed), 1 split, 0 a leaf.
-int seed_split(const SizeField& field, double root, const SeedNode& n) {
+// With `before`: as the field was before the update that filled it.
+int seed_split(const SizeField& field, double root, const SeedNode& n, const SizeUndo* before = nullptr) {
   const double side = std::ldexp(root, -n.level);
   const BoxTransform<2>& box = field.box();
   const Point2 lo{box.origin[0] + static_cast<double>(n.ix) * side, box.origin[1] + static_cast<double>(n.iy) * side};
-  const double h = field.min_over({lo[0] - side, lo[1] - side}, 3 * side);
+  const double h = before ? field.min_over_before(*before, {lo[0] - side, lo[1] - side}, 3 * side)
+                          : field.min_over({lo[0] - side, lo[1] - side}, 3 * side);
   if (!std::isfinite(h)) return -1;
   return side > kSeedFactor * h && n.level < 60 ? 1 : 0;
 }
@@ -626,35 +1003,25 @@ std::vector<Point2> size_seeds(const SizeField& field, const Domain2& refined, d
   return seeds;
 }
 
-std::vector<Point2> update_size_seeds(const SizeField& old_field, const std::vector<Point2>& old_seeds,
-                                      const Domain2& old_refined, const SizeField& field, const Domain2& refined,
-                                      double gamma, SeedUpdate* stats) {
+namespace {
+
+// update_size_seeds with where h changed (the grid nodes [i0, i1] x [j0, j1]) and the refined segments
+// that went or came.
+std::vector<Point2> update_seeds(const std::function<int(const SeedNode&)>& old_split, const std::vector<Point2>& old_seeds,
+                                 const SizeChange& h_change, const std::vector<std::pair<Point2, Point2>>& changed,
+                                 const SizeField& field, const Domain2& refined, double gamma, SeedUpdate* stats) {
   const double root = seed_root(field);
-  if (old_field.cells() != field.cells() || !(old_field.box().origin == field.box().origin) ||
-      old_field.box().side != field.box().side || seed_root(old_field) != root) {
-    if (stats) *stats = {};
-    return size_seeds(field, refined, gamma);
-  }
-  // Where h changed: the box of the grid nodes whose value changed.
-  const std::size_t w = field.cells() + 1;
   const double cell = field.box().side / static_cast<double>(field.cells());
   std::optional<Rect> h_changed;
-  for (std::size_t v = 0; &old_field != &field && v < w * w; ++v) {
-    if (old_field.nodes()[v] == field.nodes()[v] ||
-        (std::isnan(old_field.nodes()[v]) && std::isnan(field.nodes()[v])))
-      continue;
-    const double x = field.box().origin[0] + static_cast<double>(v % w) * cell, y = field.box().origin[1] + static_cast<double>(v / w) * cell;
-    if (!h_changed) h_changed = Rect{x, y, x, y};
-    h_changed->x0 = std::min(h_changed->x0, x), h_changed->y0 = std::min(h_changed->y0, y);
-    h_changed->x1 = std::max(h_changed->x1, x), h_changed->y1 = std::max(h_changed->y1, y);
+  if (h_change.changed) {
+    const Point2& o = field.box().origin;
+    h_changed = Rect{o[0] + static_cast<double>(h_change.i0) * cell, o[1] + static_cast<double>(h_change.j0) * cell,
+                     o[0] + static_cast<double>(h_change.i1) * cell, o[1] + static_cast<double>(h_change.j1) * cell};
   }
   // Where the refined rings changed: each changed segment's reach (the seeds' distance tests), and per
   // connected group of changed segments its bounding box (the water: the two domains' even-odd regions
   // differ by the even-odd region of the changed segments, whose every group is a union of closed chains,
   // empty outside its box).
-  std::vector<std::pair<Point2, Point2>> changed;
-  segments_not_in(old_refined, refined, changed);
-  segments_not_in(refined, old_refined, changed);
   std::vector<SegmentEntry> reach_entries;
   std::vector<Rect> water_boxes;
   for (const auto& [a, b] : changed) reach_entries.push_back({bbox(segment_reach(a, b, gamma)), 0});
@@ -690,7 +1057,7 @@ std::vector<Point2> update_size_seeds(const SizeField& old_field, const std::vec
     work.pop_back();
     ++visited;
     if (beyond_box(field, root, n) || !dirty(n)) continue;
-    if (seed_split(field, root, n) == 1 && seed_split(old_field, root, n) == 1) {
+    if (seed_split(field, root, n) == 1 && old_split(n) == 1) {
       push_children(work, n, 0);
       continue;
     }
@@ -729,6 +1096,67 @@ std::vector<Point2> update_size_seeds(const SizeField& old_field, const std::vec
   std::inplace_merge(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(kept), out.end());
   if (stats) *stats = {visited, redo.size(), old_seeds.size() - kept, fresh.size()};
   return out;
+}
+
+bool same_grid(const SizeField& a, const SizeField& b) {
+  return a.cells() == b.cells() && a.box().origin == b.box().origin && a.box().side == b.box().side &&
+         seed_root(a) == seed_root(b);
+}
+
+}  // namespace
+
+std::vector<Point2> update_size_seeds(const SizeField& old_field, const std::vector<Point2>& old_seeds,
+                                      const Domain2& old_refined, const SizeField& field, const Domain2& refined,
+                                      double gamma, SeedUpdate* stats) {
+  if (!same_grid(old_field, field)) {
+    if (stats) *stats = {};
+    return size_seeds(field, refined, gamma);
+  }
+  // Where h changed: the grid nodes whose value changed.
+  const std::size_t w = field.cells() + 1;
+  SizeChange h_change;
+  for (std::size_t v = 0; &old_field != &field && v < w * w; ++v) {
+    if (old_field.nodes()[v] == field.nodes()[v] ||
+        (std::isnan(old_field.nodes()[v]) && std::isnan(field.nodes()[v])))
+      continue;
+    const std::size_t i = v % w, j = v / w;
+    if (!h_change.changed) h_change.i0 = h_change.i1 = i, h_change.j0 = h_change.j1 = j;
+    h_change.changed = true;
+    h_change.i0 = std::min(h_change.i0, i), h_change.i1 = std::max(h_change.i1, i);
+    h_change.j0 = std::min(h_change.j0, j), h_change.j1 = std::max(h_change.j1, j);
+  }
+  std::vector<std::pair<Point2, Point2>> changed;
+  segments_not_in(old_refined, refined, changed);
+  segments_not_in(refined, old_refined, changed);
+  const double root = seed_root(field);
+  return update_seeds([&](const SeedNode& n) { return seed_split(old_field, root, n); }, old_seeds, h_change, changed,
+                      field, refined, gamma, stats);
+}
+
+std::vector<Point2> update_size_seeds(const SizeField& old_field, const std::vector<Point2>& old_seeds,
+                                      const SizeChange& h_change, const ShoreChange& refined_change,
+                                      const SizeField& field, const Domain2& refined, double gamma, SeedUpdate* stats) {
+  if (!same_grid(old_field, field)) {
+    if (stats) *stats = {};
+    return size_seeds(field, refined, gamma);
+  }
+  std::vector<std::pair<Point2, Point2>> changed;
+  for (const auto* list : {&refined_change.removed, &refined_change.added})
+    for (const ShoreSegment& s : *list) changed.push_back({s.a, s.b});
+  const double root = seed_root(field);
+  return update_seeds([&](const SeedNode& n) { return seed_split(old_field, root, n); }, old_seeds, h_change, changed,
+                      field, refined, gamma, stats);
+}
+
+std::vector<Point2> update_size_seeds(const SizeField& field, const SizeUndo& before, const std::vector<Point2>& old_seeds,
+                                      const SizeChange& h_change, const ShoreChange& refined_change,
+                                      const Domain2& refined, double gamma, SeedUpdate* stats) {
+  std::vector<std::pair<Point2, Point2>> changed;
+  for (const auto* list : {&refined_change.removed, &refined_change.added})
+    for (const ShoreSegment& s : *list) changed.push_back({s.a, s.b});
+  const double root = seed_root(field);
+  return update_seeds([&](const SeedNode& n) { return seed_split(field, root, n, &before); }, old_seeds, h_change,
+                      changed, field, refined, gamma, stats);
 }
 
 std::function<double(const Point2&, const Point2&)> shore_max_length(std::shared_ptr<const SizeField> field) {

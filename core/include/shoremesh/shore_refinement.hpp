@@ -92,6 +92,14 @@ class ShoreRefinement {
   SplitChange update(std::span<const RingStretch> edits, std::span<const Point2> loose_removed = {},
                      std::span<const Point2> loose_added = {});
 
+  // The same under a new rule (size control: h changed) whose max_length differs from the old rule's only
+  // for subsegments pq of edges ab with rule_changed(a, b) (it must hold for an edge whenever the rule
+  // differs for one of its subsegments): those edges are reset as when a point in their test disks went,
+  // and everything closes again under the new rule. Equal to a fresh ShoreRefinement under `rule`.
+  SplitChange update(std::span<const RingStretch> edits, std::span<const Point2> loose_removed,
+                     std::span<const Point2> loose_added, RefinementRule rule,
+                     const std::function<bool(const Point2&, const Point2&)>& rule_changed);
+
   // Recomputes everything from scratch and throws std::logic_error when it differs (tests).
   void check_valid() const;
 

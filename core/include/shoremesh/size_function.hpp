@@ -14,11 +14,13 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "shoremesh/box_transform.hpp"
 #include "shoremesh/domain.hpp"
 #include "shoremesh/point.hpp"
+#include "shoremesh/shore_segments.hpp"
 
 namespace shoremesh {
 
@@ -55,6 +57,32 @@ struct SizeSummary {
   std::size_t grid_cells = 0;  // per side
 };
 
+// What an update of h changed (SizeField::set_rings, set_polygon_size): the grid nodes whose value changed
+// lie in [i0, i1] x [j0, j1] (grid indices, none when !changed), and the nodes the update read or wrote.
+struct SizeChange {
+  bool changed = false;
+  std::size_t i0 = 0, j0 = 0, i1 = 0, j1 = 0;
+  std::size_t visited = 0;  // (n + 1)^2 when the update recomputed the grid whole
+  bool whole = false;       // the grid was recomputed whole (the local repair's preconditions failed)
+  explicit operator bool() const { return changed; }
+};
+
+// What an update of the field overwrote (SizeField::set_rings or set_polygon_size given a fresh one): to
+// read h as it was (update_size_seeds) and to take the update back (SizeField::take_back), without a copy
+// of the field.
+struct SizeUndo {
+  std::vector<std::pair<std::size_t, double>> h, shore, shore_src;  // (node, value before)
+  std::size_t water_box[4] = {0, 0, 0, 0};                           // i0, j0, i1, j1
+  std::vector<std::uint8_t> water;                                   // the box's nodes before, row-major
+  std::unordered_map<std::uint64_t, double> pyramid;                 // (level << 56 | block): the minimum before
+  std::optional<std::pair<std::size_t, double>> polygon;             // a polygon's size before
+  std::optional<Domain2> rings;                                      // the rings before
+  // The grid recomputed whole: the arrays before.
+  std::optional<std::vector<double>> whole_h, whole_shore, whole_src;
+  std::optional<std::vector<std::uint8_t>> whole_water;
+  std::optional<std::vector<std::vector<double>>> whole_pyramid;
+};
+
 class SizeField {
  public:
   // ParameterError naming the option for a bad value (non-positive, NaN, min > max, grade <= 0) and
@@ -70,11 +98,18 @@ class SizeField {
 
   // Whether the shore term reads the rings (then a shore edit changes h).
   bool depends_on_rings() const { return terms_.shore_size.has_value(); }
-  // The rings changed: recomputes h (the shore term and the water). Returns whether h changed.
-  bool set_rings(const Domain2& rings);
+  // The rings changed: updates h (the shore term and the water) where the changed segments reach, equal to
+  // a fresh SizeField on the new rings (docs/sizing.md). Returns where h changed.
+  SizeChange set_rings(const Domain2& rings, SizeUndo* undo = nullptr);
   // Polygon `index` (0-based) takes size `size`; ParameterError for a bad size, InputError for no such
-  // polygon. Returns whether h changed.
-  bool set_polygon_size(std::size_t index, double size);
+  // polygon. Updates h where the polygon's nodes reach; returns where it changed.
+  SizeChange set_polygon_size(std::size_t index, double size, SizeUndo* undo = nullptr);
+  // The field as it was before the update that filled `undo`.
+  void take_back(SizeUndo&& undo);
+  // min_over as it was before the update that filled `undo`.
+  double min_over_before(const SizeUndo& undo, const Point2& lo, double side) const;
+  // Whether min_over_segment(a, b) reads a grid node of `change` (a subsegment's max_length may differ).
+  bool reads(const Point2& a, const Point2& b, const SizeChange& change) const;
   const SizeTerms& terms() const { return terms_; }
 
   SizeSummary summary() const;
@@ -90,8 +125,24 @@ class SizeField {
  private:
   void compute();
   void build_pyramid();
-  void water_mask();
-  double min_over_box(const Point2& lo, const Point2& hi) const;
+  void update_pyramid(std::size_t i0, std::size_t j0, std::size_t i1, std::size_t j1);
+  // The water at the nodes [i0, i1] x [j0, j1].
+  void water_mask(std::size_t i0, std::size_t j0, std::size_t i1, std::size_t j1);
+  // `before`: the pyramid's blocks as they were (level, block), for min_over_before.
+  double min_over_box(const Point2& lo, const Point2& hi,
+                      const std::function<double(std::size_t, std::size_t)>& before = {}) const;
+  // The least-pyramid-level block range min_over_box reads, as grid cells [c0, c1] per axis.
+  void read_cells(const Point2& lo, const Point2& hi, std::size_t c[4]) const;
+  // h before grading at node v, with the shore term's value `shore` there.
+  double raw(std::size_t v, double shore) const;
+  // An upper bound of every finite value of the graded terms (the local repair's precondition).
+  double finite_bound() const;
+  double shore_bound() const;
+  void clamp_shore();
+  SizeChange recompute_whole();
+  // After the terms changed at `nodes` (their pre-grading values before: `before`), h there and where
+  // the grading carries the change; the pyramid along.
+  SizeChange update_h(const std::vector<std::size_t>& nodes, const std::vector<double>& before);
   std::size_t node(std::size_t i, std::size_t j) const { return j * (n_ + 1) + i; }
 
   SizeTerms terms_;
@@ -100,12 +151,15 @@ class SizeField {
   int k_ = 0;
   std::size_t n_ = 0;
   double cell_ = 0;
-  std::vector<double> sampled_;         // min of the sampled terms at the nodes (computed once)
+  std::shared_ptr<const std::vector<double>> sampled_;  // min of the sampled terms at the nodes (computed once)
+  double sampled_top_ = 0;              // the largest finite one
   std::vector<std::uint8_t> water_;     // per node: in the water (for the estimates and the summary)
   std::vector<std::vector<std::size_t>> polygon_nodes_;  // per polygon: the nodes inside it
-  std::vector<double> shore_;           // the shore term at the nodes (empty without it)
+  std::vector<double> shore_src_;       // the shore term's values beside the segments, before its sweeps
+  std::vector<double> shore_;           // the shore term at the nodes (empty without it; at most --max-size)
   std::vector<double> h_;
   std::vector<std::vector<double>> pyramid_;  // level l: min over blocks of 2^l x 2^l cells (their nodes)
+  SizeUndo* undo_ = nullptr;                  // during an update: where it records what it overwrites
 };
 
 // The canonical seeds of h (docs/sizing.md): the centres of the leaves of the quadtree of the box split
@@ -132,6 +186,16 @@ struct SeedUpdate {
 std::vector<Point2> update_size_seeds(const SizeField& old_field, const std::vector<Point2>& old_seeds,
                                       const Domain2& old_refined, const SizeField& field, const Domain2& refined,
                                       double gamma = 1.25, SeedUpdate* stats = nullptr);
+// The same with where h changed (as SizeField's update returned it; old_field is the field before it) and
+// the refined segments that went and came: no pass over the grid or the rings.
+std::vector<Point2> update_size_seeds(const SizeField& old_field, const std::vector<Point2>& old_seeds,
+                                      const SizeChange& h_change, const ShoreChange& refined_change,
+                                      const SizeField& field, const Domain2& refined, double gamma = 1.25,
+                                      SeedUpdate* stats = nullptr);
+// The same with the field updated in place: `before` what its update overwrote.
+std::vector<Point2> update_size_seeds(const SizeField& field, const SizeUndo& before, const std::vector<Point2>& old_seeds,
+                                      const SizeChange& h_change, const ShoreChange& refined_change,
+                                      const Domain2& refined, double gamma = 1.25, SeedUpdate* stats = nullptr);
 // The seeds' test against one refined segment ab, exact (the engine's filtered predicates): p is at least
 // `near` from the segment and not strictly inside its diametral circle grown by gamma.
 bool seed_clear_of_segment(const Point2& p, const Point2& a, const Point2& b, double near, double gamma);

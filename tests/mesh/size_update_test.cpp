@@ -1,0 +1,197 @@
+// Element size control under edits (docs/sizing.md, "Lemma 7.2 under size control"): SizeField's local
+// update equals a fresh field, node for node, and stays where the change reaches; the shore refinement's
+// update under a changed rule equals a fresh refinement.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <memory>
+#include <numbers>
+#include <random>
+#include <string>
+
+#include "mesh_test_util.hpp"
+#include "shoremesh/shore_refinement.hpp"
+#include "shoremesh/size_function.hpp"
+
+namespace shoremesh {
+namespace {
+
+// A wobbly lake of radius ~50 km (`n` vertices) with an island.
+Domain2 lake(int n) {
+  Domain2 d{{Ring{{}, RingRole::Shore}, Ring{{}, RingRole::Shore}}};
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * std::numbers::pi * k / n, r = 50000 + 4000 * std::sin(5 * a) + 1500 * std::cos(11 * a);
+    d.rings[0].points.push_back({r * std::cos(a), r * std::sin(a)});
+  }
+  for (int k = 0; k < 12; ++k) {
+    const double a = -2 * std::numbers::pi * k / 12, r = 6000 + 1000 * std::sin(3 * a);
+    d.rings[1].points.push_back({15000 + r * std::cos(a), -10000 + r * std::sin(a)});
+  }
+  return d;
+}
+
+SizePolygon square(double x0, double y0, double side, double size) {
+  return {{{{x0, y0}, {x0 + side, y0}, {x0 + side, y0 + side}, {x0, y0 + side}}}, size, "test polygon"};
+}
+
+// Random edits of the rings (moves, insertions, removals of a vertex, the island going and coming) and
+// of the polygons' sizes; after each, the updated field equals a fresh one on the new input: h, the water
+// and the summary, exactly. What each update recorded (SizeUndo) reads min_over as it was and, every third
+// edit, takes the update back to the field before it, exactly.
+void expect_updates_equal_fresh(SizeTerms t, int edits, unsigned seed) {
+  Domain2 rings = lake(90);
+  const BoxTransform<2> box = BoxTransform<2>::fit(mesh_test::session_input(rings).points);
+  SizeField field(t, box, rings);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  const Domain2 island{{lake(90).rings[1]}};
+  int changed = 0;
+  for (int e = 0; e < edits; ++e) {
+    const double what = u(rng);
+    std::string kind;
+    SizeChange c;
+    const SizeField before = field;
+    SizeUndo undo;
+    std::function<SizeChange(SizeUndo*)> redo;
+    if (what < 0.3 && !t.polygons.empty()) {
+      kind = "size";
+      const std::size_t q = rng() % t.polygons.size();
+      t.polygons[q].size = 800 + 7000 * u(rng);
+      redo = [&field, q, size = t.polygons[q].size](SizeUndo* un) { return field.set_polygon_size(q, size, un); };
+    } else {
+      auto& ring = rings.rings[0].points;
+      const std::size_t k = rng() % ring.size();
+      const Point2 a = ring[k], b = ring[(k + 1) % ring.size()];
+      const Point2 mid{a[0] + 0.3 * (b[0] - a[0]) + 0.05 * (b[1] - a[1]), a[1] + 0.3 * (b[1] - a[1]) - 0.05 * (b[0] - a[0])};
+      if (what < 0.6) {
+        kind = "move", ring[k] = mid;
+      } else if (what < 0.8) {
+        kind = "insert", ring.insert(ring.begin() + static_cast<std::ptrdiff_t>(k) + 1, mid);
+      } else if (what < 0.95 && ring.size() > 60) {
+        kind = "remove", ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
+      } else {
+        kind = "island";
+        rings.rings[1].points = rings.rings[1].points.empty() ? island.rings[0].points : std::vector<Point2>{};
+      }
+      redo = [&field, &rings](SizeUndo* un) { return field.set_rings(rings, un); };
+    }
+    c = redo(&undo);
+    // What the update recorded reads h as it was, and takes it back exactly; then the edit again.
+    for (int k = 0; k < 20; ++k) {
+      const Point2 lo{box.origin[0] + u(rng) * box.side, box.origin[1] + u(rng) * box.side};
+      const double side = std::ldexp(box.side, -static_cast<int>(rng() % 10));
+      ASSERT_EQ(field.min_over_before(undo, lo, side), before.min_over(lo, side)) << "edit " << e;
+    }
+    if (e % 3 == 0) {
+      field.take_back(std::move(undo));
+      ASSERT_EQ(field.nodes(), before.nodes()) << "edit " << e << " (" << kind << ") taken back";
+      ASSERT_EQ(field.water(), before.water()) << "edit " << e << " (" << kind << ") taken back";
+      for (int k = 0; k < 20; ++k) {
+        const Point2 lo{box.origin[0] + u(rng) * box.side, box.origin[1] + u(rng) * box.side};
+        const double side = std::ldexp(box.side, -static_cast<int>(rng() % 10));
+        ASSERT_EQ(field.min_over(lo, side), before.min_over(lo, side)) << "edit " << e;
+      }
+      c = redo(nullptr);
+    }
+    const SizeField fresh(t, box, rings);
+    ASSERT_TRUE(field == fresh) << "edit " << e << " (" << kind << ")";
+    ASSERT_EQ(field.nodes(), fresh.nodes()) << "edit " << e << " (" << kind << ")";
+    ASSERT_EQ(field.water(), fresh.water()) << "edit " << e << " (" << kind << ")";
+    ASSERT_EQ(field.summary().grading, fresh.summary().grading);
+    EXPECT_FALSE(c.whole) << "edit " << e << " (" << kind << ")";
+    changed += c.changed;
+  }
+  EXPECT_GT(changed, edits / 3);
+}
+
+TEST(SizeFieldUpdate, RandomShoreAndSizeEditsEqualAFreshFieldGraded) {
+  SizeTerms t;
+  t.max_size = 8000, t.shore_size = 1500, t.shore_rate = 0.3, t.grade = 0.3;
+  t.polygons = {square(-30000, -10000, 20000, 2000), square(0, 20000, 15000, 3000)};
+  expect_updates_equal_fresh(t, std::getenv("SHOREMESH_SANITIZER_BUILD") ? 10 : 60, 3501);
+}
+
+// Without --max-size the shore term is not clamped (its change reaches as far as the distance changes),
+// without --grade h is the terms' minimum, with --min-size clamped from below.
+TEST(SizeFieldUpdate, RandomShoreAndSizeEditsEqualAFreshFieldUnclampedAndUngraded) {
+  SizeTerms t;
+  t.shore_size = 1200, t.shore_rate = 0.2, t.grade = 0.25, t.min_size = 1000;
+  t.polygons = {square(-30000, -10000, 20000, 900), square(0, 20000, 15000, 3000)};
+  expect_updates_equal_fresh(t, std::getenv("SHOREMESH_SANITIZER_BUILD") ? 8 : 40, 3502);
+  SizeTerms raw;
+  raw.max_size = 6000, raw.shore_size = 1000, raw.shore_rate = 0.4;
+  raw.polygons = {square(-30000, -10000, 20000, 1500)};
+  expect_updates_equal_fresh(raw, std::getenv("SHOREMESH_SANITIZER_BUILD") ? 8 : 40, 3503);
+}
+
+// The update reads and writes only what the change reaches: on a 1025 x 1025 grid, a shore move under
+// --size-from-shore 300 0.5 with --max-size 2000 (the shore term binds within 3.4 km of the shore) and a
+// `size` edit of a 2 km polygon with --grade 0.2 (its cone reaches (2000 - 500) / 0.2 = 7.5 km) each visit
+// well under a twentieth of the grid, and end equal to a fresh field.
+TEST(SizeFieldUpdate, AnUpdateTouchesOnlyAWindow) {
+  Domain2 rings = lake(400);
+  const BoxTransform<2> box = BoxTransform<2>::fit(mesh_test::session_input(rings).points);
+  SizeTerms t;
+  t.max_size = 2000, t.shore_size = 300, t.shore_rate = 0.5, t.grade = 0.2;
+  t.polygons = {square(-5000, -20000, 2000, 500)};
+  SizeField field(t, box, rings);
+  const std::size_t grid = field.nodes().size();
+  ASSERT_EQ(field.cells(), 1024u);
+  auto& ring = rings.rings[0].points;
+  const Point2 a = ring[7], b = ring[8];
+  ring[7] = {a[0] + 0.4 * (b[0] - a[0]) + 0.1 * (b[1] - a[1]), a[1] + 0.4 * (b[1] - a[1]) - 0.1 * (b[0] - a[0])};
+  const SizeChange moved = field.set_rings(rings);
+  EXPECT_TRUE(moved.changed);
+  EXPECT_FALSE(moved.whole);
+  EXPECT_LT(moved.visited, grid / 20);
+  EXPECT_LT((moved.i1 - moved.i0 + 1) * (moved.j1 - moved.j0 + 1), grid / 20);
+  EXPECT_TRUE(field == SizeField(t, box, rings));
+  t.polygons[0].size = 1400;
+  const SizeChange sized = field.set_polygon_size(0, 1400);
+  EXPECT_TRUE(sized.changed);
+  EXPECT_FALSE(sized.whole);
+  EXPECT_LT(sized.visited, grid / 20);
+  EXPECT_TRUE(field == SizeField(t, box, rings));
+  RecordProperty("nodes visited by the move", std::to_string(moved.visited));
+  RecordProperty("nodes visited by the size edit", std::to_string(sized.visited));
+  RecordProperty("grid nodes", std::to_string(grid));
+}
+
+// A change of the rule (a `size` edit) resets only the edges whose max_length reads a changed node of h,
+// and the refinement closes again to a fresh refinement's splits under the new rule.
+TEST(SizeFieldUpdate, RefinementUnderAChangedRuleEqualsAFreshOne) {
+  const Domain2 rings = lake(90);
+  const BoxTransform<2> box = BoxTransform<2>::fit(mesh_test::session_input(rings).points);
+  SizeTerms t;
+  t.max_size = 8000, t.grade = 0.3;
+  t.polygons = {square(-52000, -10000, 20000, 2000), square(30000, 20000, 25000, 3000)};
+  auto rule_of = [&](std::shared_ptr<const SizeField> f) {
+    RefinementRule r = RefinementRule::for_box(box.side);
+    r.max_length = shore_max_length(std::move(f));
+    return r;
+  };
+  auto field = std::make_shared<const SizeField>(t, box, rings);
+  ShoreRefinement refinement(rings, {}, rule_of(field));
+  std::mt19937 rng(3504);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::size_t changes = 0;
+  for (int e = 0; e < 16; ++e) {
+    auto next = std::make_shared<SizeField>(*field);
+    const std::size_t q = rng() % 2;
+    t.polygons[q].size = 500 + 6000 * u(rng);
+    const SizeChange c = next->set_polygon_size(q, t.polygons[q].size);
+    const SplitChange s = refinement.update({}, {}, {}, rule_of(next), [&](const Point2& a, const Point2& b) {
+      return next->reads(a, b, c);
+    });
+    changes += s.removed.size() + s.added.size();
+    const ShoreRefinement fresh(rings, {}, rule_of(next));
+    ASSERT_EQ(refinement.split_points(), fresh.split_points()) << "edit " << e;
+    field = next;
+  }
+  EXPECT_GT(changes, 0u);
+}
+
+}  // namespace
+}  // namespace shoremesh
