@@ -25,10 +25,11 @@ function requireChromium() {
   process.exit(1);
 }
 
-// Starts `shoremesh serve ARGS` in `dir`; resolves to {url, child} once it prints its URL.
-function startServer(args, dir) {
+// Starts `shoremesh serve ARGS` in `dir` (another build's binary if given); resolves to {url, child} once it
+// prints its URL.
+function startServer(args, dir, binary = env.binary) {
   return new Promise((resolve, reject) => {
-    const child = spawn(env.binary, ['serve', ...args], { cwd: dir, stdio: ['ignore', 'pipe', 'pipe'] });
+    const child = spawn(binary, ['serve', ...args], { cwd: dir, stdio: ['ignore', 'pipe', 'pipe'] });
     let out = '', err = '';
     child.stdout.on('data', (d) => {
       out += d;
