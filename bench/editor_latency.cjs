@@ -7,21 +7,26 @@
 // in as the drags are and with the whole mesh in view, timed between frames, with the draw calls and
 // triangles/points/segments given to WebGL per frame (which do not depend on the machine).
 //
-// The drags alternate between the page's two ways of drawing (the same page, state.fast switched before
-// each drag): "full" (every frame redraws the view, as before) and "partial" (an edit redraws the screen
-// rectangles it touched; a pan shifts the last frame and draws the strips it uncovers), so that both see
-// the same load. Medians and 95th percentiles.
+// The drags alternate between columns, each a page on its own server seeing the same load and dragging the
+// same shore points: "this page" (its defaults: an edit's rectangles drawn from the grid of slots, the
+// mesh's frames held while dragging on a software renderer); with SHOREMESH_PEER_BINARY (another build of
+// `shoremesh`, e.g. main's), "peer" (that binary's page, its defaults); with SHOREMESH_BENCH_ABLATE=frames
+// also "this page, mesh frames while dragging" (state.fast.overlay off), with =chunks "this page, chunks"
+// (no grid, no overlay: the way of drawing before the grid), or both (=frames,chunks). Then, on this page, pans with every frame drawn in full and with
+// partial frames, and the same moves posted from Node.
 //
-//   SHOREMESH_BINARY=build/tool/shoremesh SHOREMESH_NODE_MODULES=build/web/node_modules \
-//   SHOREMESH_CHROMIUM=/usr/bin/chromium node bench/editor_latency.cjs N INPUT [serve options...]
-// Then N edits posted from Node with the browser closed, for the server's share of the round trip.
+//   SHOREMESH_BINARY=$PWD/build/tool/shoremesh SHOREMESH_NODE_MODULES=$PWD/build/web/node_modules \
+//   SHOREMESH_CHROMIUM=/usr/bin/chromium [SHOREMESH_PEER_BINARY=/other/build/tool/shoremesh] \
+//   node bench/editor_latency.cjs N INPUT [serve options...]
+// N drags per column. SHOREMESH_BENCH_DRAGS_ONLY=1 stops after the drags.
 'use strict';
 const fs = require('fs');
 const os = require('os');
 const path = require('path');
 const h = require('../tests/browser/editor_harness.cjs');
 
-const modes = { full: { partial: false, scroll: false }, partial: { partial: true, scroll: true } };
+const modes = { full: { partial: false, scroll: false, index: false, overlay: false },
+                partial: { partial: true, scroll: true, index: true } };
 const fmt = (x) => (x === undefined || Number.isNaN(x) ? '-' : x.toFixed(x < 10 ? 2 : 1));
 const stat = (xs) => {
   const v = xs.filter((x) => typeof x === 'number' && isFinite(x));
@@ -34,34 +39,55 @@ async function main() {
   h.requireChromium();
   const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'shoremesh_latency_'));
   const t0 = Date.now();
-  const server = await h.startServer(serveArgs.map((a) => (fs.existsSync(a) ? path.resolve(a) : a)), dir);
+  const args = serveArgs.map((a) => (fs.existsSync(a) ? path.resolve(a) : a));
+  const server = await h.startServer(args, dir);
   const built = Date.now();
+  const peerBinary = process.env.SHOREMESH_PEER_BINARY;
+  const peer = peerBinary ? await h.startServer(args, dir, peerBinary) : null;
   const browser = await h.launch();
   try {
     const { page } = await h.openEditor(browser, server.url);
     const loaded = Date.now();
-    const info = await page.evaluate(() => ({ triangles: window.shoremesh.triangles, points: window.shoremesh.verts.size }));
+    const info = await page.evaluate(() => ({ triangles: window.shoremesh.triangles, points: window.shoremesh.verts.size,
+                                              renderer: window.shoremesh.renderer, fast: window.shoremesh.fast }));
     console.log(`server built in ${((built - t0) / 1000).toFixed(1)} s; page loaded ${info.triangles} triangles and ` +
-                `${info.points} input points in ${((loaded - built) / 1000).toFixed(1)} s`);
-    await page.evaluate(() => { window.shoremesh.syncFrames = true; });
-    const rows = { full: [], partial: [] };
+                `${info.points} input points in ${((loaded - built) / 1000).toFixed(1)} s; WebGL: ${info.renderer}; ` +
+                `this page's defaults ${JSON.stringify(info.fast)}`);
+    const columns = [{ name: 'this page', page, fast: null }];
+    if (peer) columns.unshift({ name: `peer (${path.basename(path.dirname(path.dirname(path.dirname(peerBinary))))})`, page: (await h.openEditor(browser, peer.url)).page, fast: null });
+    // Each on a server of its own: a page draws the changes of its session only.
+    const ablate = (process.env.SHOREMESH_BENCH_ABLATE || '').split(',').filter(Boolean);
+    const variants = { frames: ['this page, mesh frames while dragging (no overlay)', { overlay: false }],
+                       chunks: ['this page, chunks (no grid, no overlay)', { index: false, overlay: false }] };
+    for (const k of ablate) {
+      if (!variants[k]) throw new Error(`SHOREMESH_BENCH_ABLATE: ${k}? (frames, chunks)`);
+      const other = await h.startServer(args, dir);
+      columns.push({ name: variants[k][0], page: (await h.openEditor(browser, other.url)).page, fast: variants[k][1], server: other });
+    }
+    for (const c of columns) {
+      await c.page.evaluate((f) => { window.shoremesh.syncFrames = true; if (f) Object.assign(window.shoremesh.fast, f); }, c.fast);
+      c.rows = [];
+    }
+    // Only the dragged page draws: the others are idle (no frames; their rAF callbacks do nothing).
     let refused = 0;
     for (let i = 0; i < Number(n); ++i) {
-      const mode = i % 2 ? 'partial' : 'full';
-      await page.evaluate((m) => Object.assign(window.shoremesh.fast, m), modes[mode]);
-      const e = await h.dragShorePoint(page, 101 + i * 997, i % 2 ? 1 : -1);
-      if (!e.ok) { ++refused; continue; }
-      rows[mode].push(e);
+      for (const c of columns) {
+        await c.page.bringToFront();
+        const e = await h.dragShorePoint(c.page, 101 + i * 997, i % 2 ? 1 : -1);
+        if (!e.ok) { ++refused; continue; }
+        c.rows.push(e);
+      }
     }
-    console.log(`${rows.full.length + rows.partial.length} drags accepted, ${refused} refused; ` +
-                `moves sent while dragging: ${await page.evaluate(() => window.shoremesh.liveMoves)}`);
-    console.log('medians (p95) in ms; the split is of the final move\'s POST, sent after the release or (most drags) while dragging');
+    const live = await Promise.all(columns.map((c) => c.page.evaluate(() => window.shoremesh.liveMoves)));
+    console.log(`${columns.reduce((k, c) => k + c.rows.length, 0)} drags accepted, ${refused} refused; ` +
+                `moves sent while dragging: ${live.join(', ')}`);
+    console.log('medians (p95) in ms; the split is of the final move\'s POST, sent after the release or (some drags) while dragging');
     const split = [
-      ['release to the updated frame (the page\'s answer to the final move shown)', (r) => r.frameMs],
+      ['**release to the updated frame** (the page\'s answer to the final move shown, frame drawn to the end)', (r) => r.frameMs],
       ['release to the end of the change\'s own frame (< 0: before the release)', (r) => r.profile.changeFrame],
       ['  the change applied, from the release (POST answer or event stream)', (r) => r.profile.changeApplied],
-      ['server: edit `ms` (engine + mesh)', (r) => r.serverMs],
-      ['final POST round trip (page)', (r) => r.roundTripMs],
+      ['**server: edit `ms`** (engine + mesh)', (r) => r.serverMs],
+      ['**final POST round trip** (page)', (r) => r.roundTripMs],
       ['  the final move posted, from the release (< 0: before it, while dragging)', (r) => r.profile.since],
       ['  server: request total', (r) => r.profile.server],
       ['    waiting for the session lock', (r) => r.profile.lock],
@@ -72,8 +98,8 @@ async function main() {
       ['  JSON.parse', (r) => r.profile.parse],
       ['  apply (slots, buffers)', (r) => r.profile.apply],
       ['  applied to the change\'s frame: wait for the animation frame', (r) => r.profile.waitFrame],
-      ['  render (three.js calls)', (r) => r.profile.render],
-      ['  raster (to the end of the frame)', (r) => r.profile.raster],
+      ['  render (three.js calls, grid queries)', (r) => r.profile.render],
+      ['  **raster of the change\'s frame** (to the end of the frame)', (r) => r.profile.raster],
       ['answer bytes', (r) => r.profile.bytes],
       ['frame: draw calls', (r) => r.profile.drawn?.calls],
       ['frame: triangles given to WebGL', (r) => r.profile.drawn?.triangles],
@@ -82,17 +108,23 @@ async function main() {
     ];
     const posted = (xs) => xs.filter((r) => r.profile && r.profile.server !== undefined);
     const after = (xs) => xs.filter((r) => r.profile && r.profile.since >= 0).length;
-    console.log(`| | full redraw (${rows.full.length}; ${after(rows.full)} posted after the release) | partial (${rows.partial.length}; ${after(rows.partial)}) |`);
-    console.log('|---|---|---|');
+    console.log(`| | ${columns.map((c) => `${c.name} (${c.rows.length}; ${after(c.rows)} posted after the release)`).join(' | ')} |`);
+    console.log(`|---|${columns.map(() => '---|').join('')}`);
     for (const [name, f] of split) {
       const pick = (xs) => (name.startsWith(' ') || name.startsWith('answer') || name.startsWith('frame:') ? posted(xs) : xs).map(f);
-      console.log(`| ${name} | ${stat(pick(rows.full))} | ${stat(pick(rows.partial))} |`);
+      console.log(`| ${name} | ${columns.map((c) => stat(pick(c.rows))).join(' | ')} |`);
     }
     const hows = (xs) => Object.entries(xs.reduce((m, r) => { const k = r.profile.drawn?.how ?? '?'; m[k] = (m[k] || 0) + 1; return m; }, {}))
       .map(([k, v]) => `${k} ${v}`).join(', ');
-    console.log(`| the change's frame | ${hows(rows.full)} | ${hows(rows.partial)} |`);
+    console.log(`| the change's frame | ${columns.map((c) => hows(c.rows)).join(' | ')} |`);
     const vias = (xs) => `${xs.filter((r) => r.profile.via === 'events').length} by the event stream first`;
-    console.log(`| the change came | ${vias(rows.full)} | ${vias(rows.partial)} |`);
+    console.log(`| the change came | ${columns.map((c) => vias(c.rows)).join(' | ')} |`);
+    const ratio = (xs, ys) => (h.median(xs.map((r) => r.frameMs)) / h.median(ys.map((r) => r.frameMs))).toFixed(2);
+    if (peer) console.log(`release to frame, median: ${columns[0].name} / this page = ${ratio(columns[0].rows, columns[1].rows)}`);
+    for (const c of columns) if (c.page !== page) await c.page.close();
+    if (peer) peer.child.kill('SIGTERM');
+    for (const c of columns) if (c.server) c.server.child.kill('SIGTERM');
+    await page.bringToFront();
     if (process.env.SHOREMESH_BENCH_DRAGS_ONLY) { await browser.close(); return; }
     // Panning: frames drawn back to back, each after the view moved 7 pixels (the time between them is what
     // the page can draw: Chromium paces requestAnimationFrame to the compositor), each drawn to the end.
