@@ -9,11 +9,13 @@
 //
 // The drags alternate between columns, each a page on its own server seeing the same load and dragging the
 // same shore points: "this page" (its defaults: an edit's rectangles drawn from the grid of slots, the
-// mesh's frames held while dragging on a software renderer); with SHOREMESH_PEER_BINARY (another build of
-// `shoremesh`, e.g. main's), "peer" (that binary's page, its defaults); with SHOREMESH_BENCH_ABLATE=frames
-// also "this page, mesh frames while dragging" (state.fast.overlay off), with =chunks "this page, chunks"
-// (no grid, no overlay: the way of drawing before the grid), or both (=frames,chunks). Then, on this page, pans with every frame drawn in full and with
-// partial frames, and the same moves posted from Node.
+// mesh redrawn while dragging, the final move posted at the release and drawn when it comes); with
+// SHOREMESH_PEER_BINARY (another build of `shoremesh`, e.g. main's), "peer" (that binary's page, its
+// defaults); with SHOREMESH_BENCH_ABLATE=overlay also this page with the drag drawn on a 2D overlay and
+// the mesh's frames held (state.fast.overlay), =frames this page with the overlay off, =chunks this page
+// without the grid or the overlay (the way of drawing before the grid), or a list (=overlay,chunks).
+// Then, on this page, pans with every frame drawn in full and with partial frames, and the same moves
+// posted from Node.
 //
 //   SHOREMESH_BINARY=$PWD/build/tool/shoremesh SHOREMESH_NODE_MODULES=$PWD/build/web/node_modules \
 //   SHOREMESH_CHROMIUM=/usr/bin/chromium [SHOREMESH_PEER_BINARY=/other/build/tool/shoremesh] \
@@ -59,9 +61,10 @@ async function main() {
     // Each on a server of its own: a page draws the changes of its session only.
     const ablate = (process.env.SHOREMESH_BENCH_ABLATE || '').split(',').filter(Boolean);
     const variants = { frames: ['this page, mesh frames while dragging (no overlay)', { overlay: false }],
+                       overlay: ['this page, drag on the overlay, mesh frames held (?overlay=1)', { overlay: true }],
                        chunks: ['this page, chunks (no grid, no overlay)', { index: false, overlay: false }] };
     for (const k of ablate) {
-      if (!variants[k]) throw new Error(`SHOREMESH_BENCH_ABLATE: ${k}? (frames, chunks)`);
+      if (!variants[k]) throw new Error(`SHOREMESH_BENCH_ABLATE: ${k}? (frames, overlay, chunks)`);
       const other = await h.startServer(args, dir);
       columns.push({ name: variants[k][0], page: (await h.openEditor(browser, other.url)).page, fast: variants[k][1], server: other });
     }

@@ -80,17 +80,18 @@ async function main() {
     assert.ok(start.ok, JSON.stringify(start));
 
     // Pauses between the pointer moves, so that moves go to the server while the mouse moves. This drag
-    // with the mesh's frames held and the dragged point on the overlay (the default with software WebGL,
-    // as here), the second one below with the mesh redrawn while dragging.
+    // with the mesh's frames held and the dragged point on the overlay (state.fast.overlay, ?overlay=1),
+    // the second one below with the mesh redrawn while dragging (the default).
     const before = await page.evaluate(() => ({ overlay: window.shoremesh.fast.overlay, held: window.shoremesh.heldFrames,
                                                 overlayFrames: window.shoremesh.overlayFrames }));
+    await page.evaluate(() => { window.shoremesh.fast.overlay = true; });
     const edit = await h.dragShorePoint(page, 700, 1, { steps: 8, pause: 40 });
     check('the drag was accepted', () => assert.ok(edit.ok, `refused: ${JSON.stringify(edit.reply)}`));
     check('the drag moved that point', () => assert.ok(edit.line.startsWith(`move ${edit.id} `), edit.line));
     const overlaid = await page.evaluate(() => ({ held: window.shoremesh.heldFrames, overlayFrames: window.shoremesh.overlayFrames,
                                                   painted: window.shoremesh.overlayPainted() }));
     check('while dragging, the mesh frames waited and the point was drawn on the overlay; after it, the overlay is clear', () => {
-      assert.ok(before.overlay, 'state.fast.overlay is off with software WebGL');
+      assert.ok(!before.overlay, 'state.fast.overlay is on by default');
       assert.ok(overlaid.held > before.held && overlaid.overlayFrames > before.overlayFrames, JSON.stringify({ before, overlaid }));
       assert.strictEqual(overlaid.painted, 0);
     });
@@ -160,7 +161,6 @@ async function main() {
                   `triangle box ${[x0, y0, x1, y1]} outside the redrawn rectangles ${JSON.stringify(rects)}`);
       }
     });
-    await page.evaluate(() => { window.shoremesh.fast.overlay = true; });
     const afterDrag = await differsFromFullRedraw(page);
     check('after a drag drawn in partial frames the canvas is what a full redraw draws', () =>
       assert.ok(afterDrag.differ <= 20, `${afterDrag.differ} of ${afterDrag.pixels} pixels differ`));

@@ -427,11 +427,10 @@ function refreshDots(ids) {  // in place: points that moved or whose selection c
 // benchmarks and for tests that compare a frame with a full redraw.
 const params = new URLSearchParams(window.location.search);
 const fast = { partial: !params.has('full'), scroll: !params.has('full'), index: !params.has('full') };
-{  // a software WebGL (no GPU): the drag's frames are held (see drag)
+{  // what draws WebGL (for benches: SwiftShader is software)
   const gl = renderer.getContext(), info = gl.getExtension('WEBGL_debug_renderer_info');
   state.renderer = String(gl.getParameter(info ? info.UNMASKED_RENDERER_WEBGL : gl.RENDERER));
-  fast.overlay = params.has('overlay') ? params.get('overlay') !== '0'
-    : !params.has('full') && /swiftshader|llvmpipe|software/i.test(state.renderer);
+  fast.overlay = params.has('overlay') && params.get('overlay') !== '0';
 }
 state.fast = fast;
 let dirty = true;     // the next frame redraws everything
@@ -676,14 +675,14 @@ function draw() {
   state.drawn = { how, calls: r.calls, triangles: r.triangles, points: r.points, lines: r.lines, pixels, rects: drawnRects,
                   picked: picked.triangles, pickedDots: picked.dots };
 }
-// While a shore point is dragged, the moves go to the server and their changes into the buffers, but the
-// mesh's frames are held: the point and its two shore edges are drawn on a 2D canvas over the WebGL one
-// (a few lines, no rasterizing of triangles), so that at the release no mesh frame is being rasterized
-// ahead of the final move's (SwiftShader: 10-70 ms a frame at the drag's zoom, bench/RESULTS.md). The
-// held rectangles are drawn in the frame that shows the final move, the overlay cleared in the same
-// frame; when the pointer rests kRest ms the held frame is drawn (the mesh follows a paused drag). A
-// GPU draws the mesh's frame of a move in far less than a frame's time: there the mesh follows the
-// drag (fast.overlay is on only for a software renderer, or with ?overlay=1; ?overlay=0 turns it off).
+// fast.overlay (?overlay=1): while a shore point is dragged, the moves go to the server and their changes
+// into the buffers, but the mesh's frames are held: the point and its two shore edges are drawn on a 2D
+// canvas over the WebGL one, so that at the release no mesh frame is being rasterized ahead of the final
+// move's. The held rectangles are drawn in the frame that shows the final move, the overlay cleared in the
+// same frame; when the pointer rests kRest ms the held frame is drawn. Off by default: with the grid
+// (pick()) a move's frame is a few triangles, and on SwiftShader release to frame measured no better with
+// the overlay than with the mesh following the drag (bench/RESULTS.md). Either way the final move's
+// change is drawn as soon as it comes (applyChange), not at the next animation frame.
 const kRest = 150;
 const drag = { hold: false, lastMove: 0, id: null, to: null, shown: null };
 const overlay = document.createElement('canvas');
@@ -1195,7 +1194,7 @@ view.addEventListener('pointermove', (e) => {
     const v = state.verts.get(press.hit);
     if (!press.from) press.from = [v.x, v.y];
     press.to = toWorld(px, py);
-    if (fast.overlay) Object.assign(drag, { hold: true, id: press.hit, lastMove: performance.now() });
+    Object.assign(drag, { hold: fast.overlay, id: press.hit, lastMove: performance.now() });
     followCursor();
     liveMove(press);
   } else {
