@@ -91,6 +91,11 @@ async function main() {
     const live = await Promise.all(columns.map((c) => c.page.evaluate(() => window.shoremesh.liveMoves)));
     console.log(`${columns.reduce((k, c) => k + c.rows.length, 0)} drags accepted, ${refused} refused; ` +
                 `moves sent while dragging: ${live.join(', ')}`);
+    const odd = await Promise.all(columns.map((c) => c.page.evaluate(() => {
+      const s = window.shoremesh;
+      return `changes that came ahead ${s.changesAhead ?? '-'}, mesh reloads ${s.reloads ?? '-'}, final moves sent again ${s.finalResent ?? '-'}`;
+    })));
+    columns.forEach((c, i) => console.log(`${c.name}: ${odd[i]}`));
     console.log('medians (p95) in ms; the split is of the final move\'s POST, sent after the release or (some drags) while dragging');
     const split = [
       ['**release to the updated frame** (the page\'s answer to the final move shown: the animation frame after the POST\'s answer, frames drawn to the end)', (r) => r.frameMs],

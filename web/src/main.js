@@ -848,6 +848,7 @@ let gapTimer = null;
 function applyChange(change, via = 'post') {
   if (change.version <= state.version) return false;
   if (change.version !== state.version + 1) {
+    if (!ahead.has(change.version)) ++state.changesAhead;
     ahead.set(change.version, { change, via });
     if (!gapTimer) gapTimer = setTimeout(() => { gapTimer = null; if (ahead.size) { ahead.clear(); reload(); } }, 1000);
     return false;
@@ -924,7 +925,10 @@ function applyInOrder(change, via) {
   return true;
 }
 let reloading = null;
+state.changesAhead = 0;  // changes that came before one they follow (waited for it)
+state.reloads = 0;
 function reload() {
+  if (!reloading) ++state.reloads;
   if (!reloading) reloading = load().finally(() => { reloading = null; });
   return reloading;
 }
@@ -1209,6 +1213,7 @@ view.addEventListener('pointermove', (e) => {
 // time in the order it takes them: should it take the final move first (the two came on two connections),
 // the one in flight ends with a later version and the final move is sent again, so the session ends
 // where the mouse was released.
+state.finalResent = 0;  // final moves sent again: the server had taken them before the move in flight
 async function release(p, px, py) {
   const since = performance.now();
   p.released = true;
@@ -1224,6 +1229,7 @@ async function release(p, px, py) {
   if (inflight && !sentThere) {
     await inflight;
     if (reply.ok && p.appliedReply && p.appliedReply.reply.version > reply.version) {
+      ++state.finalResent;
       await send(`move ${p.hit} ${num(to[0])} ${num(to[1])}`, { live: true });
     }
   }
