@@ -98,11 +98,12 @@ async function main() {
     columns.forEach((c, i) => console.log(`${c.name}: ${odd[i]}`));
     console.log('medians (p95) in ms; the split is of the final move\'s POST, sent after the release or (some drags) while dragging');
     const split = [
-      ['**release to the updated frame** (the page\'s answer to the final move shown: the animation frame after the POST\'s answer, frames drawn to the end)', (r) => r.frameMs],
+      ['**release to the updated frame** (the page\'s answer to the final move shown: the animation frame after the POST\'s answer, or after the change by the event stream when that came first; frames drawn to the end)', (r) => r.frameMs],
       ['**release to the end of the change\'s own frame** (the mesh updated; < 0: before the release)', (r) => r.profile.changeFrame],
       ['  the change applied, from the release (POST answer or event stream)', (r) => r.profile.changeApplied],
       ['**server: edit `ms`** (engine + mesh)', (r) => r.serverMs],
-      ['**final POST round trip** (page)', (r) => r.roundTripMs],
+      ['**final POST round trip** (page)', (r) => r.profile.answerMs ?? r.roundTripMs],
+      ['  the page answered from the event stream\'s change, from the release\'s POST', (r) => (r.profile.answerMs !== undefined ? r.roundTripMs : undefined)],
       ['  the final move posted, from the release (< 0: before it, while dragging)', (r) => r.profile.since],
       ['  server: request total', (r) => r.profile.server],
       ['    waiting for the session lock', (r) => r.profile.lock],
@@ -138,7 +139,7 @@ async function main() {
     for (const c of columns) {
       console.log(`${c.name}: release to the updated frame ${q(c.rows, (r) => r.frameMs)}; to the change's frame ` +
                   `${q(c.rows, (r) => r.profile.changeFrame)} (targets: median 50, p95 100); server edit ${q(c.rows, (r) => r.serverMs)}; ` +
-                  `final POST round trip ${q(c.rows, (r) => r.roundTripMs)}; raster of the change's frame ${q(c.rows.filter((r) => r.profile.raster !== undefined), (r) => r.profile.raster)}`);
+                  `final POST round trip ${q(c.rows, (r) => r.profile.answerMs ?? r.roundTripMs)}; raster of the change's frame ${q(c.rows.filter((r) => r.profile.raster !== undefined), (r) => r.profile.raster)}`);
     }
     const ratio = (xs, ys) => (h.median(xs.map((r) => r.frameMs)) / h.median(ys.map((r) => r.frameMs))).toFixed(2);
     if (peer) console.log(`release to frame, median: ${columns[0].name} / this page = ${ratio(columns[0].rows, columns[1].rows)}`);

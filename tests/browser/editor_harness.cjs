@@ -86,9 +86,11 @@ async function dragShorePoint(page, k, sign = 1, { steps = 6, pause = 0 } = {}) 
     if (pause) await new Promise((r) => setTimeout(r, pause));
   }
   await page.mouse.up();
+  // (A final move answered from the event stream has its POST's profile filled in when the answer comes.)
   await page.waitForFunction((n) => !window.shoremesh.dragging && window.shoremesh.last &&
                              window.shoremesh.last.line.startsWith('move') &&
-                             (window.shoremesh.edits > n || !window.shoremesh.last.ok), { timeout: 120000 }, plan.edits);
+                             (window.shoremesh.edits > n || !window.shoremesh.last.ok) &&
+                             !(window.shoremesh.last.profile && window.shoremesh.last.profile.pending), { timeout: 120000 }, plan.edits);
   return { id: plan.id, ...(await page.evaluate(() => window.shoremesh.last)) };
 }
 

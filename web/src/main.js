@@ -684,7 +684,7 @@ function draw() {
 // the overlay than with the mesh following the drag (bench/RESULTS.md). Either way the final move's
 // change is drawn as soon as it comes (applyChange), not at the next animation frame.
 const kRest = 150;
-const drag = { hold: false, lastMove: 0, id: null, to: null, shown: null };
+const drag = { hold: false, lastMove: 0, id: null, to: null, shown: null, onFinal: null };
 const overlay = document.createElement('canvas');
 overlay.style.cssText = 'position:absolute;left:0;top:0;pointer-events:none';
 renderer.domElement.after(overlay);
@@ -918,6 +918,7 @@ function applyInOrder(change, via) {
     drag.hold = false;
     drag.to = null;
     renderFrame();
+    if (drag.onFinal) drag.onFinal({ change });
   }
   $('changed').textContent = `${change.cleared.length} out, ${change.added.length} in`;
   showCounts(change.reply);
@@ -968,27 +969,44 @@ async function send(line, opts = {}) {
     t1 = t0 + opts.applied.roundTripMs;
     profile = { ...opts.applied.profile };
   } else {
-    ++posting;
-    const res = await fetch('edit', { method: 'POST', body: line, headers: { 'Content-Type': 'text/plain' } })
-      .finally(() => { --posting; });
-    const text = await res.text();
-    const tText = performance.now();
-    const out = JSON.parse(text);
-    const tParse = performance.now();
-    if (!res.ok) { setStatus(`${line}: ${out.error}`, true); return { ok: false, error: out.error }; }
-    t1 = performance.now();
-    for (const c of out.changes) applyChange(c);
-    const tApply = performance.now();
-    reply = { ...out.replies[0], version: out.version };  // the session's version after it (drag order)
-    const rt = postTiming();
-    const serverMs = rt.server ? rt.server.total : undefined;
-    profile = {
-      fetchStart: t0, bytes: rt.bytes ?? text.length, server: serverMs, lock: rt.server?.lock, edit: rt.server?.edit,
-      json: rt.server?.json,
-      network: rt.responseStart !== undefined ? rt.responseStart - t0 - (serverMs ?? 0) : undefined,
-      download: rt.responseEnd !== undefined ? rt.responseEnd - rt.responseStart : undefined,
-      toText: tText - t0, parse: tParse - tText, apply: tApply - tParse, applied: tApply,
-    };
+    const posted = (async () => {
+      ++posting;
+      const res = await fetch('edit', { method: 'POST', body: line, headers: { 'Content-Type': 'text/plain' } })
+        .finally(() => { --posting; });
+      const text = await res.text();
+      const tText = performance.now();
+      const out = JSON.parse(text);
+      const tParse = performance.now();
+      if (!res.ok) return { error: out.error };
+      const t1 = performance.now();
+      for (const c of out.changes) applyChange(c);
+      const tApply = performance.now();
+      const rt = postTiming();
+      const serverMs = rt.server ? rt.server.total : undefined;
+      return {
+        t1, reply: { ...out.replies[0], version: out.version },  // the session's version after it (drag order)
+        profile: {
+          fetchStart: t0, bytes: rt.bytes ?? text.length, server: serverMs, lock: rt.server?.lock, edit: rt.server?.edit,
+          json: rt.server?.json,
+          network: rt.responseStart !== undefined ? rt.responseStart - t0 - (serverMs ?? 0) : undefined,
+          download: rt.responseEnd !== undefined ? rt.responseEnd - rt.responseStart : undefined,
+          toText: tText - t0, parse: tParse - tText, apply: tApply - tParse, applied: tApply,
+        },
+      };
+    })();
+    // A drag's final move: its change (which carries the edit's reply) may come by the event stream before
+    // the POST's answer; then the page answers from it, and the POST's profile fills in when it comes.
+    const early = opts.final ? new Promise((resolve) => { drag.onFinal = resolve; }) : null;
+    let r = early ? await Promise.race([posted, early]) : await posted;
+    if (early) drag.onFinal = null;
+    if (r.error !== undefined) { setStatus(`${line}: ${r.error}`, true); return { ok: false, error: r.error }; }
+    if (r.change) {
+      const c = r.change;
+      r = { t1: performance.now(), reply: { ...c.reply, version: c.version }, profile: { fetchStart: t0, pending: true } };
+      const filled = r.profile;
+      posted.then((p) => Object.assign(filled, p.profile || {}, { pending: false, answerMs: (p.t1 ?? NaN) - t0 }));
+    }
+    ({ reply, t1, profile } = r);
   }
   if (opts.live) {
     state.liveProfile = profile;
@@ -1225,7 +1243,7 @@ async function release(p, px, py) {
   const same = p.applied && p.applied[0] === to[0] && p.applied[1] === to[1];
   if (same) { drag.hold = false; renderFrame(); }  // the final move's change is in: its frame now
   else drag.to = to;  // its change, from the POST's answer or the event stream, ends the hold (applyChange)
-  const reply = await perform(op, 'new', { since, applied: same ? p.appliedReply : undefined });
+  const reply = await perform(op, 'new', { since, applied: same ? p.appliedReply : undefined, final: !same });
   if (inflight && !sentThere) {
     await inflight;
     if (reply.ok && p.appliedReply && p.appliedReply.reply.version > reply.version) {
