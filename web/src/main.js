@@ -1342,9 +1342,9 @@ function showCounts(reply) {
     $('steiner-count').textContent = reply.steiner_points?.toLocaleString('en') ?? '';
   }
 }
-// The summary (GET /stats) measures the whole mesh on the server under the edit lock (a few hundred ms at
-// a million triangles on a loaded machine): asked for only once the edits have paused for a second and no
-// drag or edit is under way, so that it never holds up a move.
+// The summary (GET /stats) measures the whole mesh on the server (seconds at a million triangles on a loaded
+// machine; on a session of its own, so edits go on meanwhile, but it takes CPU from them): asked for only
+// once the edits have paused for a second and no drag or edit is under way.
 let statsTimer = null, posting = 0;
 function scheduleStats() {
   clearTimeout(statsTimer);
