@@ -486,6 +486,27 @@ TEST(ServeCommand, ChangesCarryTheNodesDepthsAsExportsGiveThemAndLinesKeepTheirE
   EXPECT_EQ(head_line["ids"].size(), 3u);
 }
 
+// The JSON answers go uncompressed even to a client that asks for brotli or gzip as browsers do: on
+// loopback compression only delays them (cpp-httplib's brotli at quality 11; docs/editor.md, "Connections").
+TEST(ServeCommand, JsonAnswersAreNotCompressed) {
+  TempDir dir;
+  write_file(dir / "lake.txt", "0,0\n100,0\n100,100\n0,100\n0,0\n");
+  ServeProcess server(dir, "lake.txt");
+  auto c = server.client();
+  const httplib::Headers browser = {{"Accept-Encoding", "gzip, deflate, br"}};
+  std::string edits;
+  for (int k = 0; k < 40; ++k) edits += "move 1 " + std::to_string(90 - k % 2) + " 10\n";  // a long answer
+  const auto edit = c.Post("/edit", browser, edits, "text/plain");
+  ASSERT_TRUE(edit && edit->status == 200);
+  EXPECT_EQ(edit->get_header_value("Content-Encoding"), "");
+  EXPECT_GT(edit->body.size(), 4000u);
+  EXPECT_EQ(json::parse(edit->body)["version"], 40);
+  const auto stats = c.Get("/stats", browser);
+  ASSERT_TRUE(stats && stats->status == 200);
+  EXPECT_EQ(stats->get_header_value("Content-Encoding"), "");
+  EXPECT_EQ(json::parse(stats->body)["version"], 40);
+}
+
 // The summary (GET /stats) comes from a second session that replays the accepted lines (serve_stats.hpp):
 // after random edits, some of them refused, and summaries asked for in between, it equals the served
 // session's own `stats` line and a fresh session's that ran the same lines.
