@@ -598,7 +598,8 @@ int run_serve(const ServeOptions& opt) {
     res.set_content(std::string(web_index_html()), "text/html; charset=utf-8");
   });
   http.Get("/app.js", [](const httplib::Request&, httplib::Response& res) {
-    res.set_content(std::string(web_app_js()), "text/javascript; charset=utf-8");
+    // Not a type cpp-httplib compresses (kJson): brotli at quality 11 took 1.8 s for the 543 kB bundle.
+    res.set_content(std::string(web_app_js()), "application/javascript; charset=utf-8");
   });
   http.Get("/mesh", [&](const httplib::Request&, httplib::Response& res) {
     res.set_content(editor.mesh_binary(), "application/octet-stream");

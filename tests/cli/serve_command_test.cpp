@@ -486,8 +486,8 @@ TEST(ServeCommand, ChangesCarryTheNodesDepthsAsExportsGiveThemAndLinesKeepTheirE
   EXPECT_EQ(head_line["ids"].size(), 3u);
 }
 
-// The JSON answers go uncompressed even to a client that asks for brotli or gzip as browsers do: on
-// loopback compression only delays them (cpp-httplib's brotli at quality 11; docs/editor.md, "Connections").
+// The JSON answers and the page's bundle go uncompressed even to a client that asks for brotli or gzip
+// as browsers do: on loopback compression only delays them (cpp-httplib's brotli at quality 11; docs/editor.md, "Connections").
 TEST(ServeCommand, JsonAnswersAreNotCompressed) {
   TempDir dir;
   write_file(dir / "lake.txt", "0,0\n100,0\n100,100\n0,100\n0,0\n");
@@ -505,6 +505,10 @@ TEST(ServeCommand, JsonAnswersAreNotCompressed) {
   ASSERT_TRUE(stats && stats->status == 200);
   EXPECT_EQ(stats->get_header_value("Content-Encoding"), "");
   EXPECT_EQ(json::parse(stats->body)["version"], 40);
+  const auto app = c.Get("/app.js", browser);  // the page's bundle
+  ASSERT_TRUE(app && app->status == 200);
+  EXPECT_EQ(app->get_header_value("Content-Encoding"), "");
+  EXPECT_GT(app->body.size(), 10000u);
 }
 
 // The summary (GET /stats) comes from a second session that replays the accepted lines (serve_stats.hpp):
