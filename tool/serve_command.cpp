@@ -489,7 +489,7 @@ std::vector<std::string> replay(EditSession<2>& session, const std::string& path
 
 // SHOREMESH_SERVE_TRACE=FILE: a line per edit answer and per change event when its last byte was handed
 // to the socket (ms since the server started, steady clock), to tell a late answer's time on the server
-// from its time in the browser (docs/editor.md, "Profile"). Off by default.
+// from its time in the browser (docs/editor.md, "Connections"). Off by default.
 class Trace {
  public:
   Trace() {

@@ -398,6 +398,15 @@ TEST(ServeCommand, AKilledServerResumesFromItsEditLogToTheSameState) {
     const auto res = c.Post("/edit?replies=lines", "export resumed.off\nadd 20 20\n", "text/plain");
     ASSERT_TRUE(res && res->status == 200);
     EXPECT_EQ(json_lines(res->body).at(1)["id"], 6);  // the ids go on where the killed server left them
+    // The summary's session replays the resumed lines too: its summary is the session's own.
+    const auto own = c.Post("/edit?replies=lines", "stats\n", "text/plain");
+    const auto summary = c.Get("/stats");
+    ASSERT_TRUE(own && own->status == 200 && summary && summary->status == 200);
+    json a = untimed(json_lines(own->body).at(0)), b = untimed(json::parse(summary->body));
+    EXPECT_EQ(b["version"], 1);  // the edits since the resume
+    for (const char* k : {"line", "version", "ring_count", "exports"}) a.erase(k), b.erase(k);
+    EXPECT_EQ(a, b);
+    EXPECT_EQ(b["next_id"], 7);
   }
   EXPECT_EQ(read_file(dir / "out" / "killed.off"), read_file(dir / "out" / "resumed.off"));
   EXPECT_EQ(read_file(dir / "edits.log"), "move 1 90 10\nadd 50 50\nadd 60 5 after 0\nremove 4\nadd 20 20\n");
