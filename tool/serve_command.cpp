@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <condition_variable>
+#include <cstdlib>
 #include <cstring>
 #include <deque>
 #include <filesystem>
@@ -28,6 +29,7 @@
 #include "input_args.hpp"
 #include "pipeline.hpp"
 #include "progress.hpp"
+#include "serve_stats.hpp"
 #include "shoremesh/error.hpp"
 #include "shoremesh/io/export.hpp"
 
@@ -368,8 +370,8 @@ bool is_edit_op(const std::string& op) {
 
 class EditServer {
  public:
-  EditServer(EditSession<2>& session, std::filesystem::path export_dir, std::ofstream* log)
-      : session_(session), draw_(session.frame()), export_dir_(std::move(export_dir)), log_(log) {
+  EditServer(EditSession<2>& session, StatsReplica& summary, std::filesystem::path export_dir, std::ofstream* log)
+      : session_(session), summary_(summary), draw_(session.frame()), export_dir_(std::move(export_dir)), log_(log) {
     draw_.reset(session_.session());
   }
 
@@ -398,6 +400,7 @@ class EditServer {
         if (reply->contains("ids")) ids = (*reply)["ids"].get<std::vector<std::size_t>>();
         if (reply->contains("id") && !reply->contains("ids")) ids.push_back((*reply)["id"].get<std::size_t>());
         if (log_) *log_ << line << std::endl;  // flushed: a killed server resumes from it
+        summary_.accepted(line);
         json change = draw_.apply(session_.session(), session_.last_edit(), ids);
         change["version"] = ++version_;
         change["reply"] = *reply;
@@ -414,11 +417,11 @@ class EditServer {
     return draw_.binary(session_.session(), {{"version", version_}, {"units", session_.build_reply(0)["units"]}});
   }
 
+  // GET /stats: from the summary's own session, never under the edit lock (serve_stats.hpp).
   json stats() {
-    std::lock_guard lock(mutex_);
-    json r = *session_.run(0, "stats");
-    r["version"] = version_;
-    r["ring_count"] = session_.session().ring_count();
+    std::uint64_t version = 0;
+    json r = summary_.stats(version);
+    r["version"] = version;
     r["exports"] = !export_dir_.empty();
     return r;
   }
@@ -451,6 +454,7 @@ class EditServer {
 
   std::mutex mutex_;  // one edit (or read of the session) at a time
   EditSession<2>& session_;
+  StatsReplica& summary_;
   DrawState draw_;
   std::uint64_t version_ = 0;
   std::filesystem::path export_dir_;
@@ -459,11 +463,12 @@ class EditServer {
 };
 
 // --resume LOG: its edit lines again, in order (ids are never reused, so the same lines give the same ids
-// and, Lemma 7.2, the same state as the killed server's); each must be accepted again.
-void replay(EditSession<2>& session, const std::string& path) {
+// and, Lemma 7.2, the same state as the killed server's); each must be accepted again. Returns them.
+std::vector<std::string> replay(EditSession<2>& session, const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError("cannot read the edit log to resume", path);
-  std::size_t line_no = 0, edits = 0;
+  std::size_t line_no = 0;
+  std::vector<std::string> edits;
   for (std::string line; std::getline(in, line);) {
     ++line_no;
     const auto words = words_of(line);
@@ -476,10 +481,47 @@ void replay(EditSession<2>& session, const std::string& path) {
       throw InputError("line " + std::to_string(line_no) + " of the edit log is refused now: " +
                            reply->value("error", "") + " (was it written for these inputs and options?)",
                        path);
-    ++edits;
+    edits.push_back(line);
   }
-  std::cout << "resumed " << edits << " edit(s) from " << path << '\n';
+  std::cout << "resumed " << edits.size() << " edit(s) from " << path << '\n';
+  return edits;
 }
+
+// SHOREMESH_SERVE_TRACE=FILE: a line per edit answer and per change event when its last byte was handed
+// to the socket (ms since the server started, steady clock), to tell a late answer's time on the server
+// from its time in the browser (docs/editor.md, "Connections"). Off by default.
+class Trace {
+ public:
+  Trace() {
+    if (const char* path = std::getenv("SHOREMESH_SERVE_TRACE"); path && *path) {
+      out_.open(path, std::ios::app);
+      if (!out_) throw InputError("cannot write SHOREMESH_SERVE_TRACE", path);
+    }
+  }
+  bool on() const { return out_.is_open(); }
+  double now() const { return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count(); }
+  void line(const std::string& what) {
+    std::lock_guard lock(mutex_);
+    out_ << what << std::endl;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::mutex mutex_;
+  std::ofstream out_;
+};
+
+// The version a change event's text carries ("version":N), or -1.
+long long event_version(const std::string& text) {
+  const auto at = text.find("\"version\":");
+  return at == std::string::npos ? -1 : std::atoll(text.c_str() + at + 10);
+}
+
+// The JSON answers' type. With a charset it is not one that cpp-httplib compresses: a browser asks for
+// brotli, which cpp-httplib runs at quality 11, and an edit's answer of a few kB then reached the socket
+// ~100 ms after the edit on the loaded VM (SHOREMESH_SERVE_TRACE), after the change event with the same
+// edit; on loopback compression only costs.
+constexpr const char* kJson = "application/json; charset=utf-8";
 
 bool is_loopback(const std::string& host) {
   return host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0;
@@ -487,7 +529,7 @@ bool is_loopback(const std::string& host) {
 
 void json_error(httplib::Response& res, int status, const std::string& message) {
   res.status = status;
-  res.set_content(json{{"error", message}}.dump(), "application/json");
+  res.set_content(json{{"error", message}}.dump(), kJson);
 }
 
 int run_serve(const ServeOptions& opt) {
@@ -511,8 +553,9 @@ int run_serve(const ServeOptions& opt) {
   std::cout << reply_text(session.build_reply(ms)) << '\n';
   if (!opt.log.empty() && !opt.resume.empty()) throw ParameterError("--log and --resume: give one (--resume keeps logging)");
   std::ofstream log;
+  std::vector<std::string> resumed;
   if (!opt.resume.empty()) {
-    replay(session, opt.resume);
+    resumed = replay(session, opt.resume);
     log.open(opt.resume, std::ios::app);
   } else if (!opt.log.empty()) {
     if (std::filesystem::exists(opt.log)) throw InputError("the edit log exists: --resume it, or remove it", opt.log);
@@ -520,7 +563,14 @@ int run_serve(const ServeOptions& opt) {
   }
   const std::string log_path = opt.resume.empty() ? opt.log : opt.resume;
   if (!log_path.empty() && !log) throw InputError("cannot write the edit log", log_path);
-  EditServer editor(session, export_dir, log_path.empty() ? nullptr : &log);
+  // The summary's session, built meanwhile (stopping waits for it).
+  StatsReplica summary(
+      [&] {
+        return std::make_unique<EditSession<2>>(set, opt.engine.rho, parse_box<2>(opt.engine.box), opt.engine.keep_hull,
+                                                opt.preview);
+      },
+      std::move(resumed));
+  EditServer editor(session, summary, export_dir, log_path.empty() ? nullptr : &log);
 
   // SIGINT and SIGTERM stop the server from a thread of their own (the handlers' threads inherit the mask).
   sigset_t stop_signals;
@@ -532,17 +582,30 @@ int run_serve(const ServeOptions& opt) {
   httplib::Server http;
   http.set_payload_max_length(opt.max_body);
   http.set_tcp_nodelay(true);  // an edit's answer is small: without it, Nagle and delayed ACKs add ~40 ms
+  // A page posts a move every few frames while dragging: cpp-httplib's default closes a connection after 5
+  // requests, so every fifth move waited for a new connection. A connection (and the event stream) holds one
+  // of the pool's threads while open (5 s idle at most): room for a page's 6 and the event stream, twice.
+  http.set_keep_alive_max_count(100000);
+  http.new_task_queue = [] { return new httplib::ThreadPool(16); };
+  Trace trace;
+  if (trace.on())
+    http.set_logger([&trace](const httplib::Request& req, const httplib::Response& res) {
+      if (req.path == "/edit")
+        trace.line("answer " + res.get_header_value("X-Shoremesh-Version") + " written " + std::to_string(trace.now()) +
+                   " handled " + res.get_header_value("X-Shoremesh-Handled"));
+    });
   http.Get("/", [](const httplib::Request&, httplib::Response& res) {
     res.set_content(std::string(web_index_html()), "text/html; charset=utf-8");
   });
   http.Get("/app.js", [](const httplib::Request&, httplib::Response& res) {
-    res.set_content(std::string(web_app_js()), "text/javascript; charset=utf-8");
+    // Not a type cpp-httplib compresses (kJson): brotli at quality 11 took 1.8 s for the 543 kB bundle.
+    res.set_content(std::string(web_app_js()), "application/javascript; charset=utf-8");
   });
   http.Get("/mesh", [&](const httplib::Request&, httplib::Response& res) {
     res.set_content(editor.mesh_binary(), "application/octet-stream");
   });
   http.Get("/stats", [&](const httplib::Request&, httplib::Response& res) {
-    res.set_content(editor.stats().dump(), "application/json");
+    res.set_content(editor.stats().dump(), kJson);
   });
   http.Post("/edit", [&](const httplib::Request& req, httplib::Response& res) {
     if (words_of(req.body).empty())
@@ -557,7 +620,7 @@ int run_serve(const ServeOptions& opt) {
       for (const auto& r : out["replies"]) text += r.dump() + "\n";
       res.set_content(text, "application/x-ndjson");
     } else {
-      res.set_content(out.dump(), "application/json");
+      res.set_content(out.dump(), kJson);
     }
     // Where the request's time went on the server, for the page's profile (Resource Timing's serverTiming).
     const auto done = std::chrono::steady_clock::now();
@@ -565,11 +628,15 @@ int run_serve(const ServeOptions& opt) {
     timing << "lock;dur=" << lock_ms << ", edit;dur=" << Ms(ran - received).count() - lock_ms
            << ", json;dur=" << Ms(done - ran).count() << ", total;dur=" << Ms(done - received).count();
     res.set_header("Server-Timing", timing.str());
+    if (trace.on()) {
+      res.set_header("X-Shoremesh-Version", std::to_string(out["version"].get<std::uint64_t>()));
+      res.set_header("X-Shoremesh-Handled", std::to_string(trace.now()));
+    }
   });
   http.Get("/events", [&](const httplib::Request&, httplib::Response& res) {
     res.set_header("Cache-Control", "no-cache");
     const std::uint64_t from = editor.events().last();
-    res.set_chunked_content_provider("text/event-stream", [&editor, seen = from, first = true](std::size_t, httplib::DataSink& sink) mutable {
+    res.set_chunked_content_provider("text/event-stream", [&editor, &trace, seen = from, first = true](std::size_t, httplib::DataSink& sink) mutable {
       std::string out;
       if (first) {
         out = "event: hello\ndata: {}\n\n";
@@ -578,7 +645,10 @@ int run_serve(const ServeOptions& opt) {
         if (editor.events().closed()) return false;
         out = ": keep-alive\n\n";  // finds streams whose page went away
       }
-      return sink.write(out.data(), out.size());
+      const bool written = sink.write(out.data(), out.size());
+      if (trace.on() && out.rfind("event: change", 0) == 0)
+        trace.line("event " + std::to_string(event_version(out)) + " written " + std::to_string(trace.now()));
+      return written;
     });
   });
   http.set_error_handler([&](const httplib::Request& req, httplib::Response& res) {

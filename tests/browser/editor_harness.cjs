@@ -25,10 +25,11 @@ function requireChromium() {
   process.exit(1);
 }
 
-// Starts `shoremesh serve ARGS` in `dir`; resolves to {url, child} once it prints its URL.
-function startServer(args, dir) {
+// Starts `shoremesh serve ARGS` in `dir` (another build's binary if given); resolves to {url, child} once it
+// prints its URL.
+function startServer(args, dir, binary = env.binary) {
   return new Promise((resolve, reject) => {
-    const child = spawn(env.binary, ['serve', ...args], { cwd: dir, stdio: ['ignore', 'pipe', 'pipe'] });
+    const child = spawn(binary, ['serve', ...args], { cwd: dir, stdio: ['ignore', 'pipe', 'pipe'] });
     let out = '', err = '';
     child.stdout.on('data', (d) => {
       out += d;
@@ -85,9 +86,11 @@ async function dragShorePoint(page, k, sign = 1, { steps = 6, pause = 0 } = {}) 
     if (pause) await new Promise((r) => setTimeout(r, pause));
   }
   await page.mouse.up();
+  // (A final move answered from the event stream has its POST's profile filled in when the answer comes.)
   await page.waitForFunction((n) => !window.shoremesh.dragging && window.shoremesh.last &&
                              window.shoremesh.last.line.startsWith('move') &&
-                             (window.shoremesh.edits > n || !window.shoremesh.last.ok), { timeout: 120000 }, plan.edits);
+                             (window.shoremesh.edits > n || !window.shoremesh.last.ok) &&
+                             !(window.shoremesh.last.profile && window.shoremesh.last.profile.pending), { timeout: 120000 }, plan.edits);
   return { id: plan.id, ...(await page.evaluate(() => window.shoremesh.last)) };
 }
 

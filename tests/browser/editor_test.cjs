@@ -79,10 +79,22 @@ async function main() {
     const [start] = await h.post(server.url, 'export before.off');
     assert.ok(start.ok, JSON.stringify(start));
 
-    // Pauses between the pointer moves, so that moves go to the server while the mouse moves.
+    // Pauses between the pointer moves, so that moves go to the server while the mouse moves. This drag
+    // with the mesh's frames held and the dragged point on the overlay (state.fast.overlay, ?overlay=1),
+    // the second one below with the mesh redrawn while dragging (the default).
+    const before = await page.evaluate(() => ({ overlay: window.shoremesh.fast.overlay, held: window.shoremesh.heldFrames,
+                                                overlayFrames: window.shoremesh.overlayFrames }));
+    await page.evaluate(() => { window.shoremesh.fast.overlay = true; });
     const edit = await h.dragShorePoint(page, 700, 1, { steps: 8, pause: 40 });
     check('the drag was accepted', () => assert.ok(edit.ok, `refused: ${JSON.stringify(edit.reply)}`));
     check('the drag moved that point', () => assert.ok(edit.line.startsWith(`move ${edit.id} `), edit.line));
+    const overlaid = await page.evaluate(() => ({ held: window.shoremesh.heldFrames, overlayFrames: window.shoremesh.overlayFrames,
+                                                  painted: window.shoremesh.overlayPainted() }));
+    check('while dragging, the mesh frames waited and the point was drawn on the overlay; after it, the overlay is clear', () => {
+      assert.ok(!before.overlay, 'state.fast.overlay is on by default');
+      assert.ok(overlaid.held > before.held && overlaid.overlayFrames > before.overlayFrames, JSON.stringify({ before, overlaid }));
+      assert.strictEqual(overlaid.painted, 0);
+    });
 
     const [stats] = await h.post(server.url, 'stats');
     const page1 = await page.evaluate(() => ({ triangles: window.shoremesh.triangles, redraws: window.shoremesh.redraws,
@@ -114,14 +126,30 @@ async function main() {
           () => assert.deepStrictEqual(page1.drawn, asDrawn(fresh, page1.origin)));
 
     // The drag's frames redrew only the rectangles the edits touched, and left what a full redraw draws.
+    const afterHeldDrag = await differsFromFullRedraw(page);
+    check('after a drag drawn on the overlay and then in one partial frame, the canvas is what a full redraw draws', () =>
+      assert.ok(afterHeldDrag.differ <= 20 && afterHeldDrag.painted > 0.1, JSON.stringify(afterHeldDrag)));
     const zoomedFull = await page.evaluate(async () => { await window.shoremesh.redrawAll(); return window.shoremesh.drawn; });
+    // A full frame zoomed in draws what the grid picks (the triangles and points meeting the view), and
+    // that is what every chunk in view draws.
+    const zoomedGrid = await page.evaluate(async () => { await window.shoremesh.redraw(); return window.shoremesh.drawn; });
+    const gridDiff = await differsFromFullRedraw(page);
+    check("a full frame from the grid's pick: fewer triangles than the chunks in view, the same pixels", () => {
+      assert.ok(zoomedGrid.how === 'full' && zoomedGrid.picked > 0 && zoomedGrid.triangles === zoomedGrid.picked, JSON.stringify(zoomedGrid));
+      assert.ok(zoomedGrid.triangles < zoomedFull.triangles, `${zoomedGrid.triangles} against ${zoomedFull.triangles}`);
+      assert.ok(gridDiff.differ <= 20 && gridDiff.painted > 0.1, JSON.stringify(gridDiff));
+    });
     check("the drag's last frame redrew only the edit's rectangles: a few pixels, no more triangles than a full frame", () => {
       const d = edit.profile.drawn;
       assert.ok(d && d.how === 'partial', JSON.stringify(edit.profile));
       assert.ok(zoomedFull.how === 'full' && d.pixels < zoomedFull.pixels / 4, `${d.pixels} pixels, ${zoomedFull.pixels} in a full frame`);
       assert.ok(d.triangles <= zoomedFull.triangles, `${d.triangles} triangles in the edit's frame, ${zoomedFull.triangles} in a full one`);
     });
+    await page.evaluate(() => { window.shoremesh.fast.overlay = false; });
+    const held = await page.evaluate(() => window.shoremesh.heldFrames);
     const second = await h.dragShorePoint(page, 900, -1, { steps: 8, pause: 40 });
+    const heldAfter = await page.evaluate(() => window.shoremesh.heldFrames);
+    check('with the overlay off, no frame waited for the end of the drag', () => assert.strictEqual(heldAfter, held));
     const lastBoxes = await page.evaluate(() => window.shoremesh.lastEditBoxes());
     const changeFrame = await page.evaluate(() => window.shoremesh.changeFrame);
     check("the edit's frame redrew every triangle the edit wrote (those on the screen)", () => {

@@ -12,9 +12,11 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <random>
 #include <thread>
 
 #include "cli_test_util.hpp"
@@ -396,6 +398,15 @@ TEST(ServeCommand, AKilledServerResumesFromItsEditLogToTheSameState) {
     const auto res = c.Post("/edit?replies=lines", "export resumed.off\nadd 20 20\n", "text/plain");
     ASSERT_TRUE(res && res->status == 200);
     EXPECT_EQ(json_lines(res->body).at(1)["id"], 6);  // the ids go on where the killed server left them
+    // The summary's session replays the resumed lines too: its summary is the session's own.
+    const auto own = c.Post("/edit?replies=lines", "stats\n", "text/plain");
+    const auto summary = c.Get("/stats");
+    ASSERT_TRUE(own && own->status == 200 && summary && summary->status == 200);
+    json a = untimed(json_lines(own->body).at(0)), b = untimed(json::parse(summary->body));
+    EXPECT_EQ(b["version"], 1);  // the edits since the resume
+    for (const char* k : {"line", "version", "ring_count", "exports"}) a.erase(k), b.erase(k);
+    EXPECT_EQ(a, b);
+    EXPECT_EQ(b["next_id"], 7);
   }
   EXPECT_EQ(read_file(dir / "out" / "killed.off"), read_file(dir / "out" / "resumed.off"));
   EXPECT_EQ(read_file(dir / "edits.log"), "move 1 90 10\nadd 50 50\nadd 60 5 after 0\nremove 4\nadd 20 20\n");
@@ -482,6 +493,147 @@ TEST(ServeCommand, ChangesCarryTheNodesDepthsAsExportsGiveThemAndLinesKeepTheirE
   const json& head_line = after.head["rings"].back();
   EXPECT_EQ(head_line["role"], "line");
   EXPECT_EQ(head_line["ids"].size(), 3u);
+}
+
+// The JSON answers and the page's bundle go uncompressed even to a client that asks for brotli or gzip
+// as browsers do: on loopback compression only delays them (cpp-httplib's brotli at quality 11; docs/editor.md, "Connections").
+TEST(ServeCommand, JsonAnswersAreNotCompressed) {
+  TempDir dir;
+  write_file(dir / "lake.txt", "0,0\n100,0\n100,100\n0,100\n0,0\n");
+  ServeProcess server(dir, "lake.txt");
+  auto c = server.client();
+  const httplib::Headers browser = {{"Accept-Encoding", "gzip, deflate, br"}};
+  std::string edits;
+  for (int k = 0; k < 40; ++k) edits += "move 1 " + std::to_string(90 - k % 2) + " 10\n";  // a long answer
+  const auto edit = c.Post("/edit", browser, edits, "text/plain");
+  ASSERT_TRUE(edit && edit->status == 200);
+  EXPECT_EQ(edit->get_header_value("Content-Encoding"), "");
+  EXPECT_GT(edit->body.size(), 4000u);
+  EXPECT_EQ(json::parse(edit->body)["version"], 40);
+  const auto stats = c.Get("/stats", browser);
+  ASSERT_TRUE(stats && stats->status == 200);
+  EXPECT_EQ(stats->get_header_value("Content-Encoding"), "");
+  EXPECT_EQ(json::parse(stats->body)["version"], 40);
+  const auto app = c.Get("/app.js", browser);  // the page's bundle
+  ASSERT_TRUE(app && app->status == 200);
+  EXPECT_EQ(app->get_header_value("Content-Encoding"), "");
+  EXPECT_GT(app->body.size(), 10000u);
+}
+
+// The summary (GET /stats) comes from a second session that replays the accepted lines (serve_stats.hpp):
+// after random edits, some of them refused, and summaries asked for in between, it equals the served
+// session's own `stats` line and a fresh session's that ran the same lines.
+TEST(ServeCommand, TheSummaryAfterRandomEditsEqualsTheServedAndAFreshSessions) {
+  TempDir dir;
+  const std::string read = quote(superior_mask()) + " --largest-water --spacing 8000";
+  ServeProcess server(dir, read);
+  auto c = server.client();
+  // Edits along the lake's shore as it was: a point moved toward its successor, a point added between
+  // two, a point removed (a line refused, if any, changes nothing and is not replayed).
+  const json shore = get_mesh(c).head["rings"][0];
+  const std::size_t n = shore["ids"].size();
+  ASSERT_GT(n, 100u);
+  auto at = [&](std::size_t k, double t) {
+    const double x0 = shore["xy"][2 * k].get<double>(), y0 = shore["xy"][2 * k + 1].get<double>();
+    const double x1 = shore["xy"][2 * k + 2].get<double>(), y1 = shore["xy"][2 * k + 3].get<double>();
+    return io::format_double(x0 + t * (x1 - x0)) + " " + io::format_double(y0 + t * (y1 - y0));
+  };
+  std::mt19937 rng(39);
+  std::string posted;
+  std::size_t accepted = 0, refused = 0;
+  for (int round = 0; round < 6; ++round) {
+    std::string body;
+    for (int k = 0; k < 4; ++k) {
+      const std::size_t i = std::uniform_int_distribution<std::size_t>(0, n - 2)(rng);
+      const std::string id = shore["ids"][i].dump();
+      const int what = std::uniform_int_distribution<int>(0, 9)(rng);
+      const double t = std::uniform_real_distribution<double>(0.1, 0.4)(rng);
+      if (what < 6) body += "move " + id + " " + at(i, t) + "\n";
+      else if (what < 8) body += "add " + at(i, 0.5) + " after " + id + "\n";
+      else body += "remove " + id + "\n";
+    }
+    const auto res = c.Post("/edit?replies=lines", body, "text/plain");
+    ASSERT_TRUE(res && res->status == 200);
+    for (const auto& r : json_lines(res->body)) ++(r.value("ok", false) ? accepted : refused);
+    posted += body;
+    if (round % 2 == 1) {  // the summary's session catches up in steps
+      const auto mid = c.Get("/stats");
+      ASSERT_TRUE(mid && mid->status == 200) << (mid ? mid->body : "");
+      EXPECT_EQ(json::parse(mid->body)["version"], accepted);
+    }
+  }
+  EXPECT_GE(accepted, 12u);
+  const auto stats = c.Get("/stats");
+  ASSERT_TRUE(stats && stats->status == 200);
+  json summary = untimed(json::parse(stats->body));
+  EXPECT_EQ(summary["version"], accepted);
+  EXPECT_GT(summary.value("ring_count", 0), 0);
+  EXPECT_EQ(summary["exports"], false);
+  for (const char* k : {"version", "ring_count", "exports", "line"}) summary.erase(k);
+  EXPECT_TRUE(summary.contains("shore_segments")) << summary;
+
+  const auto own = c.Post("/edit?replies=lines", "stats\n", "text/plain");
+  ASSERT_TRUE(own && own->status == 200);
+  json served = untimed(json_lines(own->body).at(0));
+  served.erase("line");
+  EXPECT_EQ(summary, served);
+
+  const RunResult fresh = shoremesh(dir, "edit " + read + " --json --edits -", posted + "stats\n");
+  const auto fresh_replies = json_lines(fresh.out);  // exits 1 when a line was refused
+  ASSERT_EQ(fresh_replies.size(), 2 + accepted + refused) << fresh.err;
+  json expected = untimed(fresh_replies.back());
+  EXPECT_EQ(expected["op"], "stats");
+  expected.erase("line");
+  EXPECT_EQ(summary, expected);
+}
+
+// An edit is not held up by a summary: edits posted while GET /stats is under way are answered before
+// it, and they are edits after the version that summary reports. With the summary under the edit lock
+// no such edit can exist (an edit answered before the summary's answer ran before it, so the summary's
+// version counts it). An ordering, not a time: the summary's session has 200 edits to replay first.
+TEST(ServeCommand, EditsGoOnWhileASummaryIsComputed) {
+  TempDir dir;
+  const std::string read = quote(superior_mask()) + " --largest-water --spacing 8000";
+  const RunResult start = shoremesh(dir, "mesh -q " + read + " -o start.csv");
+  ASSERT_EQ(start.code, 0) << start.err;
+  const auto all = io::read_point_set_csv<2>(dir / "start.csv");
+  auto move = [&](std::size_t id, double t) {
+    const Point2 &a = all.points[id], &b = all.points[id + 1];
+    return "move " + std::to_string(id) + " " + io::format_double(a[0] + t * (b[0] - a[0])) + " " +
+           io::format_double(a[1] + t * (b[1] - a[1])) + "\n";
+  };
+  ServeProcess server(dir, read);
+  auto c = server.client();
+  const auto first = c.Get("/stats");  // the summary's session is built
+  ASSERT_TRUE(first && first->status == 200);
+  std::string body;
+  for (int k = 0; k < 200; ++k) body += move(40, k % 2 ? 0.3 : 0.25);
+  const auto pre = c.Post("/edit", body, "text/plain");
+  ASSERT_TRUE(pre && pre->status == 200);
+  ASSERT_EQ(json::parse(pre->body)["version"], 200);
+
+  std::atomic<bool> answered{false};
+  json summary;
+  std::thread asker([&] {
+    auto s = server.client();
+    const auto res = s.Get("/stats");
+    if (res && res->status == 200) summary = json::parse(res->body);
+    answered = true;
+  });
+  std::vector<std::uint64_t> before_answer;  // the versions of the edits answered before the summary's answer
+  for (int k = 0; k < 2000 && !answered; ++k) {
+    const auto res = c.Post("/edit", move(60, k % 2 ? 0.3 : 0.25), "text/plain");
+    ASSERT_TRUE(res && res->status == 200);
+    const json out = json::parse(res->body);
+    ASSERT_TRUE(out["replies"][0]["ok"].get<bool>()) << out;
+    if (!answered) before_answer.push_back(out["version"].get<std::uint64_t>());
+  }
+  asker.join();
+  ASSERT_TRUE(summary.contains("version")) << "GET /stats failed";
+  const auto version = summary["version"].get<std::uint64_t>();
+  EXPECT_GE(version, 200u);
+  const auto after = std::count_if(before_answer.begin(), before_answer.end(), [&](auto v) { return v > version; });
+  EXPECT_GE(after, 3) << before_answer.size() << " edits answered before the summary (version " << version << ")";
 }
 
 }  // namespace

@@ -115,6 +115,90 @@ const raw = (vertexShader, fragmentShader) =>
 const kChunk = 4096, kFine = 256;
 const fineScene = new THREE.Scene();
 let chunks = [], fineChunks = [], buffers = null, capacity = 0, layerMask = { d: true, c: true, t: true };
+// What lies where: a uniform grid (kGrid cells a side over the mesh's box) of the slots' and the shore
+// points' bounding boxes (a shore point's box holds its edge to the next point), so that a frame of a small
+// part of the view (an edit's rectangle, a pan's strip, a zoomed-in view) draws the triangles and points
+// that meet it, through an index of their slots, instead of every chunk that meets it: SwiftShader's cost
+// is mostly per vertex (bench/RESULTS.md), and a chunk of 256 slots meeting a rectangle brings 256
+// triangles and 768 corner points where a dozen meet it. Entries are only added: a cleared or moved slot
+// (or point) keeps its old cells, and a query keeps what its box really meets. Boxes of more than
+// kGridBig cells a side go to one list that every query scans (a few large water triangles).
+// The picked primitives are drawn in slot (and point) order, the order of the chunks, so that where
+// points overlap the frame is the one the chunks draw (docs/editor.md).
+const kGrid = 1024, kGridBig = 16, kPick = 65536, kPickCells = 16384;
+const grid = { x0: 0, y0: 0, cell: 1, tri: [], triBig: [], dot: [], dotBig: [], queries: 0 };
+const indexScene = new THREE.Scene();
+const picked = { mesh: null, corners: null, points: null, segs: null, triangles: 0, dots: 0 };
+let triBox = null, triStamp = null, dotBox = new Float32Array(0), dotStamp = new Uint32Array(0);
+const pickT = new Uint32Array(kPick), pickD = new Uint32Array(kPick);
+function setGrid(lo, hi) {
+  grid.cell = Math.max(hi[0] - lo[0], hi[1] - lo[1], 1e-9) / kGrid * (1 + 1e-6);
+  grid.x0 = lo[0]; grid.y0 = lo[1];
+  grid.tri = new Array(kGrid * kGrid); grid.triBig = [];
+}
+const cellOf = (v, o) => Math.min(kGrid - 1, Math.max(0, Math.floor((v - o) / grid.cell)));
+function gridInsert(cells, big, id, box) {
+  const i0 = cellOf(box[id * 4], grid.x0), j0 = cellOf(box[id * 4 + 1], grid.y0);
+  const i1 = cellOf(box[id * 4 + 2], grid.x0), j1 = cellOf(box[id * 4 + 3], grid.y0);
+  if (i1 - i0 >= kGridBig || j1 - j0 >= kGridBig) { big.push(id); return; }
+  for (let j = j0; j <= j1; ++j) {
+    for (let i = i0; i <= i1; ++i) {
+      const c = j * kGrid + i;
+      if (cells[c] === undefined) cells[c] = [id]; else cells[c].push(id);
+    }
+  }
+}
+// The ids whose boxes meet [x0, x1] x [y0, y1] (and that `live` keeps), sorted, into `out`; their count, or
+// -1 when the rectangle covers more than kPickCells cells or more than kPick ids meet it (then the chunks
+// draw: a wide view meets most of the mesh anyway).
+function gridQuery(cells, big, box, stamp, x0, y0, x1, y1, live, out) {
+  const i0 = cellOf(x0, grid.x0), j0 = cellOf(y0, grid.y0), i1 = cellOf(x1, grid.x0), j1 = cellOf(y1, grid.y0);
+  if ((i1 - i0 + 1) * (j1 - j0 + 1) > kPickCells) return -1;
+  const q = ++grid.queries;
+  let n = 0;
+  const take = (id) => {
+    if (stamp[id] === q) return true;
+    stamp[id] = q;
+    if (box[id * 4] > x1 || box[id * 4 + 2] < x0 || box[id * 4 + 1] > y1 || box[id * 4 + 3] < y0 || !live(id)) return true;
+    if (n === out.length) return false;
+    out[n++] = id;
+    return true;
+  };
+  for (const id of big) if (!take(id)) return -1;
+  for (let j = j0; j <= j1; ++j) {
+    for (let i = i0; i <= i1; ++i) {
+      const list = cells[j * kGrid + i];
+      if (list === undefined) continue;
+      for (let k = 0; k < list.length; ++k) if (!take(list[k])) return -1;
+    }
+  }
+  out.subarray(0, n).sort();
+  return n;
+}
+const liveSlot = (s) => buffers.kind.array[s * 3] !== 255;
+const anyDot = () => true;
+// Sets the picked triangles and points to those meeting the rectangle (mesh units relative to the origin);
+// false when the grid declines (the chunks draw then).
+function pick(x0, y0, x1, y1) {
+  if (!fast.index || !picked.mesh || !picked.points) return false;
+  const nt = gridQuery(grid.tri, grid.triBig, triBox, triStamp, x0, y0, x1, y1, liveSlot, pickT);
+  if (nt < 0) return false;
+  const nd = gridQuery(grid.dot, grid.dotBig, dotBox, dotStamp, x0, y0, x1, y1, anyDot, pickD);
+  if (nd < 0) return false;
+  const ti = picked.mesh.geometry.index;
+  for (let i = 0; i < nt; ++i) { const s = pickT[i] * 3; ti.array[3 * i] = s; ti.array[3 * i + 1] = s + 1; ti.array[3 * i + 2] = s + 2; }
+  const pi = picked.points.geometry.index, li = picked.segs.geometry.index;
+  for (let i = 0; i < nd; ++i) { const d = pickD[i]; pi.array[i] = d; li.array[2 * i] = 2 * d; li.array[2 * i + 1] = 2 * d + 1; }
+  for (const [index, n] of [[ti, nt * 3], [pi, nd], [li, nd * 2]]) {
+    index.clearUpdateRanges();
+    if (n > 0) { index.addUpdateRange(0, n); index.needsUpdate = true; }
+  }
+  picked.mesh.geometry.setDrawRange(0, nt * 3);
+  picked.points.geometry.setDrawRange(0, nd);
+  picked.segs.geometry.setDrawRange(0, nd * 2);
+  picked.triangles += nt; picked.dots += nd;
+  return true;
+}
 function allocate(slots) {
   capacity = Math.ceil(slots * 1.25) + 1024;
   const old = buffers;
@@ -130,6 +214,22 @@ function allocate(slots) {
   for (const c of chunks) { scene.remove(c.mesh, c.corners); c.mesh.geometry.dispose(); }
   for (const c of fineChunks) { fineScene.remove(c.mesh, c.corners); c.mesh.geometry.dispose(); }
   const triangles = raw(triVertex, triFragment), points = raw(cornerVertex, dotFragment);
+  const oldBox = triBox;
+  triBox = new Float32Array(capacity * 4);
+  if (oldBox) triBox.set(oldBox);
+  triStamp = new Uint32Array(capacity);
+  {  // the triangles a grid query picked (see pick()): the same buffers, drawn through an index of their slots
+    if (picked.mesh) { indexScene.remove(picked.mesh, picked.corners); picked.mesh.geometry.dispose(); }
+    const geometry = new THREE.BufferGeometry();
+    for (const k in buffers) geometry.setAttribute(k, buffers[k]);
+    geometry.setIndex(new THREE.BufferAttribute(new Uint32Array(kPick * 3), 1).setUsage(THREE.DynamicDrawUsage));
+    geometry.setDrawRange(0, 0);
+    picked.mesh = new THREE.Mesh(geometry, triangles);
+    picked.corners = new THREE.Points(geometry, points);
+    picked.mesh.renderOrder = 0; picked.corners.renderOrder = 1;
+    picked.mesh.frustumCulled = picked.corners.frustumCulled = false;
+    indexScene.add(picked.mesh, picked.corners);
+  }
   const make = (size, into) => {
     const out = [];
     for (let start = 0; start < capacity; start += size) {
@@ -192,6 +292,9 @@ function writeSlot(s, xy, kinds, v) {
     buffers.changed.array[s * 3 + k] = v;
   }
   grow(s);
+  triBox[s * 4] = Math.min(ax, bx, cx); triBox[s * 4 + 1] = Math.min(ay, by, cy);
+  triBox[s * 4 + 2] = Math.max(ax, bx, cx); triBox[s * 4 + 3] = Math.max(ay, by, cy);
+  gridInsert(grid.tri, grid.triBig, s, triBox);
 }
 function clearSlot(s) {
   buffers.position.array.fill(0, s * 6, s * 6 + 6);
@@ -247,6 +350,21 @@ function rebuildRings() {
   };
   dotChunks = make(kChunk, scene);
   fineDotChunks = make(kFine, fineScene);
+  if (picked.points) { indexScene.remove(picked.points, picked.segs); picked.points.geometry.dispose(); picked.segs.geometry.dispose(); }
+  const pg = new THREE.BufferGeometry(), lg = new THREE.BufferGeometry();
+  for (const k in dots.attributes) pg.setAttribute(k, dots.attributes[k]);
+  lg.setAttribute('position', lines.position);
+  pg.setIndex(new THREE.BufferAttribute(new Uint32Array(kPick), 1).setUsage(THREE.DynamicDrawUsage));
+  lg.setIndex(new THREE.BufferAttribute(new Uint32Array(kPick * 2), 1).setUsage(THREE.DynamicDrawUsage));
+  pg.setDrawRange(0, 0); lg.setDrawRange(0, 0);
+  picked.points = new THREE.Points(pg, dotMaterial);
+  picked.segs = new THREE.LineSegments(lg, lineMaterial);
+  picked.segs.renderOrder = 2; picked.points.renderOrder = 3;
+  picked.points.frustumCulled = picked.segs.frustumCulled = false;
+  indexScene.add(picked.segs, picked.points);
+  dotBox = new Float32Array(ids.length * 4);
+  dotStamp = new Uint32Array(ids.length);
+  grid.dot = new Array(kGrid * kGrid); grid.dotBig = [];
   for (let i = 0; i < ids.length; ++i) growDot(i);
 }
 function growDot(i) {  // a point's chunks' bounds take in its edge (both ends)
@@ -260,6 +378,9 @@ function growDot(i) {  // a point's chunks' bounds take in its edge (both ends)
     c.sphere.center.set((c.lo[0] + c.hi[0]) / 2, (c.lo[1] + c.hi[1]) / 2, 0);
     c.sphere.radius = Math.hypot(c.hi[0] - c.lo[0], c.hi[1] - c.lo[1]) / 2;
   }
+  dotBox[i * 4] = Math.min(seg[i * 4], seg[i * 4 + 2]); dotBox[i * 4 + 1] = Math.min(seg[i * 4 + 1], seg[i * 4 + 3]);
+  dotBox[i * 4 + 2] = Math.max(seg[i * 4], seg[i * 4 + 2]); dotBox[i * 4 + 3] = Math.max(seg[i * 4 + 1], seg[i * 4 + 3]);
+  gridInsert(grid.dot, grid.dotBig, i, dotBox);
 }
 function writeDot(pos, colour, big, seg, id, i) {
   const v = state.verts.get(id);
@@ -305,9 +426,15 @@ function refreshDots(ids) {  // in place: points that moved or whose selection c
 // A change of scale, size or colouring redraws everything. `fast` switches these off (?full=1), for
 // benchmarks and for tests that compare a frame with a full redraw.
 const params = new URLSearchParams(window.location.search);
-const fast = { partial: !params.has('full'), scroll: !params.has('full') };
+const fast = { partial: !params.has('full'), scroll: !params.has('full'), index: !params.has('full') };
+{  // what draws WebGL (for benches: SwiftShader is software)
+  const gl = renderer.getContext(), info = gl.getExtension('WEBGL_debug_renderer_info');
+  state.renderer = String(gl.getParameter(info ? info.UNMASKED_RENDERER_WEBGL : gl.RENDERER));
+  fast.overlay = params.has('overlay') && params.get('overlay') !== '0';
+}
 state.fast = fast;
 let dirty = true;     // the next frame redraws everything
+let reference = false;  // and draws every chunk in view (no grid query): the frame the tests compare with
 let boxes = [];       // else: these boxes of the mesh (relative to the origin, [x0, y0, x1, y1]) are redrawn
 function requestDraw() { dirty = true; }
 function markBox(b) { if (b && isFinite(b[0])) boxes.push(b); }
@@ -318,6 +445,10 @@ const growBox = (b, x, y) => {
 const emptyBox = () => [Infinity, Infinity, -Infinity, -Infinity];
 function resize() {
   renderer.setSize(view.clientWidth, view.clientHeight);
+  const dpr = renderer.getPixelRatio();
+  overlay.width = Math.round(view.clientWidth * dpr); overlay.height = Math.round(view.clientHeight * dpr);
+  overlay.style.width = `${view.clientWidth}px`; overlay.style.height = `${view.clientHeight}px`;
+  drag.shown = null;
   requestDraw();
 }
 function updateCamera() {
@@ -332,6 +463,11 @@ function updateCamera() {
   // Shore points too dense to pick one out (zoomed out on a large shore) are left to the shoreline.
   const showDots = layerMask.d && (uniforms.uPointSize.value > 0.5 || state.verts.size < 20000);
   for (const c of [...dotChunks, ...fineDotChunks]) { c.points.visible = showDots; c.segs.visible = layerMask.d; }
+  if (picked.mesh) {
+    picked.mesh.visible = layerMask.t;
+    picked.corners.visible = layerMask.t && layerMask.c && uniforms.uPointSize.value > 0.5;
+  }
+  if (picked.points) { picked.points.visible = showDots; picked.segs.visible = layerMask.d; }
   // The scale bar: a round length near 120 pixels.
   const target = 120 * cam.scale, p = Math.pow(10, Math.floor(Math.log10(target)));
   const len = [5, 2, 1].map((m) => m * p).find((l) => l <= target) || p;
@@ -420,7 +556,8 @@ function renderRect(x, y, rw, rh, w, h) {
   renderer.setViewport(vx, h - vy - vh, vw, vh);
   renderer.setScissor(x, h - y - rh, rw, rh);
   renderer.setScissorTest(true);
-  renderer.render(fineScene, subCamera);
+  const indexed = pick(subCamera.left, subCamera.bottom, subCamera.right, subCamera.top);
+  renderer.render(indexed ? indexScene : fineScene, subCamera);
 }
 // The boxes' rectangles on the screen (padded by a point's radius and a pixel of antialiasing), clipped to
 // the view, those that overlap or nearly so merged (each rectangle is a render of every chunk it meets);
@@ -451,7 +588,9 @@ function boxRects(w, h) {
       }
     }
   }
-  if (rects.reduce((sum, r) => sum + area(r), 0) > 0.4 * w * h) return null;
+  // Past 40 % of the view one full frame is cheaper than a pass over the chunks per rectangle; with the
+  // grid (pick()) a rectangle costs what it meets, so only a nearly covered view is drawn in full.
+  if (rects.reduce((sum, r) => sum + area(r), 0) > (fast.index ? 0.9 : 0.4) * w * h) return null;
   return rects.map((r) => [r[0], r[1], r[2] - r[0], r[3] - r[1]]);
 }
 // What the last frame did: how ('full', 'partial', 'scroll' or 'none'), and three.js's counts summed over
@@ -461,6 +600,7 @@ function draw() {
   const w = view.clientWidth, h = view.clientHeight, dpr = renderer.getPixelRatio();
   updateCamera();
   renderer.info.reset();
+  picked.triangles = picked.dots = 0;
   let how = 'full', pixels = w * h, drawnRects = [[0, 0, w, h]];  // pixels: how many the frame drew (CSS pixels), the shifted copy aside
   const sameScale = drawnView.scale === cam.scale && drawnView.w === w && drawnView.h === h && Number.isInteger(dpr);
   // The content's shift since the last frame, in CSS pixels (right, down).
@@ -498,7 +638,8 @@ function draw() {
   } else if (how === 'full') {
     renderer.setScissorTest(false);
     renderer.setViewport(0, 0, w, h);
-    renderer.render(scene, camera);
+    const indexed = !reference && pick(camera.left, camera.bottom, camera.right, camera.top);
+    renderer.render(indexed ? indexScene : scene, camera);
     previewing = false;
     clearTimeout(zoom.timer);
   } else {
@@ -527,17 +668,83 @@ function draw() {
     renderer.setViewport(0, 0, w, h);
   }
   dirty = false;
+  reference = false;
   boxes = [];
   Object.assign(drawnView, { cx: cam.cx, cy: cam.cy, scale: cam.scale, w, h });
   const r = renderer.info.render;
-  state.drawn = { how, calls: r.calls, triangles: r.triangles, points: r.points, lines: r.lines, pixels, rects: drawnRects };
+  state.drawn = { how, calls: r.calls, triangles: r.triangles, points: r.points, lines: r.lines, pixels, rects: drawnRects,
+                  picked: picked.triangles, pickedDots: picked.dots };
 }
+// fast.overlay (?overlay=1): while a shore point is dragged, the moves go to the server and their changes
+// into the buffers, but the mesh's frames are held: the point and its two shore edges are drawn on a 2D
+// canvas over the WebGL one, so that at the release no mesh frame is being rasterized ahead of the final
+// move's. The held rectangles are drawn in the frame that shows the final move, the overlay cleared in the
+// same frame; when the pointer rests kRest ms the held frame is drawn. Off by default: with the grid
+// (pick()) a move's frame is a few triangles, and on SwiftShader release to frame measured no better with
+// the overlay than with the mesh following the drag (bench/RESULTS.md). Either way the final move's
+// change is drawn as soon as it comes (applyChange), not at the next animation frame.
+const kRest = 150;
+const drag = { hold: false, lastMove: 0, id: null, to: null, shown: null, onFinal: null };
+const overlay = document.createElement('canvas');
+overlay.style.cssText = 'position:absolute;left:0;top:0;pointer-events:none';
+renderer.domElement.after(overlay);
+// Drawn on the CPU (willReadFrequently): a few lines, and the GPU (SwiftShader: the same CPUs) is left to the
+// mesh's frames.
+const overlay2d = overlay.getContext('2d', { willReadFrequently: true });
+function holding() {
+  return drag.hold && (press === null || performance.now() - drag.lastMove < kRest);
+}
+function clearOverlay() {
+  const [x0, y0, x1, y1] = drag.shown;
+  overlay2d.clearRect(x0, y0, x1 - x0, y1 - y0);
+  drag.shown = null;
+}
+function drawOverlay() {  // when what it shows moved: an unchanged overlay costs the compositor nothing
+  const v = drag.id === null ? null : state.verts.get(drag.id);
+  if (!v) { if (drag.shown) clearOverlay(); return; }
+  const dpr = renderer.getPixelRatio();
+  const at = (u) => toScreen(u.x, u.y).map((c) => c * dpr);
+  const ends = [v.prev, v.next].map((id) => (id === undefined ? null : state.verts.get(id))).filter(Boolean);
+  const [px, py] = at(v), r = Math.max(uniforms.uPointSize.value * 2, 4) * dpr;
+  const key = [px, py, r, ...ends.flatMap(at)].join(' ');
+  if (drag.shown && drag.key === key) return;
+  if (drag.shown) clearOverlay();
+  drag.key = key;
+  const b = [px - r - 2, py - r - 2, px + r + 2, py + r + 2];
+  overlay2d.lineWidth = dpr;
+  overlay2d.strokeStyle = 'rgb(10,61,145)';
+  overlay2d.beginPath();
+  for (const u of ends) {
+    const [x, y] = at(u);
+    overlay2d.moveTo(px, py); overlay2d.lineTo(x, y);
+    b[0] = Math.min(b[0], x - 2); b[1] = Math.min(b[1], y - 2); b[2] = Math.max(b[2], x + 2); b[3] = Math.max(b[3], y + 2);
+  }
+  overlay2d.stroke();
+  overlay2d.fillStyle = 'rgb(242,115,0)';
+  overlay2d.beginPath();
+  overlay2d.arc(px, py, r, 0, 2 * Math.PI);
+  overlay2d.fill();
+  drag.shown = b.map((c, i) => (i < 2 ? Math.floor(c) : Math.ceil(c)));
+  ++state.overlayFrames;
+}
+state.overlayFrames = 0;
+state.heldFrames = 0;  // animation frames in which an edit's rectangles waited for the end of a drag
+// For tests: the overlay's painted pixels (none once a drag's frame is drawn).
+state.overlayPainted = () => {
+  const d = overlay2d.getImageData(0, 0, overlay.width, overlay.height).data;
+  let n = 0;
+  for (let i = 3; i < d.length; i += 4) if (d[i] !== 0) ++n;
+  return n;
+};
 // Bench: draw each frame to the end (a pixel read back) so that frame times include the rasterizing.
 state.syncFrames = false;
-function frame() {
+function renderFrame() {
   const viewMoved = cam.cx !== drawnView.cx || cam.cy !== drawnView.cy || cam.scale !== drawnView.scale ||
                     view.clientWidth !== drawnView.w || view.clientHeight !== drawnView.h;
-  if (dirty || boxes.length || viewMoved) {
+  const held = holding() && !dirty && !viewMoved;  // only an edit's rectangles wait
+  if (held && boxes.length) ++state.heldFrames;
+  if (!held && (dirty || boxes.length || viewMoved)) {
+    if (drag.shown) clearOverlay();  // the mesh's frame shows the point where the overlay had it
     const start = performance.now();
     draw();
     const rendered = performance.now();
@@ -551,6 +758,10 @@ function frame() {
     }
     ++state.frames;
   }
+}
+function frame() {
+  renderFrame();
+  if (holding()) drawOverlay();
   const now = performance.now();
   for (const f of frameWaiters.splice(0)) f(now);
   requestAnimationFrame(frame);
@@ -583,6 +794,17 @@ async function load() {
                          side: head.side, units: head.units || '', hasDepths: !!head.depths });
   buffers = null;
   allocate(head.slots);
+  {
+    const lo = [Infinity, Infinity], hi = [-Infinity, -Infinity];
+    for (let s = 0; s < head.slots; ++s) {
+      if (kinds[s * 3] === 255) continue;
+      for (let k = 0; k < 6; k += 2) {
+        lo[0] = Math.min(lo[0], xy[s * 6 + k]); lo[1] = Math.min(lo[1], xy[s * 6 + k + 1]);
+        hi[0] = Math.max(hi[0], xy[s * 6 + k]); hi[1] = Math.max(hi[1], xy[s * 6 + k + 1]);
+      }
+    }
+    if (isFinite(lo[0])) setGrid(lo, hi); else setGrid([0, 0], [head.side, head.side]);
+  }
   for (let s = 0; s < head.slots; ++s) {
     if (kinds[s * 3] === 255) continue;
     writeSlot(s, xy.subarray(s * 6, s * 6 + 6), kinds.subarray(s * 3, s * 3 + 3), -1e9)  // made before this page: not highlighted;
@@ -618,9 +840,26 @@ let flashBox = null;  // the last edit's triangles (highlighted)
 // The last change: its version, when and how it came (the POST's answer or the event stream, whichever was
 // first), and the first frame drawn after it (for tests and benches).
 let changeFrame = null;
+// A change ahead of the next version waits for the ones before it (a drag's final move is posted without
+// waiting for the move in flight: its answer may come first); the event stream brings every change in
+// order, so a gap that lasts a second means changes were missed: reload everything.
+const ahead = new Map();
+let gapTimer = null;
 function applyChange(change, via = 'post') {
   if (change.version <= state.version) return false;
-  if (change.version !== state.version + 1) { reload(); return false; }
+  if (change.version !== state.version + 1) {
+    if (!ahead.has(change.version)) ++state.changesAhead;
+    ahead.set(change.version, { change, via });
+    if (!gapTimer) gapTimer = setTimeout(() => { gapTimer = null; if (ahead.size) { ahead.clear(); reload(); } }, 1000);
+    return false;
+  }
+  applyInOrder(change, via);
+  for (let next; (next = ahead.get(state.version + 1));) { ahead.delete(next.change.version); applyInOrder(next.change, next.via); }
+  for (const v of ahead.keys()) if (v <= state.version) ahead.delete(v);
+  if (!ahead.size && gapTimer) { clearTimeout(gapTimer); gapTimer = null; }
+  return true;
+}
+function applyInOrder(change, via) {
   if (change.slots > capacity) allocate(change.slots);
   const written = [];
   // What to redraw: where the triangles went and came, where the last edit's highlight was, and any slot
@@ -673,13 +912,24 @@ function applyChange(change, via = 'post') {
   changeFrame = { version: change.version, via, applied: performance.now(), drawn: null };
   state.changeFrame = changeFrame;
   ++state.redraws;
+  if (drag.to && change.inputs.some((p) => p.id === drag.id && p.x === drag.to[0] && p.y === drag.to[1])) {
+    // The drag's final move: drawn now, not at the next animation frame (the rasterizing then overlaps the
+    // wait for it; the compositor shows the canvas at its next frame either way).
+    drag.hold = false;
+    drag.to = null;
+    renderFrame();
+    if (drag.onFinal) drag.onFinal({ change });
+  }
   $('changed').textContent = `${change.cleared.length} out, ${change.added.length} in`;
   showCounts(change.reply);
   scheduleStats();
   return true;
 }
 let reloading = null;
+state.changesAhead = 0;  // changes that came before one they follow (waited for it)
+state.reloads = 0;
 function reload() {
+  if (!reloading) ++state.reloads;
   if (!reloading) reloading = load().finally(() => { reloading = null; });
   return reloading;
 }
@@ -719,27 +969,44 @@ async function send(line, opts = {}) {
     t1 = t0 + opts.applied.roundTripMs;
     profile = { ...opts.applied.profile };
   } else {
-    ++posting;
-    const res = await fetch('edit', { method: 'POST', body: line, headers: { 'Content-Type': 'text/plain' } })
-      .finally(() => { --posting; });
-    const text = await res.text();
-    const tText = performance.now();
-    const out = JSON.parse(text);
-    const tParse = performance.now();
-    if (!res.ok) { setStatus(`${line}: ${out.error}`, true); return { ok: false, error: out.error }; }
-    t1 = performance.now();
-    for (const c of out.changes) applyChange(c);
-    const tApply = performance.now();
-    reply = out.replies[0];
-    const rt = postTiming();
-    const serverMs = rt.server ? rt.server.total : undefined;
-    profile = {
-      fetchStart: t0, bytes: rt.bytes ?? text.length, server: serverMs, lock: rt.server?.lock, edit: rt.server?.edit,
-      json: rt.server?.json,
-      network: rt.responseStart !== undefined ? rt.responseStart - t0 - (serverMs ?? 0) : undefined,
-      download: rt.responseEnd !== undefined ? rt.responseEnd - rt.responseStart : undefined,
-      toText: tText - t0, parse: tParse - tText, apply: tApply - tParse, applied: tApply,
-    };
+    const posted = (async () => {
+      ++posting;
+      const res = await fetch('edit', { method: 'POST', body: line, headers: { 'Content-Type': 'text/plain' } })
+        .finally(() => { --posting; });
+      const text = await res.text();
+      const tText = performance.now();
+      const out = JSON.parse(text);
+      const tParse = performance.now();
+      if (!res.ok) return { error: out.error };
+      const t1 = performance.now();
+      for (const c of out.changes) applyChange(c);
+      const tApply = performance.now();
+      const rt = postTiming();
+      const serverMs = rt.server ? rt.server.total : undefined;
+      return {
+        t1, reply: { ...out.replies[0], version: out.version },  // the session's version after it (drag order)
+        profile: {
+          fetchStart: t0, bytes: rt.bytes ?? text.length, server: serverMs, lock: rt.server?.lock, edit: rt.server?.edit,
+          json: rt.server?.json,
+          network: rt.responseStart !== undefined ? rt.responseStart - t0 - (serverMs ?? 0) : undefined,
+          download: rt.responseEnd !== undefined ? rt.responseEnd - rt.responseStart : undefined,
+          toText: tText - t0, parse: tParse - tText, apply: tApply - tParse, applied: tApply,
+        },
+      };
+    })();
+    // A drag's final move: its change (which carries the edit's reply) may come by the event stream before
+    // the POST's answer; then the page answers from it, and the POST's profile fills in when it comes.
+    const early = opts.final ? new Promise((resolve) => { drag.onFinal = resolve; }) : null;
+    let r = early ? await Promise.race([posted, early]) : await posted;
+    if (early) drag.onFinal = null;
+    if (r.error !== undefined) { setStatus(`${line}: ${r.error}`, true); return { ok: false, error: r.error }; }
+    if (r.change) {
+      const c = r.change;
+      r = { t1: performance.now(), reply: { ...c.reply, version: c.version }, profile: { fetchStart: t0, pending: true } };
+      const filled = r.profile;
+      posted.then((p) => Object.assign(filled, p.profile || {}, { pending: false, answerMs: (p.t1 ?? NaN) - t0 }));
+    }
+    ({ reply, t1, profile } = r);
   }
   if (opts.live) {
     state.liveProfile = profile;
@@ -750,6 +1017,7 @@ async function send(line, opts = {}) {
     $('ms-round').textContent = fmt(t1 - t0);
     return reply;
   }
+  drag.hold = false;  // an edit's answer is drawn in the next frame
   const t2 = await nextFrame();
   const since = opts.since ?? t0;
   // The change's own frame (it may have come by the event stream before the POST's answer, and for a drag
@@ -948,6 +1216,7 @@ view.addEventListener('pointermove', (e) => {
     const v = state.verts.get(press.hit);
     if (!press.from) press.from = [v.x, v.y];
     press.to = toWorld(px, py);
+    Object.assign(drag, { hold: fast.overlay, id: press.hit, lastMove: performance.now() });
     followCursor();
     liveMove(press);
   } else {
@@ -957,17 +1226,35 @@ view.addEventListener('pointermove', (e) => {
     cam.cy = press.cy + (Math.round((py - press.py) * dpr) / dpr) * cam.scale;
   }
 });
+// The final move is posted at once, without waiting for the answer to a move still in flight (unless that
+// move goes where the final one would: then its answer is the drag's). The server applies edits one at a
+// time in the order it takes them: should it take the final move first (the two came on two connections),
+// the one in flight ends with a later version and the final move is sent again, so the session ends
+// where the mouse was released.
+state.finalResent = 0;  // final moves sent again: the server had taken them before the move in flight
 async function release(p, px, py) {
   const since = performance.now();
   p.released = true;
   const to = toWorld(px, py);
-  if (p.inflight) await p.inflight;
+  const inflight = p.inflight, sentThere = p.sent && p.sent[0] === to[0] && p.sent[1] === to[1];
+  if (inflight && sentThere) await inflight;
   const v = state.verts.get(p.hit);
-  [v.x, v.y] = p.applied ?? p.from;  // the server says where it is
-  refreshDots([p.hit]);
   const op = { type: 'move', id: orig(p.hit), from: p.from, to };
   const same = p.applied && p.applied[0] === to[0] && p.applied[1] === to[1];
-  const reply = await perform(op, 'new', { since, applied: same ? p.appliedReply : undefined });
+  if (same) { drag.hold = false; renderFrame(); }  // the final move's change is in: its frame now
+  else drag.to = to;  // its change, from the POST's answer or the event stream, ends the hold (applyChange)
+  const reply = await perform(op, 'new', { since, applied: same ? p.appliedReply : undefined, final: !same });
+  if (inflight && !sentThere) {
+    await inflight;
+    if (reply.ok && p.appliedReply && p.appliedReply.reply.version > reply.version) {
+      ++state.finalResent;
+      await send(`move ${p.hit} ${num(to[0])} ${num(to[1])}`, { live: true });
+    }
+  }
+  if (!reply.ok) {
+    [v.x, v.y] = p.applied ?? p.from;  // the server says where it is
+    refreshDots([p.hit]);
+  }
   if (!reply.ok && p.applied) {  // the moves made while dragging go too
     await send(`move ${p.hit} ${num(p.from[0])} ${num(p.from[1])}`, { live: true });
     setStatus(`refused: ${lineOf(op)}: ${reply.error} (the point is back where the drag began)`, true);
@@ -993,6 +1280,7 @@ view.addEventListener('pointerup', async (e) => {
     }
   } finally {
     state.dragging = false;
+    Object.assign(drag, { hold: false, to: null });
   }
 });
 view.addEventListener('wheel', (e) => {
@@ -1054,9 +1342,9 @@ function showCounts(reply) {
     $('steiner-count').textContent = reply.steiner_points?.toLocaleString('en') ?? '';
   }
 }
-// The summary (GET /stats) measures the whole mesh on the server under the edit lock (a few hundred ms at
-// a million triangles on a loaded machine): asked for only once the edits have paused for a second and no
-// drag or edit is under way, so that it never holds up a move.
+// The summary (GET /stats) measures the whole mesh on the server (seconds at a million triangles on a loaded
+// machine; on a session of its own, so edits go on meanwhile, but it takes CPU from them): asked for only
+// once the edits have paused for a second and no drag or edit is under way.
 let statsTimer = null, posting = 0;
 function scheduleStats() {
   clearTimeout(statsTimer);
@@ -1106,15 +1394,37 @@ state.zoom = (factor) => { cam.scale *= factor; zooming = true; return nextFrame
 state.zoomRest = kZoomRest;
 // Profiling (bench/): one frame drawn and read back (a pixel: the draw must have run), in ms; and layers
 // switched off.
-state.profileFrame = () => {
+// `how`: 'chunks' (every chunk in view), 'grid' (what the grid picks in the view), 'clear' (nothing drawn);
+// `rect`: [x, y, w, h] CSS pixels, a scissored rectangle through the camera of renderRect.
+state.profileFrame = ({ how = 'chunks', rect = null } = {}) => {
   updateCamera();
   renderer.info.reset();
+  picked.triangles = picked.dots = 0;
+  const w = view.clientWidth, h = view.clientHeight;
   const t = performance.now();
-  renderer.render(scene, camera);
+  if (rect) {
+    const [x, y, rw, rh] = rect;
+    renderer.setViewport(x, h - y - rh, rw, rh);
+    renderer.setScissor(x, h - y - rh, rw, rh);
+    renderer.setScissorTest(true);
+  }
+  const cam2 = rect ? subCamera : camera;
+  if (rect) {
+    const [x, y, rw, rh] = rect;
+    subCamera.left = cam.cx + (x - w / 2) * cam.scale; subCamera.right = cam.cx + (x + rw - w / 2) * cam.scale;
+    subCamera.top = cam.cy - (y - h / 2) * cam.scale; subCamera.bottom = cam.cy - (y + rh - h / 2) * cam.scale;
+    subCamera.updateProjectionMatrix();
+  }
+  if (how === 'clear') renderer.clear();
+  else if (how === 'grid' && pick(cam2.left, cam2.bottom, cam2.right, cam2.top)) renderer.render(indexScene, cam2);
+  else renderer.render(rect ? fineScene : scene, cam2);
+  renderer.setScissorTest(false);
+  renderer.setViewport(0, 0, w, h);
   const gl = renderer.getContext();
   gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, probe);
   const ms = performance.now() - t;
-  state.drawn = { ...renderer.info.render };
+  state.drawn = { ...renderer.info.render, picked: picked.triangles, pickedDots: picked.dots };
+  requestDraw();  // what the view shows again
   return ms;
 };
 state.layers = ({ dots: d = true, corners: c = true, triangles: t = true }) => {
@@ -1152,7 +1462,9 @@ state.drawnDepths = () => {
 state.undoLast = undo;
 state.setColour = (mode) => { uniforms.uColour.value = mode; $('colour').value = String(mode); showLegend(); requestDraw(); return nextFrame(); };
 // For tests: the next frame redraws everything (to compare with what the partial frames left).
-state.redrawAll = () => { requestDraw(); return nextFrame(); };
+// The reference draws every chunk in view, as a full frame did before the grid (pick()).
+state.redrawAll = () => { requestDraw(); reference = true; return nextFrame(); };
+state.redraw = () => { requestDraw(); return nextFrame(); };  // a full frame as the page draws one
 state.redoLast = redo;
 
 window.addEventListener('resize', resize);
