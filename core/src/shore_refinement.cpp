@@ -127,8 +127,10 @@ struct ShoreRefinement::Impl {
   BBox disk_box(const Node& n) const {
     const Edge& e = edges[n.edge];
     const Point2 p = at(e, n.t0), q = at(e, n.t1), m = at(e, 0.5 * (n.t0 + n.t1));
-    const double r = rule.gamma * 0.5 * std::hypot(q[0] - p[0], q[1] - p[1]) * (1 + 1e-9) +
-                     1e-300 + 1e-15 * (std::abs(m[0]) + std::abs(m[1]));
+    // The union of the test disk and the grading's disks (radius len/c about each end).
+    const double reach = std::max(0.5 * rule.gamma, rule.grading > 0 ? 0.5 + 1 / rule.grading : 0.0);
+    const double r = reach * std::hypot(q[0] - p[0], q[1] - p[1]) * (1 + 1e-9) + 1e-300 +
+                     1e-15 * (std::abs(m[0]) + std::abs(m[1]));
     return BBox(BPoint(m[0] - r, m[1] - r), BPoint(m[0] + r, m[1] + r));
   }
 
@@ -151,6 +153,11 @@ struct ShoreRefinement::Impl {
   bool may_encroach(const Edge& e, std::uint32_t edge_index, const Point2& q) const {
     if (q == e.a || q == e.b) return false;
     if (auto it = split_owner.find(q); it != split_owner.end() && it->second == edge_index) return false;
+    return !at_sharp_corner(e, q);
+  }
+
+  // Whether q lies on an edge that meets e at a corner sharper than 60 degrees.
+  bool at_sharp_corner(const Edge& e, const Point2& q) const {
     bool excluded = false;
     for_each_edge_of(q, [&](const Point2& u, const Point2& w) {
       for (const auto& [s, o1] : {std::pair{e.a, e.b}, std::pair{e.b, e.a}}) {
@@ -158,7 +165,18 @@ struct ShoreRefinement::Impl {
         if (o2 && sharper_than_60(counters, s, o1, *o2)) excluded = true;
       }
     });
-    return !excluded;
+    return excluded;
+  }
+
+  // Whether q may drive the grading of edge e's subsegments (q is not the end measured from): e's own
+  // points do (the grading along the edge), and any other point but one on an edge meeting e at a corner
+  // sharper than 60 degrees (halving would never end there) or one inside e (a loose point on the shore,
+  // towards which halving would not end either).
+  bool may_grade(const Edge& e, std::uint32_t edge_index, const Point2& q) const {
+    if (q == e.a || q == e.b) return true;
+    if (auto it = split_owner.find(q); it != split_owner.end() && it->second == edge_index) return true;
+    if (!off_line(e.a, e.b, q) && e.a < q && q < e.b) return false;
+    return !at_sharp_corner(e, q);
   }
 
   // Whether x lies off the line through p and q (a point on it, where rings touch, would halve a subsegment
@@ -177,11 +195,18 @@ struct ShoreRefinement::Impl {
     const Point2 p = at(e, n.t0), q = at(e, n.t1), m = at(e, 0.5 * (n.t0 + n.t1));
     if (m == p || m == q) return false;
     if (engine::compare_squared_distance_to<2>(counters, p, q, rule.min_length * rule.min_length) < 0) return false;
-    const double g2 = rule.gamma * rule.gamma;
+    const double g2 = rule.gamma * rule.gamma, c2 = rule.grading * rule.grading;
     bool hit = rule.max_length && std::hypot(q[0] - p[0], q[1] - p[1]) > rule.max_length(p, q), taken = false;
     for (auto it = points.qbegin(bgi::intersects(disk_box(n))); it != points.qend(); ++it) {
       const Point2 x = point_of(*it);
       if (x == m) taken = true;
+      if (hit) continue;
+      // Grading: |pq| > c |ex| for an end e of pq and another point x.
+      if (c2 > 0)
+        for (const Point2& end : {p, q})
+          if (!hit && x != end && engine::compare_squared_distance_scaled<2>(counters, p, q, c2, end, x) > 0 &&
+              may_grade(e, n.edge, x))
+            hit = true;
       if (hit || !may_encroach(e, n.edge, x)) continue;
       hit = engine::filtered_sign(counters, [&](auto zero) {
               using NT = decltype(zero);
@@ -344,8 +369,10 @@ struct ShoreRefinement::Impl {
 
 ShoreRefinement::ShoreRefinement(const Domain2& rings, std::span<const Point2> loose, RefinementRule rule)
     : impl_(std::make_unique<Impl>()) {
-  if (!(rule.gamma >= 1) || rule.max_depth < 1 || rule.max_depth > 50 || !(rule.min_length >= 0))
-    throw std::invalid_argument("ShoreRefinement: gamma must be at least 1, max_depth in 1..50, min_length >= 0");
+  if (!(rule.gamma >= 1) || rule.max_depth < 1 || rule.max_depth > 50 || !(rule.min_length >= 0) ||
+      !(rule.grading == 0 || rule.grading >= 2))
+    throw std::invalid_argument(
+        "ShoreRefinement: gamma must be at least 1, max_depth in 1..50, min_length >= 0, grading 0 or at least 2");
   impl_->rule = rule;
   impl_->rings = rings;
   impl_->build(loose);
@@ -533,8 +560,9 @@ SplitChange ShoreRefinement::update(std::span<const RingStretch> edits, std::spa
     m.add_ring_vertices(r, ring, prefix + n - 2, std::min(n, n - suffix - prefix + 4));
   }
 
-  // Edges whose subsegments (at any level) had a removed point in their test disk lose their splits too,
-  // and so on with those splits: what is left was justified without any removed point (docs/conforming.md).
+  // Edges whose subsegments (at any level) had a removed point in their test region (disk_box: the test
+  // disk and the grading's disks about the ends) lose their splits too, and so on with those splits: what
+  // is left was justified without any removed point (docs/conforming.md).
   std::vector<Point2> gone = removed_points;
   for (std::uint32_t i : dirty)
     for (double t : m.edges[i].ts) gone.push_back(m.at(m.edges[i], t));

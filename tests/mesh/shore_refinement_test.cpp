@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include "shoremesh/engine/predicates.hpp"
@@ -77,12 +78,91 @@ TEST(ShoreRefinement, SplitsDoNotDependOnRingOrderOrStart) {
   EXPECT_EQ(ra.split_points(), rb.split_points());
 }
 
+RefinementRule graded(double c) {
+  RefinementRule r;
+  r.grading = c;
+  return r;
+}
+
 TEST(ShoreRefinement, SharpCornersEndTheHalving) {
-  // A 5 degree wedge: the two sides meet at a corner sharper than 60 degrees and do not split each other.
+  // A 5 degree wedge: the two sides meet at a corner sharper than 60 degrees and neither split nor grade
+  // each other (a point on one side is within 0.1 of its length from the other near the corner).
   const double a = 5 * std::numbers::pi / 180;
   const Domain2 d{{Ring{{{0, 0}, {10, 0}, {10 * std::cos(a), 10 * std::sin(a)}}, RingRole::Shore}}};
-  const ShoreRefinement r(d);
-  EXPECT_LT(r.split_count(), 20u);
+  for (double c : {0.0, 2.0, 3.0}) {
+    const ShoreRefinement r(d, {}, graded(c));
+    EXPECT_LT(r.split_count(), 20u) << "grading " << c;
+  }
+}
+
+TEST(ShoreRefinement, GradingHalvesASubsegmentLongerThanCTimesItsEndsNearestPoint) {
+  // A square of side 10 with one corner cut by a short edge (0.1 sqrt 2 long, at 135 degrees): the long
+  // edge from (0.1, 0) is halved until its first piece is at most c times that, and along the edge each
+  // piece is at most c times its neighbour (the neighbour's far end is a point that near).
+  const Domain2 d{{Ring{{{0.1, 0}, {10, 0}, {10, 10}, {0, 10}, {0, 0.1}}, RingRole::Shore}}};
+  const double cut = 0.1 * std::sqrt(2.0);
+  auto bottom = [&](const ShoreRefinement& r) {  // the refined bottom edge's piece lengths, from x = 0.1
+    std::vector<double> xs;
+    const Domain2 refined = r.refined();
+    for (const Point2& p : refined.rings[0].points)
+      if (p[1] == 0) xs.push_back(p[0]);
+    std::sort(xs.begin(), xs.end());
+    std::vector<double> lengths;
+    for (std::size_t k = 1; k < xs.size(); ++k) lengths.push_back(xs[k] - xs[k - 1]);
+    return lengths;
+  };
+  // Without grading the diametral test alone leaves a first piece well over 3 times the cut.
+  EXPECT_GT(bottom(ShoreRefinement(d, {}, graded(0))).front(), 3 * cut);
+  for (double c : {2.0, 2.5, 3.0}) {
+    const std::vector<double> l = bottom(ShoreRefinement(d, {}, graded(c)));
+    ASSERT_GT(l.size(), 5u);
+    EXPECT_LE(l.front(), c * cut) << "grading " << c;
+    EXPECT_GT(l.front(), 0.5 * c * cut) << "grading " << c << ": halved once too often";
+    for (std::size_t k = 1; k < l.size(); ++k) {
+      EXPECT_LE(l[k], c * l[k - 1] * (1 + 1e-12)) << "grading " << c << " piece " << k;
+      EXPECT_LE(l[k - 1], c * l[k] * (1 + 1e-12)) << "grading " << c << " piece " << k;
+    }
+  }
+}
+
+TEST(ShoreRefinement, GradingDoesNotCascadeAlongAStraightShore) {
+  // A unit square whose bottom is 11 collinear vertices 0.1 apart with one piece of 0.001: the pieces
+  // near it grade up by halves (a few levels each way), not down to the floor along the whole shore.
+  Ring ring{{}, RingRole::Shore};
+  for (int k = 0; k <= 10; ++k) ring.points.push_back({0.1 * k, 0});
+  ring.points.insert(ring.points.begin() + 6, Point2{0.501, 0});
+  ring.points.push_back({1, 1});
+  ring.points.push_back({0, 1});
+  for (double c : {2.0, 3.0}) {
+    const ShoreRefinement r(Domain2{{ring}}, {}, graded(c));
+    EXPECT_GT(r.split_count(), 4u) << "grading " << c;
+    EXPECT_LT(r.split_count(), 40u) << "grading " << c;
+  }
+  EXPECT_THROW(ShoreRefinement(Domain2{{ring}}, {}, graded(1.5)), std::invalid_argument);
+}
+
+TEST(ShoreRefinement, MorePointsOnlyAddSplits) {
+  // The rule is monotone (a point only ever makes a split more due), so the least fixed point of a
+  // larger input holds the smaller one's.
+  std::mt19937 rng(5);
+  const StarRing outer = star(0, 0, 6, 10, 24, rng), island = star(0.5, 0.3, 3.5, 5.2, 9, rng);
+  const Domain2 d{{outer.ring(RingRole::Shore), island.ring(RingRole::Island)}};
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<Point2> loose;
+  for (double c : {0.0, 2.0, 2.5}) {
+    std::vector<Point2> previous = ShoreRefinement(d, loose, graded(c)).split_points();
+    for (int round = 0; round < 6; ++round) {
+      for (int k = 0; k < 4; ++k) {
+        const double a = 2 * std::numbers::pi * u(rng), r = 5.3 + 0.6 * u(rng);
+        loose.push_back({r * std::cos(a), r * std::sin(a)});
+      }
+      const std::vector<Point2> now = ShoreRefinement(d, loose, graded(c)).split_points();
+      EXPECT_TRUE(std::includes(now.begin(), now.end(), previous.begin(), previous.end()))
+          << "grading " << c << " round " << round;
+      previous = now;
+    }
+    loose.clear();
+  }
 }
 
 // The refined rings' segments, ends sorted, the list sorted.
@@ -97,13 +177,13 @@ std::vector<ShoreSegment> segments_of(const Domain2& refined) {
   return out;
 }
 
-TEST(ShoreRefinement, EveryEditEqualsAFreshRefinement) {
-  std::mt19937 rng(11);
+void every_edit_equals_a_fresh_refinement(const RefinementRule& rule, unsigned seed) {
+  std::mt19937 rng(seed);
   StarRing outer = star(0, 0, 6, 10, 30, rng), island = star(0.4, -0.2, 3.5, 5.2, 10, rng);
   std::vector<Point2> loose{{5.6, 0.5}, {-5.4, 1}, {0.5, 5.6}};
   std::size_t with_splits = 0;
   auto domain = [&] { return Domain2{{outer.ring(RingRole::Shore), island.ring(RingRole::Island)}}; };
-  ShoreRefinement r(domain(), loose);
+  ShoreRefinement r(domain(), loose, rule);
   std::uniform_real_distribution<double> u(0, 1);
   const int edits = 300;
   for (int step = 0; step < edits; ++step) {
@@ -130,7 +210,7 @@ TEST(ShoreRefinement, EveryEditEqualsAFreshRefinement) {
     const std::vector<Point2> before = r.split_points();
     const std::vector<ShoreSegment> segments_before = segments_of(r.refined());
     const SplitChange change = r.update(domain(), loose_removed, loose_added);
-    const ShoreRefinement fresh(domain(), loose);
+    const ShoreRefinement fresh(domain(), loose, rule);
     with_splits += fresh.split_count() > 0;
     ASSERT_EQ(r.split_points(), fresh.split_points()) << "after edit " << step;
     ASSERT_EQ(r.refined().rings.size(), 2u);
@@ -157,6 +237,15 @@ TEST(ShoreRefinement, EveryEditEqualsAFreshRefinement) {
     ASSERT_EQ(change.segments.added, came) << "after edit " << step;
   }
   EXPECT_GT(with_splits, std::size_t(edits) / 2);  // the edits do reach the splits
+}
+
+TEST(ShoreRefinement, EveryEditEqualsAFreshRefinement) { every_edit_equals_a_fresh_refinement(RefinementRule{}, 11); }
+
+// The grading's test region (a point within len/c of an end) is wider than the diametral test's: the
+// edits' reset must reach it, with the strongest grading and with none.
+TEST(ShoreRefinement, EveryEditEqualsAFreshRefinementWithAndWithoutGrading) {
+  every_edit_equals_a_fresh_refinement(graded(2), 12);
+  every_edit_equals_a_fresh_refinement(graded(0), 13);
 }
 
 }  // namespace

@@ -5,7 +5,10 @@
 // (a ring vertex, a loose point or another split point) lies closer to that midpoint than gamma times half
 // the subsegment's length. Points on the same edge never encroach it, nor do points on the edge that meets
 // it at a corner sharper than 60 degrees (halving there would never end: such corners are the documented
-// exception of every quality mesher), nor a point on its line (where rings touch). Splitting only ever adds points, so the result is the least fixed
+// exception of every quality mesher), nor a point on its line (where rings touch). A subsegment is also
+// halved while it is longer than `grading` times the distance from one of its ends to another point (the
+// edge's own points count; one on a sharp corner's other edge or inside the edge does not), so that the
+// shore is graded to its points. Splitting only ever adds points, so the result is the least fixed
 // point of the rule: one set, whatever the order the rule is applied in, and a function of the input
 // alone. The split points become input points of the engine, which therefore keeps Lemma 7.2 unchanged.
 //
@@ -28,6 +31,10 @@ namespace shoremesh {
 
 struct RefinementRule {
   double gamma = 1.25;  // 1 is Ruppert's diametral circle; larger grades the shore more
+  // Grading: a subsegment is also halved while it is longer than `grading` times the distance from one of
+  // its ends to another point (0: no grading). Below 2 the halving would cascade along a straight shore
+  // (a neighbour half as long would split it), so 0 or at least 2.
+  double grading = 2.5;
   int max_depth = 24;  // halvings of one ring edge at most
   // No subsegment shorter than this is split (0: none): the callers give a fixed fraction of the engine's
   // box, so that no split comes nearer to a point than the engine resolves.
