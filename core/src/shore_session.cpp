@@ -430,9 +430,14 @@ struct ShoreSession<D>::Impl {
       for (const Point2& p : seeds_removed) edits.push_back({Edit<D>::Kind::Remove, seed_id.at(p), {}});
       for (const Point2& p : splits.added) edits.push_back({Edit<D>::Kind::Add, 0, p});
       for (const Point2& p : seeds_added) edits.push_back({Edit<D>::Kind::Add, 0, p});
+      // The engine takes in the water's edges in the stretch alone (the refinement's rings have the edit),
+      // as apply_edits gives them without size control.
+      std::optional<WaterStretch> water;
+      if (stretch && undo) water = WaterStretch{stretch->ring, stretch->prefix, stretch->suffix, undo->middle, stretch->middle, stretch->whole};
       std::vector<std::size_t> ids;
       try {
-        ids = set->apply(edits, &report);
+        ids = refinement ? set->apply(edits, &report, water ? std::span<const WaterStretch>(&*water, 1) : std::span<const WaterStretch>())
+                         : set->apply(edits, &report);
       } catch (...) {
         take_back();
         throw;
