@@ -2,7 +2,7 @@
 """Per-edit times of an `edit` session under size control (issue 35, docs/sizing.md "Lemma 7.2 under size
 control"): N random shore moves on Lake Superior with --size-from-shore, as `edit --json` reports them.
 
-    bench/sizing_edits.py SHOREMESH [N] [H0 RATE] [--seed S] [--export MESH] [--size-edits] [-- MORE OPTIONS]
+    bench/sizing_edits.py SHOREMESH [N] [H0 RATE] [--seed S] [--spacing D] [--export MESH] [--size-edits] [-- MORE OPTIONS]
 
 Each move takes a random shoreline vertex 30 % of the way towards the next one, a little off the segment
 (as the random-edit tests do); moves the session refuses (a crossing) are skipped. Prints the medians
@@ -10,7 +10,8 @@ and 90th percentiles of the whole edit and of its parts as `edit` reports them (
 propagation). --export writes the mesh (or with .csv the point set) after the last move (to compare two
 builds' results). Options after `--` go to both runs (for example `-- --max-size 5000 --grade 0.15`).
 --size-edits: `size 0 S` edit lines instead (S random in 1500..4500 m) of one size polygon, a 0.2 x 0.15
-degree square in the open lake (87.1-86.9 W, 47.7-47.85 N), given with --size-polygons.
+degree square in the open lake (87.1-86.9 W, 47.7-47.85 N), given with --size-polygons. --spacing D: the
+shoreline's spacing in metres (4000 unless given; smaller gives more shore segments).
 """
 import json
 import os
@@ -54,13 +55,16 @@ def main():
     seed = int(sys.argv[sys.argv.index("--seed") + 1]) if "--seed" in sys.argv else 35
     if "--seed" in sys.argv:
         args.remove(str(seed))
+    spacing = sys.argv[sys.argv.index("--spacing") + 1] if "--spacing" in sys.argv else "4000"
+    if "--spacing" in sys.argv:
+        args.remove(spacing)
     export = sys.argv[sys.argv.index("--export") + 1] if "--export" in sys.argv else None
     if export:
         args.remove(export)
     binary = args[0]
     n = int(args[1]) if len(args) > 1 else 40
     h0, rate = (args[2], args[3]) if len(args) > 3 else ("1000", "0.05")
-    common = [MASK, "--largest-water", "--spacing", "4000", "--size-from-shore", h0, rate, "-q", *extra]
+    common = [MASK, "--largest-water", "--spacing", spacing, "--size-from-shore", h0, rate, "-q", *extra]
     with tempfile.TemporaryDirectory() as work:
         if size_edits:
             poly = os.path.join(work, "p.geojson")
@@ -98,7 +102,7 @@ def main():
         replies = [json.loads(l) for l in out.stdout.splitlines() if l.startswith("{")]
         edits = [r for r in replies if "engine_ms" in r]
         refused = sum(1 for r in replies if "error" in r)
-        print(f"binary {binary}: --size-from-shore {h0} {rate} {' '.join(extra)}, {len(edits)} {'size edits' if size_edits else 'moves'} timed, "
+        print(f"binary {binary}: --spacing {spacing} --size-from-shore {h0} {rate} {' '.join(extra)}, {len(edits)} {'size edits' if size_edits else 'moves'} timed, "
               f"{refused} refused")
         if replies and "engine_ms" not in replies[0]:
             print("start:", json.dumps(replies[0])[:300])

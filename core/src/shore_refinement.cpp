@@ -99,6 +99,16 @@ struct ShoreRefinement::Impl {
   std::vector<std::uint32_t> touched;
   // Set by the rule-change update for the update it calls: which edges the new rule may treat otherwise.
   const std::function<bool(const Point2&, const Point2&)>* rule_changed = nullptr;
+  // With it: rule_changed holds only for edges whose reach_box meets this box (lo, hi).
+  const std::pair<Point2, Point2>* rule_near = nullptr;
+  // The live edges by reach_box, made at the first update that gives rule_near (a fresh run has none).
+  std::optional<bgi::rtree<std::pair<BBox, std::uint32_t>, bgi::quadratic<16>>> reach;
+  // An edge's box grown by half its longer side (update's contract for rule_near).
+  static BBox reach_box(const Edge& e) {
+    const double g = 0.5 * std::max(std::abs(e.b[0] - e.a[0]), std::abs(e.b[1] - e.a[1]));
+    return BBox(BPoint(std::min(e.a[0], e.b[0]) - g, std::min(e.a[1], e.b[1]) - g),
+                BPoint(std::max(e.a[0], e.b[0]) + g, std::max(e.a[1], e.b[1]) + g));
+  }
 
   void segments_of(std::uint32_t i, std::vector<ShoreSegment>& out) const {
     const Edge& e = edges[i];
@@ -284,6 +294,7 @@ struct ShoreRefinement::Impl {
       edges.emplace_back();
     }
     edges[i] = Edge{k.a, k.b, {}, true, water};
+    if (reach) reach->insert({reach_box(edges[i]), i});
     if (recording) {  // it had no segments: only its new ones count
       snapped.insert(i);
       touched.push_back(i);
@@ -322,6 +333,7 @@ struct ShoreRefinement::Impl {
       add_node({i, 0, 1});
     } else {
       edge_of.erase(edge_key(e.a, e.b));
+      if (reach) reach->remove({reach_box(e), i});
       e.alive = false;
       free_edges.push_back(i);
     }
@@ -469,13 +481,15 @@ SplitChange ShoreRefinement::update(const Domain2& rings, std::span<const Point2
 
 SplitChange ShoreRefinement::update(std::span<const RingStretch> edits, std::span<const Point2> loose_removed,
                                     std::span<const Point2> loose_added, RefinementRule rule,
-                                    const std::function<bool(const Point2&, const Point2&)>& rule_changed) {
+                                    const std::function<bool(const Point2&, const Point2&)>& rule_changed,
+                                    std::optional<std::pair<Point2, Point2>> near) {
   Impl& m = *impl_;
   m.rule = std::move(rule);
   m.rule_changed = &rule_changed;
+  m.rule_near = near ? &*near : nullptr;
   struct Clear {
     Impl& m;
-    ~Clear() { m.rule_changed = nullptr; }
+    ~Clear() { m.rule_changed = nullptr, m.rule_near = nullptr; }
   } clear{m};
   return update(edits, loose_removed, loose_added);
 }
@@ -499,9 +513,26 @@ SplitChange ShoreRefinement::update(std::span<const RingStretch> edits, std::spa
   std::vector<Point2> added_points(loose_added.begin(), loose_added.end());
   // Under a new rule: the edges it may treat otherwise lose their splits (the cascade below takes what
   // those justified); every other subsegment meets the same test as before.
-  if (m.rule_changed)
-    for (std::uint32_t i = 0; i < m.edges.size(); ++i)
+  if (m.rule_changed) {
+    auto test = [&](std::uint32_t i) {
       if (m.edges[i].alive && (*m.rule_changed)(m.edges[i].a, m.edges[i].b) && is_dirty.insert(i).second) dirty.push_back(i);
+    };
+    if (m.rule_near) {  // the edges whose reach meets the box, in the scan's order
+      if (!m.reach) {
+        std::vector<std::pair<BBox, std::uint32_t>> entries;
+        for (std::uint32_t i = 0; i < m.edges.size(); ++i)
+          if (m.edges[i].alive) entries.push_back({Impl::reach_box(m.edges[i]), i});
+        m.reach.emplace(entries.begin(), entries.end());
+      }
+      std::vector<std::uint32_t> near;
+      const BBox q(bpoint(m.rule_near->first), bpoint(m.rule_near->second));
+      for (auto it = m.reach->qbegin(bgi::intersects(q)); it != m.reach->qend(); ++it) near.push_back(it->second);
+      std::sort(near.begin(), near.end());
+      for (std::uint32_t i : near) test(i);
+    } else {
+      for (std::uint32_t i = 0; i < m.edges.size(); ++i) test(i);
+    }
+  }
   for (const RingStretch& edit : edits) {
     const std::size_t r = edit.ring;
     if (r >= m.rings.rings.size()) m.rings.rings.resize(r + 1);

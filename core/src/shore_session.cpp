@@ -116,6 +116,9 @@ struct ShoreSession<D>::Impl {
   std::unordered_map<Point2, std::size_t, ExactHash> split_id;  // a split point's engine id
   std::shared_ptr<const SizeField> size;  // 2D with size control: h (the refinement's rule shares it)
   std::vector<Point2> seeds;              // the size seeds, sorted
+  // The refined rings as the seeds' update reads them, given each edit's refined segments (made at the
+  // first edit under size control, from the refined rings as they were).
+  std::optional<SeedShoreIndex> seed_shore;
   std::unordered_map<Point2, std::size_t, ExactHash> seed_id;  // a seed's engine id
   std::vector<std::size_t> engine_of_user;  // by user id: the engine's input id (kRemoved once removed)
   std::optional<RingEdgeIndex> ring_index;  // the edges of the user's rings
@@ -376,40 +379,46 @@ struct ShoreSession<D>::Impl {
           std::count_if(edits.begin(), edits.end(), [](const Edit<D>& e) { return e.kind == Edit<D>::Kind::Add; }));
       SizeUndo ring_undo;
       if (!size_undo) size_undo = &ring_undo;
-      // The field holds the new rings even where h did not change: a later size edit reads them.
-      if (stretch && size->depends_on_rings()) size_change = size_field().set_rings(rings_now, size_undo);
-      const bool h_changed = size_change.changed;
       const auto one = [](const RingStretch* s) { return s ? std::span<const RingStretch>(s, 1) : std::span<const RingStretch>(); };
+      // The field holds the new rings even where h did not change: a later size edit reads them. It takes
+      // the stretch (rings_now has it already): no pass over the rings.
+      if (stretch && size->depends_on_rings()) size_change = size_field().set_rings(one(stretch), size_undo);
+      const bool h_changed = size_change.changed;
       // The rule reads h over a subsegment's box: it may differ only where that reads a changed node.
       const std::function<bool(const Point2&, const Point2&)> rule_changed = [&](const Point2& a, const Point2& b) {
         return size->reads(a, b, size_change);
       };
+      // The edges it may hold for, found by their reach (ShoreRefinement::update).
+      const std::optional<std::pair<Point2, Point2>> near =
+          h_changed ? std::optional(size->reach_of(size_change)) : std::nullopt;
       auto rule_of = [&](const std::shared_ptr<const SizeField>& field) {
         RefinementRule rule = RefinementRule::for_box(set->box().side);
         rule.max_length = shore_max_length(field);
         return rule;
       };
+      if (!seed_shore) seed_shore.emplace(refinement ? refinement->refined() : Domain2{});
       SplitChange splits;
       try {
         if (refinement)
-          splits = h_changed ? refinement->update(one(stretch), loose_removed, loose_added, rule_of(size), rule_changed)
+          splits = h_changed ? refinement->update(one(stretch), loose_removed, loose_added, rule_of(size), rule_changed, near)
                              : refinement->update(one(stretch), loose_removed, loose_added);
       } catch (...) {
         size_field().take_back(std::move(*size_undo));
         throw;
       }
+      seed_shore->apply(splits.segments);
       auto take_back = [&] {
+        seed_shore->take_back(splits.segments);
         size_field().take_back(std::move(*size_undo));
         if (refinement) {
-          if (h_changed) refinement->update(one(undo), loose_added, loose_removed, rule_of(size), rule_changed);
+          if (h_changed) refinement->update(one(undo), loose_added, loose_removed, rule_of(size), rule_changed, near);
           else refinement->update(one(undo), loose_added, loose_removed);
         }
       };
       std::vector<Point2> new_seeds;
       try {
         // Only the quadtree's nodes that the change of h or of the refined rings reaches (update_size_seeds).
-        new_seeds = update_size_seeds(*size, *size_undo, seeds, size_change, splits.segments,
-                                      refinement ? refinement->refined() : Domain2{});
+        new_seeds = update_size_seeds(*size, *size_undo, seeds, size_change, splits.segments, *seed_shore);
       } catch (...) {
         take_back();
         throw;
@@ -421,9 +430,14 @@ struct ShoreSession<D>::Impl {
       for (const Point2& p : seeds_removed) edits.push_back({Edit<D>::Kind::Remove, seed_id.at(p), {}});
       for (const Point2& p : splits.added) edits.push_back({Edit<D>::Kind::Add, 0, p});
       for (const Point2& p : seeds_added) edits.push_back({Edit<D>::Kind::Add, 0, p});
+      // The engine takes in the water's edges in the stretch alone (the refinement's rings have the edit),
+      // as apply_edits gives them without size control.
+      std::optional<WaterStretch> water;
+      if (stretch && undo) water = WaterStretch{stretch->ring, stretch->prefix, stretch->suffix, undo->middle, stretch->middle, stretch->whole};
       std::vector<std::size_t> ids;
       try {
-        ids = set->apply(edits, &report);
+        ids = refinement ? set->apply(edits, &report, water ? std::span<const WaterStretch>(&*water, 1) : std::span<const WaterStretch>())
+                         : set->apply(edits, &report);
       } catch (...) {
         take_back();
         throw;

@@ -24,6 +24,12 @@ namespace shoremesh {
 
 namespace {
 
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
+using BBox = bg::model::box<BPoint>;
+using SegmentEntry = std::pair<BBox, std::uint32_t>;
+
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 std::string number(double x) { return readable(x); }
@@ -219,6 +225,50 @@ std::array<double, 2> jitter(int level, std::uint64_t ix, std::uint64_t iy) {
 
 }  // namespace
 
+// The rings' edges by their boxes, each in its ring's order (a, b as the ring has them: the shore term's
+// distance is computed from them as a fresh field computes it, bit for bit) with whether a closed ring
+// holds it. A multiset: rings may share an edge.
+struct SizeField::EdgeTree {
+  using Entry = std::pair<BBox, ShoreSegment>;
+  static Entry entry(const ShoreSegment& e) {
+    return {BBox(BPoint(std::min(e.a[0], e.b[0]), std::min(e.a[1], e.b[1])), BPoint(std::max(e.a[0], e.b[0]), std::max(e.a[1], e.b[1]))), e};
+  }
+  bgi::rtree<Entry, bgi::quadratic<16>> tree;
+};
+
+namespace {
+
+// The edges of `ring` that touch its vertices lo .. hi - 1 (lo == hi: the edge across that gap), or all of
+// them (`whole`), in ring order: what a stretch between a prefix and a suffix takes away or brings.
+void stretch_edges(const Ring& ring, bool whole, std::size_t lo, std::size_t hi, std::vector<ShoreSegment>& out) {
+  const std::size_t n = ring.points.size(), m = ring.segment_count();
+  if (m == 0) return;
+  auto edge = [&](std::size_t k) { out.push_back({ring.points[k], ring.points[(k + 1) % n], ring.closed()}); };
+  if (whole) {
+    for (std::size_t k = 0; k < m; ++k) edge(k);
+  } else if (ring.closed()) {
+    const std::size_t count = std::min(hi - lo + 1, n);  // edges lo - 1 .. hi - 1, cyclically
+    for (std::size_t t = 0; t < count; ++t) edge((lo + n - 1 + t) % n);
+  } else {
+    for (std::size_t k = lo == 0 ? 0 : lo - 1; k < std::min(hi, m); ++k) edge(k);
+  }
+}
+
+}  // namespace
+
+template <class F>
+void SizeField::edges_meeting(const Point2& lo, const Point2& hi, bool indexed, F&& f) const {
+  if (indexed) {
+    const BBox q(BPoint(lo[0], lo[1]), BPoint(hi[0], hi[1]));
+    for (auto it = edge_tree_->tree.qbegin(bgi::intersects(q)); it != edge_tree_->tree.qend(); ++it)
+      f(it->second.a, it->second.b, it->second.water);
+    return;
+  }
+  for (const Ring& ring : rings_.rings)
+    for (std::size_t k = 0; k < ring.segment_count(); ++k)
+      f(ring.points[k], ring.points[(k + 1) % ring.points.size()], ring.closed());
+}
+
 SizeField::SizeField(SizeTerms terms, const BoxTransform<2>& box, const Domain2& rings)
     : terms_(std::move(terms)), box_(box), rings_(rings) {
   check_size(terms_.max_size, "--max-size");
@@ -397,7 +447,7 @@ void SizeField::compute() {
 // tests, but along each row of nodes at once: an edge crossing the row has its crossing strictly right of
 // the nodes 0 .. f - 1, f found from a double estimate and settled by orient2d (the test is monotone along
 // the row).
-void SizeField::water_mask(std::size_t c0, std::size_t r0, std::size_t c1, std::size_t r1) {
+void SizeField::water_mask(std::size_t c0, std::size_t r0, std::size_t c1, std::size_t r1, bool indexed) {
   const std::size_t w = n_ + 1;
   const bool any = std::any_of(rings_.rings.begin(), rings_.rings.end(),
                                [](const Ring& r) { return r.closed() && !r.points.empty(); });
@@ -422,11 +472,13 @@ void SizeField::water_mask(std::size_t c0, std::size_t r0, std::size_t c1, std::
     return std::pair{std::max(r0, static_cast<std::size_t>(std::clamp(lo, 0.0, double(n_)))),
                      std::min(r1, static_cast<std::size_t>(std::clamp(hi, 0.0, double(n_))))};
   };
-  for (const Ring& ring : rings_.rings) {
-    if (!ring.closed()) continue;
-    for (std::size_t k = 0; k < ring.points.size(); ++k) {
-      const Point2& a = ring.points[k];
-      const Point2& b = ring.points[(k + 1) % ring.points.size()];
+  // An edge acts on the window only where it meets its rows (row_range's margin is a cell) right of its
+  // first column (an edge left of it is left of every node): the tree gives those of the strip.
+  const double margin = 3 * cell_;
+  edges_meeting({x_of(c0) - margin, y_of(r0) - margin}, {std::numeric_limits<double>::max(), y_of(r1) + margin}, indexed,
+                [&](const Point2& a, const Point2& b, bool closed) {
+    if (!closed) return;
+    {
       const auto [j0, j1] = row_range(std::min(a[1], b[1]), std::max(a[1], b[1]));
       for (std::size_t j = j0; j <= j1 && j0 <= j1; ++j) {
         const std::size_t row = j - r0;
@@ -454,7 +506,7 @@ void SizeField::water_mask(std::size_t c0, std::size_t r0, std::size_t c1, std::
         else if (f > c0) toggle[row * cols + (f - c0)] ^= 1;
       }
     }
-  }
+  });
   for (std::size_t row = 0; row < rows; ++row) {
     std::uint8_t parity = base[row];
     for (std::size_t i = c1 + 1; i-- > c0;) {
@@ -546,7 +598,13 @@ void SizeField::take_back(SizeUndo&& u) {
     for (std::size_t i = u.water_box[0]; i <= u.water_box[2]; ++i) water_[node(i, j)] = u.water[k++];
   for (const auto& [key, x] : u.pyramid) pyramid_[key >> 56][key & ((std::uint64_t{1} << 56) - 1)] = x;
   if (u.polygon) terms_.polygons[u.polygon->first].size = u.polygon->second;
-  if (u.rings) rings_ = std::move(*u.rings);
+  if (u.rings) rings_ = std::move(*u.rings), edge_tree_.reset();
+  for (auto it = u.stretches.rbegin(); it != u.stretches.rend(); ++it) apply_stretch(rings_, *it);
+  if (edge_tree_ && (!u.edges_gone.empty() || !u.edges_came.empty())) {
+    if (edge_tree_.use_count() > 1) edge_tree_ = std::make_shared<EdgeTree>(*edge_tree_);
+    for (const ShoreSegment& e : u.edges_came) edge_tree_->tree.remove(EdgeTree::entry(e));
+    for (const ShoreSegment& e : u.edges_gone) edge_tree_->tree.insert(EdgeTree::entry(e));
+  }
 }
 
 void SizeField::update_pyramid(std::size_t i0, std::size_t j0, std::size_t i1, std::size_t j1) {
@@ -661,6 +719,48 @@ SizeChange SizeField::set_rings(const Domain2& rings, SizeUndo* undo) {
   const bool emptiness = rings_.empty() != rings.empty();
   if (undo) undo->rings = std::move(rings_);
   rings_ = rings;
+  edge_tree_.reset();  // built again from the rings by the next update of stretches
+  return rings_changed(segs, emptiness, false);
+}
+
+SizeChange SizeField::set_rings(std::span<const RingStretch> edits, SizeUndo* undo) {
+  undo_ = undo;
+  struct Done {
+    SizeUndo*& u;
+    ~Done() { u = nullptr; }
+  } done{undo_};
+  if (!edge_tree_) {
+    std::vector<EdgeTree::Entry> entries;
+    edges_meeting({}, {}, false, [&](const Point2& a, const Point2& b, bool closed) { entries.push_back(EdgeTree::entry({a, b, closed})); });
+    edge_tree_ = std::make_shared<EdgeTree>();
+    edge_tree_->tree = decltype(edge_tree_->tree)(entries.begin(), entries.end());
+  } else if (edge_tree_.use_count() > 1) {
+    edge_tree_ = std::make_shared<EdgeTree>(*edge_tree_);
+  }
+  const bool was_empty = rings_.empty();
+  std::vector<ShoreSegment> gone, came;
+  for (const RingStretch& s : edits) {
+    const auto size_of = [&] { return s.ring < rings_.rings.size() ? rings_.rings[s.ring].points.size() : 0; };
+    if (s.ring < rings_.rings.size()) stretch_edges(rings_.rings[s.ring], s.whole, s.prefix, size_of() - s.suffix, gone);
+    RingStretch inverse = apply_stretch(rings_, s);
+    stretch_edges(rings_.rings[s.ring], s.whole, s.prefix, size_of() - s.suffix, came);
+    if (undo) undo->stretches.push_back(std::move(inverse));
+  }
+  // The edges in one side only, counted (an edge taken and given back in the same orientation stays).
+  std::sort(gone.begin(), gone.end());
+  std::sort(came.begin(), came.end());
+  std::vector<ShoreSegment> went, come;
+  std::set_difference(gone.begin(), gone.end(), came.begin(), came.end(), std::back_inserter(went));
+  std::set_difference(came.begin(), came.end(), gone.begin(), gone.end(), std::back_inserter(come));
+  std::vector<std::pair<Point2, Point2>> segs;
+  for (const ShoreSegment& e : went) edge_tree_->tree.remove(EdgeTree::entry(e)), segs.push_back({e.a, e.b});
+  for (const ShoreSegment& e : come) edge_tree_->tree.insert(EdgeTree::entry(e)), segs.push_back({e.a, e.b});
+  if (undo) undo->edges_gone = std::move(went), undo->edges_came = std::move(come);
+  return rings_changed(segs, was_empty != rings_.empty(), true);
+}
+
+SizeChange SizeField::rings_changed(const std::vector<std::pair<Point2, Point2>>& segs, bool emptiness, bool indexed) {
+  SizeUndo* const undo = undo_;
   if (segs.empty()) return {};
   const std::size_t w = n_ + 1;
   auto index = [&](double x, int axis, double grow) {
@@ -669,13 +769,14 @@ SizeChange SizeField::set_rings(const Domain2& rings, SizeUndo* undo) {
   double lo[2] = {kInf, kInf}, hi[2] = {-kInf, -kInf};
   for (const auto& [a, b] : segs)
     for (int x = 0; x < 2; ++x) lo[x] = std::min({lo[x], a[x], b[x]}), hi[x] = std::max({hi[x], a[x], b[x]});
-  water_mask(index(lo[0], 0, 0), index(lo[1], 1, 0), std::min(n_, index(hi[0], 0, 0) + 1), std::min(n_, index(hi[1], 1, 0) + 1));
+  water_mask(index(lo[0], 0, 0), index(lo[1], 1, 0), std::min(n_, index(hi[0], 0, 0) + 1), std::min(n_, index(hi[1], 1, 0) + 1),
+             indexed);
   if (!terms_.shore_size) return {};
   const double h0 = *terms_.shore_size, rate = *terms_.shore_rate;
   if (emptiness) return recompute_whole();
   if (rate == 0) return {};  // H0 wherever there are rings
   if (!strict(shore_bound(), rate * cell_)) return recompute_whole();
-  // The sources beside the changed segments, from every segment (compute()'s ranges).
+  // The sources beside the changed segments, from the segments whose range (compute()'s) meets theirs.
   auto range = [&](const Point2& a, const Point2& b, int axis) {
     const double l = (std::min(a[axis], b[axis]) - box_.origin[axis]) / cell_ - 1;
     const double h = (std::max(a[axis], b[axis]) - box_.origin[axis]) / cell_ + 1;
@@ -690,10 +791,11 @@ SizeChange SizeField::set_rings(const Domain2& rings, SizeUndo* undo) {
   }
   const std::size_t rw = R[2] - R[0] + 1;
   std::vector<double> src((R[3] - R[1] + 1) * rw, kInf);
-  for (const Ring& ring : rings_.rings)
-    for (std::size_t k = 0; k < ring.segment_count(); ++k) {
-      const Point2& a = ring.points[k];
-      const Point2& b = ring.points[(k + 1) % ring.points.size()];
+  const double margin = 3 * cell_;
+  const Point2 r_lo{box_.origin[0] + static_cast<double>(R[0]) * cell_ - margin, box_.origin[1] + static_cast<double>(R[1]) * cell_ - margin};
+  const Point2 r_hi{box_.origin[0] + static_cast<double>(R[2]) * cell_ + margin, box_.origin[1] + static_cast<double>(R[3]) * cell_ + margin};
+  edges_meeting(r_lo, r_hi, indexed, [&](const Point2& a, const Point2& b, bool) {
+    {
       auto [i0, i1] = range(a, b, 0);
       auto [j0, j1] = range(a, b, 1);
       i0 = std::max(i0, R[0]), j0 = std::max(j0, R[1]), i1 = std::min(i1, R[2]), j1 = std::min(j1, R[3]);
@@ -704,6 +806,7 @@ SizeChange SizeField::set_rings(const Domain2& rings, SizeUndo* undo) {
           x = std::min(x, h0 + rate * dist_to_segment(p, a, b));
         }
     }
+  });
   const double cap = terms_.max_size.value_or(kInf);
   std::vector<std::size_t> nodes;
   std::vector<double> before;
@@ -777,6 +880,12 @@ bool SizeField::reads(const Point2& a, const Point2& b, const SizeChange& change
   return c[0] <= change.i1 && change.i0 <= c[1] + 1 && c[2] <= change.j1 && change.j0 <= c[3] + 1;
 }
 
+std::pair<Point2, Point2> SizeField::reach_of(const SizeChange& change) const {
+  const double by = 5 * cell_;
+  return {{box_.origin[0] + static_cast<double>(change.i0) * cell_ - by, box_.origin[1] + static_cast<double>(change.j0) * cell_ - by},
+          {box_.origin[0] + static_cast<double>(change.i1) * cell_ + by, box_.origin[1] + static_cast<double>(change.j1) * cell_ + by}};
+}
+
 SizeSummary SizeField::summary() const {
   SizeSummary s;
   s.min = kInf;
@@ -802,15 +911,6 @@ SizeSummary SizeField::summary() const {
   return s;
 }
 
-namespace {
-
-namespace bg = boost::geometry;
-namespace bgi = boost::geometry::index;
-using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
-using BBox = bg::model::box<BPoint>;
-using SegmentEntry = std::pair<BBox, std::uint32_t>;
-
-}  // namespace
 
 bool seed_clear_of_segment(const Point2& p, const Point2& a, const Point2& b, double near, double gamma) {
   thread_local engine::PredicateCounters counters;
@@ -922,6 +1022,66 @@ class SeedShore {
   bgi::rtree<SegmentEntry, bgi::quadratic<16>> index_;
 };
 
+}  // namespace
+
+struct SeedShoreIndex::Impl {
+  using Entry = std::pair<BBox, ShoreSegment>;
+  double gamma;
+  WaterTest water;
+  std::size_t water_edges = 0;  // none: everything is water, as WaterTest decides for rings without one
+  bgi::rtree<Entry, bgi::quadratic<16>> index;
+
+  Impl(const Domain2& refined, double g) : gamma(g), water(refined) {
+    std::vector<Entry> entries;
+    for (const Ring& ring : refined.rings)
+      for (std::size_t k = 0; k < ring.segment_count(); ++k) {
+        const Point2& a = ring.points[k];
+        const Point2& b = ring.points[(k + 1) % ring.points.size()];
+        entries.push_back(entry({std::min(a, b), std::max(a, b), ring.closed()}));
+        water_edges += ring.closed();
+      }
+    index = decltype(index)(entries.begin(), entries.end());
+  }
+  // The reach is symmetric in the ends (so is the exact test): the segment's order does not matter.
+  Entry entry(const ShoreSegment& s) const { return {bbox(segment_reach(s.a, s.b, gamma)), s}; }
+  void remove(const ShoreSegment& s) {
+    index.remove(entry(s));
+    if (s.water) water.remove_edge(s.a, s.b), --water_edges;
+  }
+  void add(const ShoreSegment& s) {
+    index.insert(entry(s));
+    if (s.water) water.add_edge(s.a, s.b), ++water_edges;
+  }
+  bool in_water(const Point2& p) const { return water_edges == 0 || water.in_water(p); }
+  bool clear(const Point2& p, double side) const {
+    const double near = 0.25 * side;
+    for (auto it = index.qbegin(bgi::intersects(BBox(BPoint(p[0] - near, p[1] - near), BPoint(p[0] + near, p[1] + near))));
+         it != index.qend(); ++it)
+      if (!seed_clear_of_segment(p, it->second.a, it->second.b, near, gamma)) return false;
+    return true;
+  }
+};
+
+SeedShoreIndex::SeedShoreIndex(const Domain2& refined, double gamma) : impl_(std::make_unique<Impl>(refined, gamma)) {}
+SeedShoreIndex::~SeedShoreIndex() = default;
+SeedShoreIndex::SeedShoreIndex(SeedShoreIndex&&) noexcept = default;
+SeedShoreIndex& SeedShoreIndex::operator=(SeedShoreIndex&&) noexcept = default;
+void SeedShoreIndex::apply(const ShoreChange& change) {
+  for (const ShoreSegment& s : change.removed) impl_->remove(s);
+  for (const ShoreSegment& s : change.added) impl_->add(s);
+}
+void SeedShoreIndex::take_back(const ShoreChange& change) {
+  for (const ShoreSegment& s : change.added) impl_->remove(s);
+  for (const ShoreSegment& s : change.removed) impl_->add(s);
+}
+double SeedShoreIndex::gamma() const { return impl_->gamma; }
+
+struct SeedShoreAccess {
+  static const SeedShoreIndex::Impl& of(const SeedShoreIndex& s) { return *s.impl_; }
+};
+
+namespace {
+
 // The split rule of a node (retries aside): -1 no term sets a size there (no seed), 1 split, 0 a leaf.
 // With `before`: as the field was before the update that filled it.
 int seed_split(const SizeField& field, double root, const SeedNode& n, const SizeUndo* before = nullptr) {
@@ -946,7 +1106,8 @@ void push_children(std::vector<SeedNode>& work, const SeedNode& n, int extra) {
 }
 
 // The seeds of the subtrees at `work` (unsorted), appended to `seeds`.
-void walk_seeds(const SizeField& field, double root, const SeedShore& shore, std::vector<SeedNode> work,
+template <class Shore>
+void walk_seeds(const SizeField& field, double root, const Shore& shore, std::vector<SeedNode> work,
                 std::vector<Point2>& seeds) {
   const BoxTransform<2>& box = field.box();
   const std::size_t hard_cap = 4 * field.terms().point_cap;
@@ -1009,7 +1170,8 @@ namespace {
 // that went or came.
 std::vector<Point2> update_seeds(const std::function<int(const SeedNode&)>& old_split, const std::vector<Point2>& old_seeds,
                                  const SizeChange& h_change, const std::vector<std::pair<Point2, Point2>>& changed,
-                                 const SizeField& field, const Domain2& refined, double gamma, SeedUpdate* stats) {
+                                 const SizeField& field, const Domain2* refined, const SeedShoreIndex::Impl* shore_kept,
+                                 double gamma, SeedUpdate* stats) {
   const double root = seed_root(field);
   const double cell = field.box().side / static_cast<double>(field.cells());
   std::optional<Rect> h_changed;
@@ -1073,8 +1235,11 @@ std::vector<Point2> update_seeds(const std::function<int(const SeedNode&)>& old_
     const double margin = 0.5 * std::ldexp(root, -std::min_element(redo.begin(), redo.end(), [](auto& a, auto& b) {
                                                   return a.level < b.level;
                                                 })->level);
-    walk_seeds(field, root, SeedShore(refined, gamma, Rect{all.x0 - margin, all.y0 - margin, all.x1 + margin, all.y1 + margin}),
-               redo, fresh);
+    if (shore_kept)
+      walk_seeds(field, root, *shore_kept, redo, fresh);
+    else
+      walk_seeds(field, root, SeedShore(*refined, gamma, Rect{all.x0 - margin, all.y0 - margin, all.x1 + margin, all.y1 + margin}),
+                 redo, fresh);
   }
   // The old seeds outside the recomputed squares (a seed lies inside its leaf, strictly: the jitter keeps it
   // off the leaf's sides), then the fresh ones.
@@ -1130,7 +1295,7 @@ std::vector<Point2> update_size_seeds(const SizeField& old_field, const std::vec
   segments_not_in(refined, old_refined, changed);
   const double root = seed_root(field);
   return update_seeds([&](const SeedNode& n) { return seed_split(old_field, root, n); }, old_seeds, h_change, changed,
-                      field, refined, gamma, stats);
+                      field, &refined, nullptr, gamma, stats);
 }
 
 std::vector<Point2> update_size_seeds(const SizeField& old_field, const std::vector<Point2>& old_seeds,
@@ -1145,7 +1310,7 @@ std::vector<Point2> update_size_seeds(const SizeField& old_field, const std::vec
     for (const ShoreSegment& s : *list) changed.push_back({s.a, s.b});
   const double root = seed_root(field);
   return update_seeds([&](const SeedNode& n) { return seed_split(old_field, root, n); }, old_seeds, h_change, changed,
-                      field, refined, gamma, stats);
+                      field, &refined, nullptr, gamma, stats);
 }
 
 std::vector<Point2> update_size_seeds(const SizeField& field, const SizeUndo& before, const std::vector<Point2>& old_seeds,
@@ -1156,7 +1321,18 @@ std::vector<Point2> update_size_seeds(const SizeField& field, const SizeUndo& be
     for (const ShoreSegment& s : *list) changed.push_back({s.a, s.b});
   const double root = seed_root(field);
   return update_seeds([&](const SeedNode& n) { return seed_split(field, root, n, &before); }, old_seeds, h_change,
-                      changed, field, refined, gamma, stats);
+                      changed, field, &refined, nullptr, gamma, stats);
+}
+
+std::vector<Point2> update_size_seeds(const SizeField& field, const SizeUndo& before, const std::vector<Point2>& old_seeds,
+                                      const SizeChange& h_change, const ShoreChange& refined_change,
+                                      const SeedShoreIndex& shore, SeedUpdate* stats) {
+  std::vector<std::pair<Point2, Point2>> changed;
+  for (const auto* list : {&refined_change.removed, &refined_change.added})
+    for (const ShoreSegment& s : *list) changed.push_back({s.a, s.b});
+  const double root = seed_root(field);
+  return update_seeds([&](const SeedNode& n) { return seed_split(field, root, n, &before); }, old_seeds, h_change,
+                      changed, field, nullptr, &SeedShoreAccess::of(shore), shore.gamma(), stats);
 }
 
 std::function<double(const Point2&, const Point2&)> shore_max_length(std::shared_ptr<const SizeField> field) {

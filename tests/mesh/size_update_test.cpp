@@ -3,13 +3,17 @@
 // update under a changed rule equals a fresh refinement.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <random>
+#include <span>
 #include <string>
+#include <utility>
 
 #include "mesh_test_util.hpp"
 #include "shoremesh/shore_refinement.hpp"
@@ -65,17 +69,29 @@ void expect_updates_equal_fresh(SizeTerms t, int edits, unsigned seed) {
       const std::size_t k = rng() % ring.size();
       const Point2 a = ring[k], b = ring[(k + 1) % ring.size()];
       const Point2 mid{a[0] + 0.3 * (b[0] - a[0]) + 0.05 * (b[1] - a[1]), a[1] + 0.3 * (b[1] - a[1]) - 0.05 * (b[0] - a[0])};
+      const std::size_t n = ring.size();
+      RingStretch stretch;  // the same edit as a stretch (the session's way), k's wrap-around included
       if (what < 0.6) {
         kind = "move", ring[k] = mid;
+        stretch = {0, k, n - k - 1, {mid}};
       } else if (what < 0.8) {
         kind = "insert", ring.insert(ring.begin() + static_cast<std::ptrdiff_t>(k) + 1, mid);
+        stretch = {0, k + 1, n - k - 1, {mid}};
       } else if (what < 0.95 && ring.size() > 60) {
         kind = "remove", ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
+        stretch = {0, k, n - k - 1, {}};
       } else {
         kind = "island";
         rings.rings[1].points = rings.rings[1].points.empty() ? island.rings[0].points : std::vector<Point2>{};
+        stretch = {1, 0, 0, rings.rings[1].points, true};
       }
-      redo = [&field, &rings](SizeUndo* un) { return field.set_rings(rings, un); };
+      // Two in three by stretches (the edge tree), the rest by the rings whole (which drops the tree).
+      if (u(rng) < 0.67) {
+        kind += " by stretch";
+        redo = [&field, stretch](SizeUndo* un) { return field.set_rings(std::span<const RingStretch>(&stretch, 1), un); };
+      } else {
+        redo = [&field, &rings](SizeUndo* un) { return field.set_rings(rings, un); };
+      }
     }
     c = redo(&undo);
     // What the update recorded reads h as it was, and takes it back exactly; then the edit again.
@@ -182,9 +198,24 @@ TEST(SizeFieldUpdate, RefinementUnderAChangedRuleEqualsAFreshOne) {
     const std::size_t q = rng() % 2;
     t.polygons[q].size = 500 + 6000 * u(rng);
     const SizeChange c = next->set_polygon_size(q, t.polygons[q].size);
+    // Every other edit finds the edges by their reach (an R-tree), the others by a scan.
+    std::optional<std::pair<Point2, Point2>> near;
+    if (c && e % 2 == 1) near = next->reach_of(c);
+    if (c) {  // reach_of's contract, on segments of every length up to the box's side
+      const auto [lo, hi] = next->reach_of(c);
+      for (int k = 0; k < 400; ++k) {
+        const Point2 a{box.origin[0] + u(rng) * box.side, box.origin[1] + u(rng) * box.side};
+        const double len = std::ldexp(box.side, -static_cast<int>(rng() % 14)) * u(rng), dir = 2 * std::numbers::pi * u(rng);
+        const Point2 b{a[0] + len * std::cos(dir), a[1] + len * std::sin(dir)};
+        const double g = 0.5 * std::max(std::abs(b[0] - a[0]), std::abs(b[1] - a[1]));
+        const bool meets = std::min(a[0], b[0]) - g <= hi[0] && lo[0] <= std::max(a[0], b[0]) + g &&
+                           std::min(a[1], b[1]) - g <= hi[1] && lo[1] <= std::max(a[1], b[1]) + g;
+        ASSERT_TRUE(meets || !next->reads(a, b, c)) << "edit " << e << " segment " << k;
+      }
+    }
     const SplitChange s = refinement.update({}, {}, {}, rule_of(next), [&](const Point2& a, const Point2& b) {
       return next->reads(a, b, c);
-    });
+    }, near);
     changes += s.removed.size() + s.added.size();
     const ShoreRefinement fresh(rings, {}, rule_of(next));
     ASSERT_EQ(refinement.split_points(), fresh.split_points()) << "edit " << e;

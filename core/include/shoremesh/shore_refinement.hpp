@@ -20,6 +20,8 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <optional>
+#include <utility>
 #include <span>
 #include <vector>
 
@@ -103,9 +105,12 @@ class ShoreRefinement {
   // for subsegments pq of edges ab with rule_changed(a, b) (it must hold for an edge whenever the rule
   // differs for one of its subsegments): those edges are reset as when a point in their test disks went,
   // and everything closes again under the new rule. Equal to a fresh ShoreRefinement under `rule`.
+  // `near` (lo, hi), when given: rule_changed holds only for edges ab whose bounding box grown by half its
+  // longer side meets it; those are found in an R-tree (made at the first such update), not by a scan.
   SplitChange update(std::span<const RingStretch> edits, std::span<const Point2> loose_removed,
                      std::span<const Point2> loose_added, RefinementRule rule,
-                     const std::function<bool(const Point2&, const Point2&)>& rule_changed);
+                     const std::function<bool(const Point2&, const Point2&)>& rule_changed,
+                     std::optional<std::pair<Point2, Point2>> near = {});
 
   // Recomputes everything from scratch and throws std::logic_error when it differs (tests).
   void check_valid() const;

@@ -13,6 +13,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "shoremesh/box_transform.hpp"
 #include "shoremesh/domain.hpp"
 #include "shoremesh/point.hpp"
+#include "shoremesh/shore_refinement.hpp"
 #include "shoremesh/shore_segments.hpp"
 
 namespace shoremesh {
@@ -76,7 +78,10 @@ struct SizeUndo {
   std::vector<std::uint8_t> water;                                   // the box's nodes before, row-major
   std::unordered_map<std::uint64_t, double> pyramid;                 // (level << 56 | block): the minimum before
   std::optional<std::pair<std::size_t, double>> polygon;             // a polygon's size before
-  std::optional<Domain2> rings;                                      // the rings before
+  std::optional<Domain2> rings;                                      // the rings before (set_rings of a Domain2)
+  // set_rings of stretches: their inverses (applied last first) and the ring edges that went and came.
+  std::vector<RingStretch> stretches;
+  std::vector<ShoreSegment> edges_gone, edges_came;
   // The grid recomputed whole: the arrays before.
   std::optional<std::vector<double>> whole_h, whole_shore, whole_src;
   std::optional<std::vector<std::uint8_t>> whole_water;
@@ -101,6 +106,10 @@ class SizeField {
   // The rings changed: updates h (the shore term and the water) where the changed segments reach, equal to
   // a fresh SizeField on the new rings (docs/sizing.md). Returns where h changed.
   SizeChange set_rings(const Domain2& rings, SizeUndo* undo = nullptr);
+  // The same for the rings edited by `edits` (apply_stretch, one per ring at most), with no pass over the
+  // rings: the changed segments come from the stretches, and the segments near them (the shore term's
+  // sources, the water's crossings) from an R-tree of the ring edges (built at the first such update).
+  SizeChange set_rings(std::span<const RingStretch> edits, SizeUndo* undo = nullptr);
   // Polygon `index` (0-based) takes size `size`; ParameterError for a bad size, InputError for no such
   // polygon. Updates h where the polygon's nodes reach; returns where it changed.
   SizeChange set_polygon_size(std::size_t index, double size, SizeUndo* undo = nullptr);
@@ -110,6 +119,10 @@ class SizeField {
   double min_over_before(const SizeUndo& undo, const Point2& lo, double side) const;
   // Whether min_over_segment(a, b) reads a grid node of `change` (a subsegment's max_length may differ).
   bool reads(const Point2& a, const Point2& b, const SizeChange& change) const;
+  // reads(a, b, change) holds only for segments whose bounding box grown by half its longer side meets
+  // this box (lo, hi): min_over_segment reads at most a quarter of the longer side and three cells beyond
+  // the box (docs/sizing.md).
+  std::pair<Point2, Point2> reach_of(const SizeChange& change) const;
   const SizeTerms& terms() const { return terms_; }
 
   SizeSummary summary() const;
@@ -127,7 +140,14 @@ class SizeField {
   void build_pyramid();
   void update_pyramid(std::size_t i0, std::size_t j0, std::size_t i1, std::size_t j1);
   // The water at the nodes [i0, i1] x [j0, j1].
-  void water_mask(std::size_t i0, std::size_t j0, std::size_t i1, std::size_t j1);
+  // With `indexed`, the edges are found in the edge tree (set_rings of stretches), else in the rings.
+  void water_mask(std::size_t i0, std::size_t j0, std::size_t i1, std::size_t j1, bool indexed = false);
+  // The update of h once the rings changed by the segments `segs` (both sides) and `emptiness` (whether
+  // the rings went from none to some or back).
+  SizeChange rings_changed(const std::vector<std::pair<Point2, Point2>>& segs, bool emptiness, bool indexed);
+  // Calls f(a, b, closed) for every ring edge whose box meets [lo, hi] (the tree: a superset of those).
+  template <class F>
+  void edges_meeting(const Point2& lo, const Point2& hi, bool indexed, F&& f) const;
   // `before`: the pyramid's blocks as they were (level, block), for min_over_before.
   double min_over_box(const Point2& lo, const Point2& hi,
                       const std::function<double(std::size_t, std::size_t)>& before = {}) const;
@@ -160,6 +180,9 @@ class SizeField {
   std::vector<double> h_;
   std::vector<std::vector<double>> pyramid_;  // level l: min over blocks of 2^l x 2^l cells (their nodes)
   SizeUndo* undo_ = nullptr;                  // during an update: where it records what it overwrites
+  // The rings' edges by their boxes (set_rings of stretches), shared by copies until one changes it.
+  struct EdgeTree;
+  std::shared_ptr<EdgeTree> edge_tree_;
 };
 
 // The canonical seeds of h (docs/sizing.md): the centres of the leaves of the quadtree of the box split
@@ -196,6 +219,29 @@ std::vector<Point2> update_size_seeds(const SizeField& old_field, const std::vec
 std::vector<Point2> update_size_seeds(const SizeField& field, const SizeUndo& before, const std::vector<Point2>& old_seeds,
                                       const SizeChange& h_change, const ShoreChange& refined_change,
                                       const Domain2& refined, double gamma = 1.25, SeedUpdate* stats = nullptr);
+// The refined rings as the seeds' tests read them (the water, decided exactly as WaterTest decides it, and
+// the segments by the boxes where a seed would be too near them), kept across edits: an edit gives it the
+// refined segments that went and came, so that no pass over the refined rings is made.
+class SeedShoreIndex {
+ public:
+  explicit SeedShoreIndex(const Domain2& refined, double gamma = 1.25);
+  ~SeedShoreIndex();
+  SeedShoreIndex(SeedShoreIndex&&) noexcept;
+  SeedShoreIndex& operator=(SeedShoreIndex&&) noexcept;
+  // The refined rings lose change.removed and gain change.added (take_back: the other way).
+  void apply(const ShoreChange& change);
+  void take_back(const ShoreChange& change);
+  double gamma() const;
+  struct Impl;  // size_function.cpp's
+
+ private:
+  friend struct SeedShoreAccess;
+  std::unique_ptr<Impl> impl_;
+};
+// update_size_seeds with the refined rings kept in `shore` (already given the change).
+std::vector<Point2> update_size_seeds(const SizeField& field, const SizeUndo& before, const std::vector<Point2>& old_seeds,
+                                      const SizeChange& h_change, const ShoreChange& refined_change,
+                                      const SeedShoreIndex& shore, SeedUpdate* stats = nullptr);
 // The seeds' test against one refined segment ab, exact (the engine's filtered predicates): p is at least
 // `near` from the segment and not strictly inside its diametral circle grown by gamma.
 bool seed_clear_of_segment(const Point2& p, const Point2& a, const Point2& b, double near, double gamma);
