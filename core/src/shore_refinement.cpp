@@ -138,8 +138,8 @@ struct ShoreRefinement::Impl {
     const Edge& e = edges[n.edge];
     const Point2 p = at(e, n.t0), q = at(e, n.t1), m = at(e, 0.5 * (n.t0 + n.t1));
     // The union of the test disk and the grading's disks (radius len/c about each end).
-    const double reach = std::max(0.5 * rule.gamma, rule.grading > 0 ? 0.5 + 1 / rule.grading : 0.0);
-    const double r = reach * std::hypot(q[0] - p[0], q[1] - p[1]) * (1 + 1e-9) + 1e-300 +
+    const double grow = std::max(0.5 * rule.gamma, rule.grading > 0 ? 0.5 + 1 / rule.grading : 0.0);
+    const double r = grow * std::hypot(q[0] - p[0], q[1] - p[1]) * (1 + 1e-9) + 1e-300 +
                      1e-15 * (std::abs(m[0]) + std::abs(m[1]));
     return BBox(BPoint(m[0] - r, m[1] - r), BPoint(m[0] + r, m[1] + r));
   }
