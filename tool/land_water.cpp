@@ -140,22 +140,10 @@ class LandWaterEdits {
       : session_(session), dem_(dem), plane_(plane), domain_(domain), a_(a), inputs_(std::move(inputs)) {}
 
   std::optional<nlohmann::json> run(std::size_t line, const std::string& text) {
-    const std::vector<std::string> words = split_words(text);
-    if (words.empty() || words[0][0] == '#') return std::nullopt;
-    const std::string& op = words[0];
-    nlohmann::json reply = {{"line", line}, {"ok", true}, {"op", op}};
-    try {
-      if (op == "dem-patch") patch(rest_after_op(text), reply);
-      else if (op == "export") export_to(rest_after_op(text), reply);
-      else if (op == "stats" && words.size() == 1) stats(reply);
-      else if (op == "stats") throw InputError("stats takes no arguments");
-      else throw InputError("unknown land-and-water edit '" + op + "' (dem-patch FILE, export PATH, stats)");
-    } catch (const InputError& e) {
-      return nlohmann::json{{"line", line}, {"ok", false}, {"op", op}, {"error", e.what()}};
-    } catch (const ParameterError& e) {
-      return nlohmann::json{{"line", line}, {"ok", false}, {"op", op}, {"error", e.what()}};
-    }
-    return reply;
+    return run_dem_edit_line(line, text, "land-and-water",
+                             {[this](const std::string& f, nlohmann::json& r) { patch(f, r); },
+                              [this](const std::string& p, nlohmann::json& r) { export_to(p, r); },
+                              [this](nlohmann::json& r) { stats(r); }});
   }
 
   static std::string text(const nlohmann::json& r) {

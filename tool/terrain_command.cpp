@@ -54,6 +54,26 @@ PatchWindow locate_patch(const io::Dem& dem, const io::Dem& patch) {
   return {static_cast<int>(cr), static_cast<int>(rr)};
 }
 
+std::optional<nlohmann::json> run_dem_edit_line(std::size_t line, const std::string& text, const std::string& kind,
+                                                const DemEditOps& ops) {
+  const std::vector<std::string> words = split_words(text);
+  if (words.empty() || words[0][0] == '#') return std::nullopt;
+  const std::string& op = words[0];
+  nlohmann::json reply = {{"line", line}, {"ok", true}, {"op", op}};
+  try {
+    if (op == "dem-patch") ops.patch(rest_after_op(text), reply);
+    else if (op == "export") ops.export_to(rest_after_op(text), reply);
+    else if (op == "stats" && words.size() == 1) ops.stats(reply);
+    else if (op == "stats") throw InputError("stats takes no arguments");
+    else throw InputError("unknown " + kind + " edit '" + op + "' (dem-patch FILE, export PATH, stats)");
+  } catch (const InputError& e) {
+    return nlohmann::json{{"line", line}, {"ok", false}, {"op", op}, {"error", e.what()}};
+  } catch (const ParameterError& e) {
+    return nlohmann::json{{"line", line}, {"ok", false}, {"op", op}, {"error", e.what()}};
+  }
+  return reply;
+}
+
 namespace {
 
 struct TerrainOptionsArgs {
@@ -119,22 +139,10 @@ class TerrainEdits {
       : session_(session), dem_(dem), plane_(plane), inputs_(std::move(inputs)) {}
 
   std::optional<nlohmann::json> run(std::size_t line, const std::string& text) {
-    const std::vector<std::string> words = split_words(text);
-    if (words.empty() || words[0][0] == '#') return std::nullopt;
-    const std::string& op = words[0];
-    nlohmann::json reply = {{"line", line}, {"ok", true}, {"op", op}};
-    try {
-      if (op == "dem-patch") patch(rest_after_op(text), reply);
-      else if (op == "export") export_to(rest_after_op(text), reply);
-      else if (op == "stats" && words.size() == 1) stats(reply);
-      else if (op == "stats") throw InputError("stats takes no arguments");
-      else throw InputError("unknown terrain edit '" + op + "' (dem-patch FILE, export PATH, stats)");
-    } catch (const InputError& e) {
-      return nlohmann::json{{"line", line}, {"ok", false}, {"op", op}, {"error", e.what()}};
-    } catch (const ParameterError& e) {
-      return nlohmann::json{{"line", line}, {"ok", false}, {"op", op}, {"error", e.what()}};
-    }
-    return reply;
+    return run_dem_edit_line(line, text, "terrain",
+                             {[this](const std::string& f, nlohmann::json& r) { patch(f, r); },
+                              [this](const std::string& p, nlohmann::json& r) { export_to(p, r); },
+                              [this](nlohmann::json& r) { stats(r); }});
   }
 
   static std::string text(const nlohmann::json& r) {

@@ -554,10 +554,7 @@ double SizeField::min_over_segment(const Point2& a, const Point2& b) const {
   return min_over_box({std::min(a[0], b[0]), std::min(a[1], b[1])}, {std::max(a[0], b[0]), std::max(a[1], b[1])});
 }
 
-// The bilinear h over a cell lies between its nodes' values: the least over the cells the box meets, read
-// from the coarsest pyramid level whose blocks stay at most about half the box.
-double SizeField::min_over_box(const Point2& lo, const Point2& hi,
-                               const std::function<double(std::size_t, std::size_t)>& before) const {
+SizeField::CellSpan SizeField::cell_span(const Point2& lo, const Point2& hi) const {
   auto cell_range = [&](int axis) {
     const double a = std::floor((lo[axis] - box_.origin[axis]) / cell_);
     const double b = std::floor((hi[axis] - box_.origin[axis]) / cell_);
@@ -569,6 +566,14 @@ double SizeField::min_over_box(const Point2& lo, const Point2& hi,
   const std::size_t span = std::max(i1 - i0, j1 - j0) + 1;
   std::size_t l = 0;
   while (l + 1 < pyramid_.size() && (std::size_t{2} << l) * 2 <= span) ++l;
+  return {l, i0, i1, j0, j1};
+}
+
+// The bilinear h over a cell lies between its nodes' values: the least over the cells the box meets, read
+// from the coarsest pyramid level whose blocks stay at most about half the box.
+double SizeField::min_over_box(const Point2& lo, const Point2& hi,
+                               const std::function<double(std::size_t, std::size_t)>& before) const {
+  const auto [l, i0, i1, j0, j1] = cell_span(lo, hi);
   const std::size_t m = n_ >> l;
   double out = kInf;
   for (std::size_t j = j0 >> l; j <= j1 >> l; ++j)
@@ -856,17 +861,7 @@ SizeChange SizeField::set_polygon_size(std::size_t index, double size, SizeUndo*
 
 // The pyramid blocks min_over_box reads for the box [lo, hi]: cells c[0] .. c[1] by c[2] .. c[3].
 void SizeField::read_cells(const Point2& lo, const Point2& hi, std::size_t c[4]) const {
-  auto cell_range = [&](int axis) {
-    const double a = std::floor((lo[axis] - box_.origin[axis]) / cell_);
-    const double b = std::floor((hi[axis] - box_.origin[axis]) / cell_);
-    return std::pair{static_cast<std::size_t>(std::clamp(a, 0.0, double(n_ - 1))),
-                     static_cast<std::size_t>(std::clamp(b, 0.0, double(n_ - 1)))};
-  };
-  const auto [i0, i1] = cell_range(0);
-  const auto [j0, j1] = cell_range(1);
-  const std::size_t span = std::max(i1 - i0, j1 - j0) + 1;
-  std::size_t l = 0;
-  while (l + 1 < pyramid_.size() && (std::size_t{2} << l) * 2 <= span) ++l;
+  const auto [l, i0, i1, j0, j1] = cell_span(lo, hi);
   c[0] = (i0 >> l) << l, c[1] = (((i1 >> l) + 1) << l) - 1, c[2] = (j0 >> l) << l, c[3] = (((j1 >> l) + 1) << l) - 1;
 }
 

@@ -153,6 +153,12 @@ class SizeField {
                       const std::function<double(std::size_t, std::size_t)>& before = {}) const;
   // The least-pyramid-level block range min_over_box reads, as grid cells [c0, c1] per axis.
   void read_cells(const Point2& lo, const Point2& hi, std::size_t c[4]) const;
+  // The cells [i0, i1] x [j0, j1] the box [lo, hi] meets (clamped to the grid) and the pyramid level whose
+  // blocks min_over_box reads for it.
+  struct CellSpan {
+    std::size_t level, i0, i1, j0, j1;
+  };
+  CellSpan cell_span(const Point2& lo, const Point2& hi) const;
   // h before grading at node v, with the shore term's value `shore` there.
   double raw(std::size_t v, double shore) const;
   // An upper bound of every finite value of the graded terms (the local repair's precondition).
