@@ -23,6 +23,20 @@
 
 namespace shoremesh::mesh_test {
 
+// A wobbly lake of radius ~50 km (`n` vertices) with an island: shore edits keep it valid.
+inline Domain2 wobbly_lake(int n) {
+  Domain2 d{{Ring{{}, RingRole::Shore}, Ring{{}, RingRole::Shore}}};
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * std::numbers::pi * k / n, r = 50000 + 4000 * std::sin(5 * a) + 1500 * std::cos(11 * a);
+    d.rings[0].points.push_back({r * std::cos(a), r * std::sin(a)});
+  }
+  for (int k = 0; k < 12; ++k) {
+    const double a = -2 * std::numbers::pi * k / 12, r = 6000 + 1000 * std::sin(3 * a);
+    d.rings[1].points.push_back({15000 + r * std::cos(a), -10000 + r * std::sin(a)});
+  }
+  return d;
+}
+
 // Equirectangular about the lake's middle: simple, invertible, and it maps the water mask's lon/lat
 // rectangle onto a rectangle. Areas are within about 2.5% at the lake's north and south ends.
 struct Equirectangular {

@@ -22,19 +22,7 @@
 namespace shoremesh {
 namespace {
 
-// A wobbly lake of radius ~50 km (`n` vertices) with an island.
-Domain2 lake(int n) {
-  Domain2 d{{Ring{{}, RingRole::Shore}, Ring{{}, RingRole::Shore}}};
-  for (int k = 0; k < n; ++k) {
-    const double a = 2 * std::numbers::pi * k / n, r = 50000 + 4000 * std::sin(5 * a) + 1500 * std::cos(11 * a);
-    d.rings[0].points.push_back({r * std::cos(a), r * std::sin(a)});
-  }
-  for (int k = 0; k < 12; ++k) {
-    const double a = -2 * std::numbers::pi * k / 12, r = 6000 + 1000 * std::sin(3 * a);
-    d.rings[1].points.push_back({15000 + r * std::cos(a), -10000 + r * std::sin(a)});
-  }
-  return d;
-}
+Domain2 lake(int n) { return mesh_test::wobbly_lake(n); }
 
 SizePolygon square(double x0, double y0, double side, double size) {
   return {{{{x0, y0}, {x0 + side, y0}, {x0 + side, y0 + side}, {x0, y0 + side}}}, size, "test polygon"};

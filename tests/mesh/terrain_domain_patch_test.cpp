@@ -14,23 +14,13 @@
 
 #include "shoremesh/error.hpp"
 #include "shoremesh/terrain.hpp"
+#include "terrain_test_util.hpp"
 
 namespace shoremesh {
 namespace {
 
-HeightGrid valley(int w = 60, int h = 50) {
-  HeightGrid g;
-  g.width = w, g.height = h;
-  g.x0 = 500000, g.y0 = 5400000, g.dx = 30, g.dy = -30;
-  for (int r = 0; r < h; ++r)
-    for (int c = 0; c < w; ++c) {
-      const double x = double(c) / w, y = double(r) / h;
-      g.z.push_back(static_cast<float>(-30 + 80 * x + 12 * std::sin(9 * x) * std::cos(7 * y) + 5 * std::sin(23 * y)));
-    }
-  return g;
-}
-
-Point2 at(const HeightGrid& g, double c, double r) { return {g.x0 + c * g.dx, g.y0 + r * g.dy}; }
+using terrain_test::at;
+using terrain_test::valley;
 
 // The rings of terrain_domain_test.cpp, with one outer vertex and the open line's middle vertex moved by
 // (du, dv) cells, and the island present or not (a ring that goes and comes, first in the list: every
