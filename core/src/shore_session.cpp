@@ -47,6 +47,13 @@ std::string describe_point(const Point<D>& p) {
   return s + ")";
 }
 
+// An edit's ring stretch as the engine's water takes it: the chains' old middle (from the undo) and new
+// middle; none when the edit has no stretch.
+std::optional<WaterStretch> water_stretch(const RingStretch* stretch, const RingStretch* undo) {
+  if (!stretch || !undo) return std::nullopt;
+  return WaterStretch{stretch->ring, stretch->prefix, stretch->suffix, undo->middle, stretch->middle, stretch->whole};
+}
+
 }  // namespace
 
 template <int D>
@@ -321,8 +328,7 @@ struct ShoreSession<D>::Impl {
           added.push_back(p);
         }
         // The engine takes in the water's edges in the stretch alone (the refinement's rings have the edit).
-        std::optional<WaterStretch> water;
-        if (rings && undo) water = WaterStretch{rings->ring, rings->prefix, rings->suffix, undo->middle, rings->middle, rings->whole};
+        const std::optional<WaterStretch> water = water_stretch(rings, undo);
         std::vector<std::size_t> ids;
         try {
           ids = set->apply(edits, &report, water ? std::span<const WaterStretch>(&*water, 1) : std::span<const WaterStretch>());
@@ -432,8 +438,7 @@ struct ShoreSession<D>::Impl {
       for (const Point2& p : seeds_added) edits.push_back({Edit<D>::Kind::Add, 0, p});
       // The engine takes in the water's edges in the stretch alone (the refinement's rings have the edit),
       // as apply_edits gives them without size control.
-      std::optional<WaterStretch> water;
-      if (stretch && undo) water = WaterStretch{stretch->ring, stretch->prefix, stretch->suffix, undo->middle, stretch->middle, stretch->whole};
+      const std::optional<WaterStretch> water = water_stretch(stretch, undo);
       std::vector<std::size_t> ids;
       try {
         ids = refinement ? set->apply(edits, &report, water ? std::span<const WaterStretch>(&*water, 1) : std::span<const WaterStretch>())
