@@ -37,50 +37,35 @@ namespace shoremesh::tool {
 namespace {
 
 
-// The DEM's contour at `level` traced as `--dem` traces the shoreline (water strictly below), the rings
-// taken from the tracer's frame to the DEM's plane (io::dem_grid), where the TIN is built. Empty when no
-// valid cell lies below the level; the DEM's outer cell edges when every cell does.
+// The grid's contour at `level` (water strictly below), local to the cells (trace_contours,
+// docs/terrain.md "Local contours"): --min-area in cells, --largest-water, and --spacing as the stride of
+// the grid lines on which a straight ring keeps its vertices (1 cell by default).
 struct Contour {
   Domain2 rings;
   bool all_below = false, none_below = false;
-  std::vector<std::string> notes;
 };
 
-Contour trace_level(const std::shared_ptr<const io::Dem>& dem, const HeightGrid& grid, double level,
-                    const InputArgs& a) {
-  Contour out;
-  std::size_t below = 0;
-  for (float z : dem->heights) below += z < level;
-  if (below == 0) {
-    out.none_below = true;
-    return out;
+ContourOptions contour_options(const HeightGrid& grid, double level, const InputArgs& a) {
+  ContourOptions o;
+  o.level = level;
+  o.min_area = a.min_area;
+  o.largest_water_only = a.largest_water;
+  if (a.spacing) {
+    const double cell = std::min(std::abs(grid.dx), std::abs(grid.dy));
+    o.stride = static_cast<int>(std::clamp(std::floor(*a.spacing / cell), 1.0, 1e6));
   }
-  if (below == dem->heights.size()) {
-    out.all_below = true;
-    const double c0 = -0.5, r0 = -0.5, c1 = grid.width - 0.5, r1 = grid.height - 0.5;
+  return o;
+}
+
+// Every cell below the level: the DEM's outer cell edges (its whole extent, corners and all).
+Contour trace_level(const HeightGrid& grid, double level, const InputArgs& a) {
+  const TracedContours t = trace_contours(grid, contour_options(grid, level, a));
+  Contour out{t.domain(), t.all_below, t.none_below};
+  if (t.all_below) {
     auto at = [&](double c, double r) { return Point2{grid.x0 + c * grid.dx, grid.y0 + r * grid.dy}; };
-    out.rings.rings.push_back({{at(c0, r0), at(c1, r0), at(c1, r1), at(c0, r1)}, RingRole::Shore});
-    return out;
+    const double c0 = -0.5, r0 = -0.5, c1 = grid.width - 0.5, r1 = grid.height - 0.5;
+    out.rings.rings = {{{at(c0, r0), at(c1, r0), at(c1, r1), at(c0, r1)}, RingRole::Shore}};
   }
-  const io::InputOptions options = input_options(a);
-  io::DemTraceOptions d;
-  d.level = level;
-  d.image = options.image;
-  d.image.projection = options.projection;
-  d.image.projection_choice = options.projection_choice;
-  io::TracedDem traced = io::trace_dem(dem, d);
-  const io::InputSet& set = traced.traced.input;
-  const io::DemFrame frame(dem, set.projection);
-  for (const Ring& ring : set.domain.rings) {
-    if (ring.points.empty()) continue;
-    Ring mapped{{}, ring.role};
-    for (const Point2& p : ring.points) {
-      const Point2 cell = frame.to_cell(p);
-      mapped.points.push_back({grid.x0 + cell[0] * grid.dx, grid.y0 + cell[1] * grid.dy});
-    }
-    out.rings.rings.push_back(std::move(mapped));
-  }
-  out.notes = set.notes;
   return out;
 }
 
@@ -94,15 +79,20 @@ struct LandWaterDomain {
   Domain2 domain;
 };
 
-LandWaterDomain trace_domain(const std::shared_ptr<const io::Dem>& dem, const HeightGrid& grid, double z_top,
-                             double level, const InputArgs& a) {
+LandWaterDomain trace_domain(const HeightGrid& grid, double z_top, double level, const InputArgs& a) {
   LandWaterDomain d;
   const double cell = std::min(std::abs(grid.dx), std::abs(grid.dy));
-  d.top = trace_level(dem, grid, z_top, a);
+  d.top = trace_level(grid, z_top, a);
   if (d.top.none_below)
     throw InputError("no cell of the DEM lies below --land-up-to " + readable(z_top) + " m: nothing to mesh", a.dem);
-  d.shore = trace_level(dem, grid, level, a);
-  d.lines = shoreline_lines(d.shore.rings, d.top.rings, 0.5 * cell);
+  if (d.top.rings.empty())
+    throw InputError("no region below --land-up-to " + readable(z_top) + " m of at least --min-area " +
+                         readable(a.min_area) + " cells: nothing to mesh",
+                     a.dem);
+  d.shore = trace_level(grid, level, a);
+  // Lines cut every 8 strides (a line's change then stays within its few cells).
+  d.lines = shoreline_lines(d.shore.rings, d.top.rings, 0.5 * cell,
+                            contour_cut(grid, 8 * contour_options(grid, level, a).stride));
   d.domain = d.top.rings;
   d.domain.rings.insert(d.domain.rings.end(), d.lines.lines.begin(), d.lines.lines.end());
   return d;
@@ -137,7 +127,8 @@ class LandWaterEdits {
  public:
   LandWaterEdits(TerrainSession& session, std::shared_ptr<const io::Dem>& dem, io::DemGrid& plane,
                  LandWaterDomain& domain, const InputArgs& a, std::vector<std::filesystem::path> inputs)
-      : session_(session), dem_(dem), plane_(plane), domain_(domain), a_(a), inputs_(std::move(inputs)) {}
+      : session_(session), dem_(dem), plane_(plane), domain_(domain), slots_(domain.domain), a_(a),
+        inputs_(std::move(inputs)) {}
 
   std::optional<nlohmann::json> run(std::size_t line, const std::string& text) {
     return run_dem_edit_line(line, text, "land-and-water",
@@ -153,7 +144,9 @@ class LandWaterEdits {
     if (op == "dem-patch")
       return head + "dem-patch " + r.value("file", "") + ": " + r["cells"].dump() + " cells at column " +
              r["column"].dump() + ", row " + r["row"].dump() + ": ring and line vertices -" +
-             r["ring_points_removed"].dump() + " +" + r["ring_points_added"].dump() + ", triangles -" +
+             r["ring_points_removed"].dump() + " +" + r["ring_points_added"].dump() + " (" + r["ring_stretches"].dump() +
+             " ring stretches, the farthest vertex " + approx(r.value("ring_reach", 0.0), 3) +
+             " cells from the window), triangles -" +
              r["triangles_removed"].dump() + " +" + r["triangles_added"].dump() + " (now " + r["triangles"].dump() +
              "); greedy picks +" + r["picks_added"].dump() + " -" + r["picks_removed"].dump() + " in " +
              r["rounds"].dump() + " rounds, " + r["operations"].dump() + " engine operations; " +
@@ -184,12 +177,27 @@ class LandWaterEdits {
     const auto [lo, hi] = std::minmax_element(patched->heights.begin(), patched->heights.end());
     patched->min = *lo, patched->max = *hi;
     std::shared_ptr<const io::Dem> next = patched;
+    HeightGrid grid = plane_.grid;
+    for (int r = 0; r < p.height; ++r)
+      for (int c = 0; c < p.width; ++c)
+        grid.z[grid.index(at.col + c, at.row + r)] = p.heights[static_cast<std::size_t>(r) * p.width + c];
     LandWaterDomain traced;
     try {
-      traced = trace_domain(next, plane_.grid, *a_.land_up_to, a_.shoreline_level, a_);
+      traced = trace_domain(grid, *a_.land_up_to, a_.shoreline_level, a_);
     } catch (const InputError& e) {
       throw InputError(e.message(), file);
     }
+    // The rings' change as stretches of the rings in their places (follow_contours): local, since the
+    // contours are.
+    ContourFollow follow = follow_contours(slots_, traced.domain);
+    double reach = 0;  // cells from the window to the farthest ring or line vertex that went or came
+    for (const Point2& q : follow.moved) {
+      const Point2 g = grid.to_grid(q);
+      reach = std::max({reach, at.col - 0.5 - g[0], g[0] - (at.col + p.width - 0.5), at.row - 0.5 - g[1],
+                        g[1] - (at.row + p.height - 0.5)});
+    }
+    std::size_t stretch_points = 0;
+    for (const RingStretch& e : follow.edits) stretch_points += e.middle.size();
     const double trace_ms = ms_since(t0);
     const auto before = sorted_corners<2>(session_.points(), session_.triangles());
     auto vertices = [](const Domain2& d) {
@@ -211,16 +219,17 @@ class LandWaterEdits {
     }
     const double t = ms_since(t0);
     dem_ = next;
-    for (int r = 0; r < p.height; ++r)
-      for (int c = 0; c < p.width; ++c)
-        plane_.grid.z[plane_.grid.index(at.col + c, at.row + r)] = p.heights[static_cast<std::size_t>(r) * p.width + c];
+    plane_.grid.z = std::move(grid.z);
     domain_ = std::move(traced);
+    slots_ = std::move(follow.next);
     const auto after = sorted_corners<2>(session_.points(), session_.triangles());
     std::vector<ElementCorners<2>> gone, came;
     std::set_difference(before.begin(), before.end(), after.begin(), after.end(), std::back_inserter(gone));
     std::set_difference(after.begin(), after.end(), before.begin(), before.end(), std::back_inserter(came));
     reply.update({{"file", file}, {"column", at.col}, {"row", at.row}, {"cells", std::size_t(p.width) * std::size_t(p.height)},
                   {"ring_points_removed", ring_gone.size()}, {"ring_points_added", ring_come.size()},
+                  {"ring_stretches", follow.edits.size()}, {"ring_stretch_points", stretch_points},
+                  {"ring_reach", reach},
                   {"triangles_removed", gone.size()}, {"triangles_added", came.size()},
                   {"triangles", session_.triangles().size()}, {"picks_added", u.picks_added},
                   {"picks_removed", u.picks_removed}, {"rounds", u.rounds}, {"operations", u.operations},
@@ -250,6 +259,7 @@ class LandWaterEdits {
   std::shared_ptr<const io::Dem>& dem_;
   io::DemGrid& plane_;
   LandWaterDomain& domain_;
+  Domain2 slots_;  // the rings and lines in their places (follow_contours)
   const InputArgs& a_;
   std::vector<std::filesystem::path> inputs_;
 };
@@ -296,7 +306,7 @@ int run_land_water(const LandWaterRequest& req, Progress& progress) {
   const double cell = std::min(std::abs(plane.grid.dx), std::abs(plane.grid.dy));
 
   progress.stage("tracing the contours at " + metres(z_top) + " and " + metres(level));
-  LandWaterDomain domain = trace_domain(dem, plane.grid, z_top, level, a);
+  LandWaterDomain domain = trace_domain(plane.grid, z_top, level, a);
 
   TerrainOptions options;
   options.max_error = a.max_error ? *a.max_error : std::numeric_limits<double>::infinity();

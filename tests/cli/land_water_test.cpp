@@ -16,6 +16,8 @@
 #include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_test_util.hpp"
 #include "dem_test_util.hpp"
 
@@ -368,7 +370,7 @@ void random_patches_equal_fresh_runs(const std::vector<float>& dem, int w, int h
   // The patches moved the contours: some reply counts ring and line vertices that went and came.
   std::size_t moved = 0;
   for (const std::string& line : lines_of(r.out)) moved += line.find("dem-patch") != std::string::npos &&
-                                                            line.find("line vertices -0 +0,") == std::string::npos;
+                                                            line.find("line vertices -0 +0 (") == std::string::npos;
   EXPECT_GE(moved, 2u) << r.out;
   for (int k = 0; k < steps; ++k) {
     const std::string n = std::to_string(k);
@@ -412,6 +414,30 @@ TEST(LandWaterEdits, RandomDemPatchesEqualFreshRunsOnACropOfTheSalishSea) {
   const std::array<double, 6> g{full.g[0] + c0 * full.g[1], full.g[1], 0, full.g[3] + r0 * full.g[5], 0, full.g[5]};
   random_patches_equal_fresh_runs(z, w, h, g, 3857, "--land-up-to 100 --max-error 10 --min-area 1", 7, 4, 60);
   random_patches_equal_fresh_runs(z, w, h, g, 3857, "--land-up-to 300 --max-error 5", 200, 4, 60);
+}
+
+// A 3 x 3 patch on the Salish Sea's coast moves only the ring and line vertices next to it (the contours
+// are anchored to the cells: docs/terrain.md, "Local contours"); a tracer that resamples whole rings
+// moved about 2,200 of them, far along the coast.
+TEST(LandWaterEdits, AThreeByThreePatchMovesOnlyTheRingVerticesNextToIt) {
+  TempDir dir;
+  const Raster full(kSalish);
+  const int c0 = 60, r0 = 40;
+  std::vector<float> cells;
+  for (int r = r0; r < r0 + 3; ++r)
+    for (int c = c0; c < c0 + 3; ++c) cells.push_back(static_cast<float>(full.at(c, r) - 40));
+  write_dem(dir / "p.tif", 3, 3, cells, {}, {full.g[0] + c0 * full.g[1], full.g[1], 0, full.g[3] + r0 * full.g[5], 0, full.g[5]},
+            3857);
+  write_file(dir / "edits.txt", "dem-patch p.tif\n");
+  const RunResult r = shoremesh(dir, "mesh --dem " + kSalish + " --land-up-to 100 --max-error 5 --min-area 1 --quiet "
+                                     "-o a.obj --json --edits edits.txt");
+  ASSERT_EQ(r.code, 0) << r.out << r.err;
+  const nlohmann::json reply = nlohmann::json::parse(lines_of(r.out).at(0));
+  const std::size_t moved = reply.at("ring_points_removed").get<std::size_t>() + reply.at("ring_points_added").get<std::size_t>();
+  EXPECT_GT(moved, 0u) << r.out;   // the patch moved the shoreline
+  EXPECT_LE(moved, 60u) << r.out;  // at most the vertices on the cell edges within two cells of the window
+  // A ring's vertices within two cells of the window, a line's end within 5.5 (tests/mesh/land_water_contour_test.cpp).
+  EXPECT_LE(reply.at("ring_reach").get<double>(), 5.5) << r.out;
 }
 
 TEST(LandWaterEdits, BadLinesAreRefusedAndChangeNothing) {
