@@ -57,7 +57,8 @@ ContourOptions contour_options(const HeightGrid& grid, double level, const Input
   return o;
 }
 
-// Every cell below the level: the DEM's outer cell edges (its whole extent, corners and all).
+// The contour at `level`; when every cell lies below it, the DEM's outer cell edges (its whole extent, corners
+// and all).
 Contour trace_level(const HeightGrid& grid, double level, const InputArgs& a) {
   const TracedContours t = trace_contours(grid, contour_options(grid, level, a));
   Contour out{t.domain(), t.all_below, t.none_below};
