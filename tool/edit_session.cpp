@@ -407,7 +407,8 @@ json EditSession<D>::set_size(const std::vector<std::string>& words) {
 template <int D>
 json EditSession<D>::stats() const {
   const auto start = Clock::now();
-  const QualityNumbers q = quality_numbers<D>(session_.mesh(), session_.rho(), session_.box(), frame_);
+  const Domain2 input_rings = session_.rings();  // the sharp corners' reach: the rings before their splits
+  const QualityNumbers q = quality_numbers<D>(session_.mesh(), session_.rho(), session_.box(), frame_, &input_rings);
   json r;
   r["input_points"] = session_.input_count();
   r["shore_splits"] = session_.split_count();
@@ -425,6 +426,8 @@ json EditSession<D>::stats() const {
   if (q.left_out_at_box_edge) r["left_out_at_box_edge"] = *q.left_out_at_box_edge;
   if (q.shore_segments) {
     r["shore_below_bound"] = q.shore_below_bound;
+    r["below_bound_at_sharp_corners"] = q.below_bound_at_sharp_corners;  // docs/conforming.md
+    r["sharp_corners"] = q.sharp_corners;
     r["shore_splits"] = session_.split_count();
     r["shore_segments"] = *q.shore_segments;
     r["shore_covered"] = *q.shore_covered;

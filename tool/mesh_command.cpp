@@ -98,7 +98,7 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
     write_preview<D>(mesh, staged.preview, args, &frame);
   }
   progress.stage("measuring quality");
-  QualityNumbers quality = quality_numbers<D>(mesh, opt.engine.rho, result.box, frame);
+  QualityNumbers quality = quality_numbers<D>(mesh, opt.engine.rho, result.box, frame, &set.domain);
   quality.shore_splits = in.split_count;
   batch.commit();
   progress.finish();

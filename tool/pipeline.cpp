@@ -240,7 +240,8 @@ void write_preview(const Mesh<D>& mesh, const std::filesystem::path& path, const
 }
 
 template <int D>
-QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransform<D>& box, const UserFrame& frame) {
+QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransform<D>& box, const UserFrame& frame,
+                               const Domain2* input_rings) {
   const QualityReport<D> r = mesh.quality(rho, box);
   QualityNumbers q;
   q.elements = r.elements;
@@ -293,10 +294,14 @@ QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransfo
           hides = std::hypot(bg::get<0>(*it) - o[0], bg::get<1>(*it) - o[1]) < radius * (1 - 1e-9);
         ++(hides ? q.shore_below_bound : q.interior_below_bound);
       }
-      // Each ring vertex's water angle: the sum of its triangles' angles there.
-      std::unordered_map<Point2, double, PointKey> ring_angle;
-      for (const Ring& ring : mesh.domain().rings)
-        for (const Point2& p : ring.points) ring_angle.emplace(p, 0.0);
+      // Those near an input corner sharper than 60 degrees (core: sharp_corners, docs/conforming.md "Where
+      // the bound may fail"), from the input's segments: the refined rings' would give the splits' pieces.
+      const std::vector<SharpCorner> corners = sharp_corners(input_rings ? *input_rings : mesh.domain());
+      q.sharp_corners = corners.size();
+      // A corner whose water lies outside it (a spike of land): its apex's water angle, the sum of the
+      // mesh's angles there, is reflex.
+      std::unordered_map<Point2, double, PointKey> apex_angle;
+      for (const SharpCorner& c : corners) apex_angle.emplace(c.apex, 0.0);
       auto angles_of = [](const ElementCorners<2>& c) {
         std::array<double, 3> a{};
         for (std::size_t i = 0; i < 3; ++i) {
@@ -306,21 +311,16 @@ QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransfo
         }
         return a;
       };
-      for (const auto& e : elements) {
-        const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
-        const auto a = angles_of(c);
-        for (std::size_t i = 0; i < 3; ++i)
-          if (const auto it = ring_angle.find(c[i]); it != ring_angle.end()) it->second += a[i];
-      }
-      const double sixty = std::numbers::pi / 3 * (1 - 1e-9);
-      auto sharp = [&](const Point2& p) {
-        const auto it = ring_angle.find(p);
-        return it != ring_angle.end() && it->second > 0 && it->second < sixty;
-      };
-      for (const auto& [p, angle] : ring_angle) q.sharp_corners += angle > 0 && angle < sixty;
+      if (!apex_angle.empty())
+        for (const auto& e : elements) {
+          const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
+          for (std::size_t i = 0; i < 3; ++i)
+            if (const auto it = apex_angle.find(c[i]); it != apex_angle.end()) it->second += angles_of(c)[i];
+        }
+      for (const SharpCorner& c : corners) q.sharp_corners_of_land += apex_angle[c.apex] > std::numbers::pi;
       double worst_elsewhere = std::numeric_limits<double>::infinity();
       for (const auto& [c, shape] : below) {
-        if (sharp(c[0]) || sharp(c[1]) || sharp(c[2])) {
+        if (sharp_corner_at(c, corners)) {
           ++q.below_bound_at_sharp_corners;
         } else if (const auto a = angles_of(c); *std::min_element(a.begin(), a.end()) < worst_elsewhere) {
           worst_elsewhere = *std::min_element(a.begin(), a.end());
@@ -373,9 +373,9 @@ std::string quality_text(const QualityNumbers& q, int dimension) {
           << q.interior_below_bound;
     if (const std::size_t below = q.shore_below_bound + q.interior_below_bound) {
       out << "\n  below the bound: " << below << " triangles, " << q.below_bound_at_sharp_corners
-          << " of them at an input corner sharper than 60 deg (" << q.sharp_corners
-          << " such corners: the exception every quality mesher documents), " << below - q.below_bound_at_sharp_corners
-          << " elsewhere";
+          << " of them at an input corner sharper than 60 deg (within the shorter of its two segments, the water "
+          << "on either side: " << q.sharp_corners << " such corners, " << q.sharp_corners_of_land
+          << " of them spikes of land), " << below - q.below_bound_at_sharp_corners << " elsewhere";
       if (!q.worst_elsewhere_at.empty()) out << " (the worst near " << q.worst_elsewhere_at << ")";
     }
     out << "\n";
@@ -418,7 +418,9 @@ template void export_mesh_file<3>(const Mesh<3>&, const std::filesystem::path&, 
                                   const UserFrame&, std::span<const Point<3>>);
 template void write_preview<2>(const Mesh<2>&, const std::filesystem::path&, const PreviewArgs&, const UserFrame*);
 template void write_preview<3>(const Mesh<3>&, const std::filesystem::path&, const PreviewArgs&, const UserFrame*);
-template QualityNumbers quality_numbers<2>(const Mesh<2>&, double, const BoxTransform<2>&, const UserFrame&);
-template QualityNumbers quality_numbers<3>(const Mesh<3>&, double, const BoxTransform<3>&, const UserFrame&);
+template QualityNumbers quality_numbers<2>(const Mesh<2>&, double, const BoxTransform<2>&, const UserFrame&,
+                                           const Domain2*);
+template QualityNumbers quality_numbers<3>(const Mesh<3>&, double, const BoxTransform<3>&, const UserFrame&,
+                                           const Domain2*);
 
 }  // namespace shoremesh::tool

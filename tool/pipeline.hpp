@@ -113,17 +113,21 @@ struct QualityNumbers {
   // Elements below the bound that the shore's constraints made (not Delaunay: a point hidden behind the
   // shore lies in their circumcircle), and the others (none, unless the box cuts the water).
   std::size_t shore_below_bound = 0, interior_below_bound = 0;
-  // Where the elements below the bound are (2D with rings): those with a corner at a ring vertex whose
-  // water angle (the sum of its triangles' angles there) is below 60 degrees, the exception of every
-  // quality mesher, and how many such corners there are; the others, and where the worst of them is.
-  std::size_t below_bound_at_sharp_corners = 0, sharp_corners = 0;
+  // Where the elements below the bound are (2D with rings): those whose centroid is nearer to an input
+  // corner sharper than 60 degrees than the shorter of its two segments (SharpCorner), the exception of
+  // every quality mesher; how many such corners there are and how many have their water outside (spikes
+  // of land); the others, and where the worst of them is.
+  std::size_t below_bound_at_sharp_corners = 0, sharp_corners = 0, sharp_corners_of_land = 0;
   std::string worst_elsewhere_at;
   double shore_worst_depth = 0;
   std::string shore_worst_depth_text;  // in the user's units
 };
 
+// `input_rings`: the rings as given (before the shore's splits), for the sharp corners' reach; the mesh's
+// refined rings otherwise.
 template <int D>
-QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransform<D>& box, const UserFrame& frame);
+QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransform<D>& box, const UserFrame& frame,
+                               const Domain2* input_rings = nullptr);
 
 // A few lines for a person, the first "quality: ..." one stable for scripts.
 std::string quality_text(const QualityNumbers& q, int dimension);

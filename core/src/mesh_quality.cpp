@@ -5,8 +5,11 @@
 #include <limits>
 #include <numbers>
 #include <sstream>
+#include <tuple>
+#include <unordered_map>
 
 #include "shoremesh/mesh_coverage.hpp"
+#include "shoremesh/shore_refinement.hpp"
 
 namespace shoremesh {
 
@@ -187,6 +190,45 @@ std::string QualityReport<D>::summary() const {
         << (w.covered ? "" : " (circumcentre outside the box: not covered by the bound)") << "\n";
   }
   return out.str();
+}
+
+std::vector<SharpCorner> sharp_corners(const Domain2& rings) {
+  // Each vertex's other ends, over every ring and line through it (a shared vertex is one point).
+  std::unordered_map<Point2, std::vector<Point2>, PointHash<2>> ends;
+  for (const Ring& ring : rings.rings)
+    for (std::size_t k = 0; k < ring.segment_count(); ++k) {
+      const Point2& p = ring.points[k];
+      const Point2& q = ring.points[(k + 1) % ring.points.size()];
+      if (p == q) continue;
+      ends[p].push_back(q);
+      ends[q].push_back(p);
+    }
+  std::vector<SharpCorner> out;
+  for (auto& [apex, others] : ends) {
+    std::sort(others.begin(), others.end());
+    others.erase(std::unique(others.begin(), others.end()), others.end());
+    for (std::size_t i = 0; i < others.size(); ++i)
+      for (std::size_t j = i + 1; j < others.size(); ++j) {
+        const Point2 &a = others[i], &b = others[j];
+        if (!corner_sharper_than_60(apex, a, b)) continue;
+        const Point2 u = sub<2>(a, apex), w = sub<2>(b, apex);
+        const double la = std::sqrt(dot<2>(u, u)), lb = std::sqrt(dot<2>(w, w));
+        out.push_back({apex, a, b, angle_between(dot<2>(u, w) / (la * lb)), std::min(la, lb)});
+      }
+  }
+  std::sort(out.begin(), out.end(), [](const SharpCorner& x, const SharpCorner& y) {
+    return std::tie(x.apex, x.a, x.b) < std::tie(y.apex, y.a, y.b);
+  });
+  return out;
+}
+
+std::optional<std::size_t> sharp_corner_at(const ElementCorners<2>& t, std::span<const SharpCorner> corners) {
+  const Point2 c{(t[0][0] + t[1][0] + t[2][0]) / 3, (t[0][1] + t[1][1] + t[2][1]) / 3};
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    const Point2 d = sub<2>(c, corners[i].apex);
+    if (dot<2>(d, d) < corners[i].reach * corners[i].reach) return i;
+  }
+  return std::nullopt;
 }
 
 template ElementShape<2> element_shape<2>(const ElementCorners<2>&);

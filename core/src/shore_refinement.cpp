@@ -430,6 +430,11 @@ std::vector<Point2> ShoreRefinement::split_points() const {
 
 std::size_t ShoreRefinement::split_count() const { return impl_->split_owner.size(); }
 
+bool corner_sharper_than_60(const Point2& apex, const Point2& a, const Point2& b) {
+  engine::PredicateCounters counters;
+  return sharper_than_60(counters, apex, a, b);
+}
+
 RingStretch apply_stretch(Domain2& rings, const RingStretch& s) {
   if (s.ring >= rings.rings.size()) rings.rings.resize(s.ring + 1);
   Ring& ring = rings.rings[s.ring];

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "shoremesh/box_transform.hpp"
+#include "shoremesh/domain.hpp"
 #include "shoremesh/mesh_element.hpp"
 #include "shoremesh/point.hpp"
 
@@ -67,5 +68,22 @@ struct QualityReport {
 template <int D>
 QualityReport<D> quality_report(std::span<const Point<D>> points, std::span<const Element<D>> elements, double rho,
                                 std::optional<BoxTransform<D>> box = {}, std::size_t worst_count = 10);
+
+// Where triangles may fall below the bound (docs/conforming.md, "Where the bound may fail"): two input
+// segments (ring or line edges, as given to the shore's splits) that meet at a vertex at less than 60
+// degrees, whichever side of them the water is. Inside the shorter of the two the splits ignore the other
+// (halving there would never end), so a triangle there may be skinny; its reach is that length.
+struct SharpCorner {
+  Point2 apex, a, b;  // the segments apex-a and apex-b
+  double angle = 0;   // degrees, between them
+  double reach = 0;   // min(|apex a|, |apex b|)
+};
+
+// Every pair of input segments through a vertex that meet at less than 60 degrees (exact test), sorted.
+std::vector<SharpCorner> sharp_corners(const Domain2& rings);
+
+// The first of `corners` (sorted as sharp_corners gives them) whose apex is nearer than its reach to the
+// triangle's centroid; none when the triangle is not at a sharp corner.
+std::optional<std::size_t> sharp_corner_at(const ElementCorners<2>& triangle, std::span<const SharpCorner> corners);
 
 }  // namespace shoremesh

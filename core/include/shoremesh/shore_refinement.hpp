@@ -72,6 +72,10 @@ struct RingStretch {
   RingRole role = RingRole::Shore;
 };
 
+// Whether the segments apex-a and apex-b meet at less than 60 degrees (exact): the corners the rule
+// exempts from encroachment and grading, and where the summary allows triangles below the bound.
+bool corner_sharper_than_60(const Point2& apex, const Point2& a, const Point2& b);
+
 // Applies `s` to `rings` in place (a vector's erase and insert: no pass over other rings) and returns
 // the edit that undoes it.
 RingStretch apply_stretch(Domain2& rings, const RingStretch& s);
