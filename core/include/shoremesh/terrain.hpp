@@ -74,6 +74,14 @@ struct TerrainOptions {
   // the triangles of 0.5, docs/terrain.md "Where the Steiner points come from"). A function of the TIN
   // either way; the round's overall worst sample is always picked. Must be finite and >= 0.
   double pick_spacing = 0.5;
+  // Block picks (docs/terrain.md "Block picks"): the raster cut into fixed blocks of block_cells cells;
+  // each block edge approximated on its own (Douglas-Peucker) and each block by Garland-Heckbert greedy
+  // insertion on its own Delaunay triangulation, both within block_fraction * max_error. Their union is
+  // the input of the first round, a function of the grid in which a patch changes only the blocks it
+  // touches; the greedy rounds then only correct what the engine's quality TIN leaves over the bound.
+  // 0: none (rounds from the corners alone: every pick replayed on a patch). Ignored with a domain.
+  int block_cells = 16;
+  double block_fraction = 1;  // in (0, 1]
 };
 
 // The error of the TIN measured sample by sample (valid samples only).
@@ -87,6 +95,7 @@ struct TerrainError {
 // What a build or a patch did.
 struct TerrainUpdate {
   std::size_t seeds_added = 0, seeds_removed = 0;   // quadtree seeds
+  std::size_t block_picks_added = 0, block_picks_removed = 0;
   std::size_t picks_added = 0, picks_removed = 0;   // greedy picks (a patch takes back all, then replays)
   std::size_t boundary_splits = 0;                  // midpoints of encroached boundary edges (in the rounds)
   std::size_t rounds = 0;                           // greedy rounds
@@ -133,7 +142,8 @@ class TerrainSession {
   // samples outside every triangle (outside the domain) are skipped; without one they count as infinite.
   TerrainError error() const;
   std::size_t seed_count() const;
-  std::size_t pick_count() const;
+  std::size_t pick_count() const;        // the greedy (correction) rounds' picks
+  std::size_t block_pick_count() const;  // the block picks (corners of blocks included)
   std::size_t input_count() const;     // the engine's input points (samples, the rectangle's splits)
   std::size_t steiner_count() const;   // the engine's Steiner points (the whole box, not only the TIN's)
   std::size_t rounds() const;          // greedy rounds of the last build or patch
