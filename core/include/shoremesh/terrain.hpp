@@ -4,17 +4,20 @@
 // engine's quality bound in the plane, and which follows edits of the grid (a window of new heights)
 // through the dynamic engine, ending equal to a fresh run on the edited grid.
 //
-// The input points are a canonical function of the grid, in two steps:
-//  1. Seeds: the corners of the leaves of a quadtree over the samples, a node being split while the
-//     samples of its window (the node grown by half its side) lie farther than seed_fraction * max_error
-//     from their least-squares plane. A node's decision reads only its window: an edit re-decides the
-//     nodes whose window it meets.
-//  2. Greedy rounds (Garland-Heckbert, in canonical batches): while a triangle of the TIN has a sample
-//     farther than max_error from it, the sample of largest error of every such triangle (ties: the
-//     smallest row-major index) becomes an input point, all of one round together, and the engine
-//     updates the well-spaced set (PropagateWS). A round is a function of the TIN, the TIN of the points.
-//     The same rounds halve every boundary edge whose triangle's third corner lies in its diametral circle
-//     (Ruppert's rule): then every triangle is Delaunay, and the angle bound covers it.
+// The input points are a canonical function of the grid, in three steps:
+//  1. Seeds (off by default): the corners of the leaves of a quadtree over the samples, a node being split
+//     while the samples of its window (the node grown by half its side) lie farther than
+//     seed_fraction * max_error from their least-squares plane. A node's decision reads only its window: an
+//     edit re-decides the nodes whose window it meets.
+//  2. Block picks: fixed blocks of block_cells cells, each edge approximated on its own, each block by a
+//     Garland-Heckbert greedy TIN of its own; an edit re-decides the blocks it meets.
+//  3. Greedy rounds (in canonical batches): while a triangle of the TIN has a sample farther than
+//     max_error from it, the sample of largest error of such triangles (ties: the smallest row-major
+//     index; thinned to local maxima, pick_spacing) becomes an input point, all of one round together.
+//     A round is a function of the TIN, the TIN of the points. The same rounds halve every boundary edge
+//     whose triangle's third corner lies in its diametral circle (Ruppert's rule): then every triangle is
+//     Delaunay, and the angle bound covers it. On the rectangle every round's TIN is kept in an engine and
+//     a mesh of its own (a level), so that an edit updates each round where its TIN changed.
 // The TIN is the constrained Delaunay triangulation of the engine's output inside the grid's rectangle
 // (whose sides are canonically split, shore_refinement.hpp), co-circular ties broken by a symbolic
 // perturbation so that it is one triangulation whatever the history. Nodes take the grid's heights:
@@ -55,9 +58,9 @@ struct HeightGrid {
 struct TerrainOptions {
   double max_error = 1;                  // vertical, in the grid's height units; > 0
   Parameters<2> engine;                  // rho: angles >= arcsin(1 / (2 rho)), 20.7 degrees by default
-  // Seeds' plane-fit tolerance over max_error; 0: no seeds, the greedy rounds alone (the fewest triangles).
-  // Seeds make a patch local (they are re-decided only near it, the picks are replayed), for more
-  // triangles: on the Salish Sea DEM 0.5 gives 2 to 2.6 times the triangles of 0 (bench/RESULTS.md).
+  // Seeds' plane-fit tolerance over max_error; 0: no seeds (the fewest triangles). Seeds cost triangles:
+  // on the Salish Sea DEM 0.5 gives 2 to 2.6 times the triangles of 0 (bench/RESULTS.md); patches are
+  // local without them (block picks and levels).
   double seed_fraction = 0;
   // Land and water in one TIN (`mesh --dem --land-up-to`, docs/terrain.md): instead of the grid's rectangle
   // the TIN covers the water of these rings (even-odd rule), their lines (the shoreline) chains of edges
@@ -96,9 +99,9 @@ struct TerrainError {
 struct TerrainUpdate {
   std::size_t seeds_added = 0, seeds_removed = 0;   // quadtree seeds
   std::size_t block_picks_added = 0, block_picks_removed = 0;
-  std::size_t picks_added = 0, picks_removed = 0;   // greedy picks (a patch takes back all, then replays)
+  std::size_t picks_added = 0, picks_removed = 0;   // greedy round picks, over all levels
   std::size_t boundary_splits = 0;                  // midpoints of encroached boundary edges (in the rounds)
-  std::size_t rounds = 0;                           // greedy rounds
+  std::size_t rounds = 0;                           // greedy rounds (levels below the first)
   std::size_t steiner_added = 0, steiner_removed = 0;
   std::size_t triangles_measured = 0;               // triangles whose error was computed
   std::size_t operations = 0;                       // engine operations undone + executed
@@ -144,9 +147,9 @@ class TerrainSession {
   std::size_t seed_count() const;
   std::size_t pick_count() const;        // the greedy (correction) rounds' picks
   std::size_t block_pick_count() const;  // the block picks (corners of blocks included)
-  std::size_t input_count() const;     // the engine's input points (samples, the rectangle's splits)
+  std::size_t input_count() const;     // the (deepest level's) engine's input points (samples, splits)
   std::size_t steiner_count() const;   // the engine's Steiner points (the whole box, not only the TIN's)
-  std::size_t rounds() const;          // greedy rounds of the last build or patch
+  std::size_t rounds() const;          // greedy rounds (levels below the first; inside rings: of the last build or patch)
 
   // Recomputes the canonical TIN from the engine's mesh and the seeds from the grid, and throws
   // std::logic_error when either differs from what the session holds (tests).
