@@ -542,7 +542,7 @@ int main(int argc, char** argv) {
         block_changes.push_back(double(u.block_picks_added + u.block_picks_removed));
       }
       std::printf("patches E=%g: %d of %d x %d samples: median %.1f ms, p90 %.1f ms (seeds %.1f, engine %.1f, mesh %.1f, "
-                  "error %.1f; correction picks replayed: median %.0f, max %.0f; block picks changed: median %.0f); then the "
+                  "error %.1f; correction picks taken back: median %.0f, max %.0f; block picks changed: median %.0f); then the "
                   "canonical TIN lists for an export: median %.1f ms\n",
                   e, patches, side, side, median(pt), percentile(pt, 0.9), median(seeds), median(engine), median(mesh),
                   median(error), median(picks), picks.empty() ? 0.0 : *std::max_element(picks.begin(), picks.end()),

@@ -121,7 +121,7 @@ struct TerrainSession::Impl {
   HeightGrid grid;
   TerrainOptions options;
   terrain::Seeds seeds;
-  terrain::BlockPicks blocks;     // the block picks: canonical, local (docs/terrain.md "Block picks")
+  terrain::BlockPicks blocks;     // canonical and local (docs/terrain.md "One setting for both targets")
   std::set<std::size_t> samples;  // the samples that are input points: the corners, seeds, block picks, picks
   std::set<std::size_t> picks;    // the correction rounds' picks
   // Midpoints of boundary edges that a TIN vertex encroached (inside the edge's diametral circle), made
@@ -631,7 +631,7 @@ struct TerrainSession::Impl {
     u.rounds = rounds;
   }
 
-  // ---- Layered rounds (the rectangle's TIN; docs/terrain.md "Rounds in layers") ----------------------
+  // ---- Rounds in levels (the rectangle's TIN; docs/terrain.md "One setting for both targets") -------
   // Level 0 (this Impl) holds the round-0 input (corners, seeds, block picks); level k + 1 (deeper[k]) holds
   // level k's input and level k's round output, each level in an engine and a mesh of its own. A level's
   // TIN is therefore the TIN of round k of a fresh run, and a patch brings every level up to date through

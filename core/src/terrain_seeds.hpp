@@ -64,9 +64,9 @@ class Seeds {
   std::vector<double> sums_[9];
 };
 
-// The block picks of a terrain TIN (terrain.hpp, step 1, docs/terrain.md "Block picks"): the raster is cut
-// into fixed blocks of `block` cells (block (i, j) covers the samples [i B, (i + 1) B] x [j B, (j + 1) B],
-// clipped to the grid; neighbours share their edge samples). Every block edge is approximated on its own by
+// The block picks of a terrain TIN (terrain.hpp step 2; docs/terrain.md "One setting for both targets"):
+// the raster is cut into fixed blocks of `block` cells (block (i, j) covers the samples
+// [i B, (i + 1) B] x [j B, (j + 1) B], clipped to the grid; neighbours share their edge samples). Every block edge is approximated on its own by
 // Douglas-Peucker within `tolerance` (the profile of its samples, its ends the block corners); every block
 // then runs Garland-Heckbert greedy insertion (the worst interior sample first, ties the smallest row-major
 // index) on a Delaunay triangulation of its own corners, edge picks and picks, until every interior sample
