@@ -647,6 +647,55 @@ struct TerrainSession::Impl {
   Impl& level(std::size_t k) { return k == 0 ? *this : *deeper[k - 1]; }
   const Impl& level(std::size_t k) const { return k == 0 ? *this : *deeper[k - 1]; }
 
+  // A build does not make the levels: it runs the rounds in one engine (a walker, which ends as the deepest
+  // level, the session's TIN) and records every round's output; the first patch builds levels 0 to K - 1
+  // from those (each afresh, StableWS on its input), before it changes any height. Until then `deeper`
+  // holds the walker alone.
+  bool levels_ready = true;
+  std::vector<std::pair<std::vector<std::size_t>, std::vector<Point2>>> recorded;
+
+  void walk_rounds(TerrainUpdate& u) {
+    auto walker = std::make_unique<Impl>();
+    walker->grid = grid;
+    walker->options = options;
+    walker->box = box;
+    walker->samples = samples;
+    walker->build_engine(u);
+    recorded.clear();
+    for (;;) {
+      std::vector<std::size_t> round;
+      std::vector<Point2> splits;
+      walker->round_output(round, splits, u);
+      if (round.empty() && splits.empty()) break;
+      walker->picks.insert(round.begin(), round.end());
+      u.picks_added += round.size();
+      u.boundary_splits += splits.size();
+      walker->change_samples(round, {}, u, splits);
+      recorded.emplace_back(std::move(round), std::move(splits));
+    }
+    deeper.clear();
+    deeper.push_back(std::move(walker));
+    levels_ready = false;
+    rounds = recorded.size();
+    u.rounds = rounds;
+  }
+
+  void materialize(TerrainUpdate& u) {
+    if (levels_ready) return;
+    std::unique_ptr<Impl> walker = std::move(deeper.back());
+    deeper.clear();
+    build_engine(u);  // level 0: the round-0 input
+    for (std::size_t k = 0; k < recorded.size(); ++k) {
+      Impl& l = last();
+      l.out_picks = recorded[k].first;
+      l.out_splits = recorded[k].second;
+      if (k + 1 < recorded.size()) push_level(u);
+    }
+    if (!recorded.empty()) deeper.push_back(std::move(walker));  // level K (no rounds: level 0 is it)
+    recorded.clear();
+    levels_ready = true;
+  }
+
   // A new deepest level: the deepest level's input and its round output, built afresh (StableWS on it).
   void push_level(TerrainUpdate& u) {
     const Impl& from = last();
@@ -823,10 +872,13 @@ TerrainSession::TerrainSession(HeightGrid grid, const TerrainOptions& options) :
   } else {
     m.box = BoxTransform<2>::fit(corner_points);
   }
-  m.build_engine(m.build);
   m.layered = !custom;
-  if (m.layered) m.grow_levels(0, m.build);
-  else m.run_rounds(m.build);
+  if (m.layered) {
+    m.walk_rounds(m.build);
+  } else {
+    m.build_engine(m.build);
+    m.run_rounds(m.build);
+  }
 }
 
 TerrainSession::~TerrainSession() = default;
@@ -874,8 +926,10 @@ TerrainUpdate TerrainSession::Impl::patch(int col, int row, int w, int h, std::s
     for (std::uint8_t v : valid) still_valid += v != 0;
     if (outside + still_valid == 0) throw InputError("the patch would leave the grid without data");
   }
-  if (!valid.empty() && g.valid.empty()) g.valid.assign(g.z.size(), 1);
   TerrainUpdate u;
+  // The rounds' levels, built on the grid before the patch (their input was recorded by the build).
+  if (m.layered) m.materialize(u);
+  if (!valid.empty() && g.valid.empty()) g.valid.assign(g.z.size(), 1);
   const auto t0 = Clock::now();
   for (int r = 0; r < h; ++r)
     for (int c = 0; c < w; ++c) {
@@ -945,6 +999,11 @@ TerrainUpdate TerrainSession::Impl::patch(int col, int row, int w, int h, std::s
   return u;
 }
 
+void TerrainSession::prepare_patches() {
+  TerrainUpdate u;
+  if (impl_->layered) impl_->materialize(u);
+}
+
 const HeightGrid& TerrainSession::grid() const { return impl_->grid; }
 const TerrainOptions& TerrainSession::options() const { return impl_->options; }
 const TerrainUpdate& TerrainSession::build_stats() const { return impl_->build; }
@@ -986,7 +1045,23 @@ TerrainError TerrainSession::error() const {
 
 void TerrainSession::check_valid() const {
   const Impl& top = *impl_;
-  for (std::size_t k = 0; k <= top.deeper.size(); ++k) {
+  if (!top.levels_ready) {
+    // Before the first patch: the walker ran every round; it holds the round-0 input and the recorded
+    // round outputs, and its own round output is empty.
+    const Impl& walker = *top.deeper.back();
+    walker.check_level();
+    std::vector<std::size_t> picks;
+    std::vector<Point2> splits;
+    TerrainUpdate u;
+    const_cast<Impl&>(walker).round_output(picks, splits, u);
+    if (!picks.empty() || !splits.empty()) throw std::logic_error("the TIN is over the bound");
+    std::set<std::size_t> samples(top.samples);
+    std::set<Point2> all_splits;
+    for (const auto& [r, sp] : top.recorded) samples.insert(r.begin(), r.end()), all_splits.insert(sp.begin(), sp.end());
+    if (samples != walker.samples || all_splits != walker.boundary_splits)
+      throw std::logic_error("the TIN's input is not the round-0 input with the recorded rounds");
+  }
+  for (std::size_t k = 0; top.levels_ready && k <= top.deeper.size(); ++k) {
     const Impl& m = top.level(k);
     m.check_level();
     // Level k + 1 holds level k's input and its round output (recomputed here from level k's TIN), and the

@@ -132,6 +132,10 @@ class TerrainSession {
   TerrainUpdate patch(int col, int row, int w, int h, std::span<const float> z, std::span<const std::uint8_t> valid,
                       const Domain2& domain);
 
+  // Builds what patches need that a build does not make (the rounds' levels, docs/terrain.md "One
+  // setting for both targets"); the first patch does it otherwise (about a build's time). Idempotent.
+  void prepare_patches();
+
   const HeightGrid& grid() const;
   const TerrainOptions& options() const;
   const TerrainUpdate& build_stats() const;
