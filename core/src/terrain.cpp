@@ -121,8 +121,9 @@ struct TerrainSession::Impl {
   HeightGrid grid;
   TerrainOptions options;
   terrain::Seeds seeds;
-  std::set<std::size_t> samples;  // the samples that are input points: the corners, seeds and picks
-  std::set<std::size_t> picks;
+  terrain::BlockPicks blocks;     // canonical and local (docs/terrain.md "One setting for both targets")
+  std::set<std::size_t> samples;  // the samples that are input points: the corners, seeds, block picks, picks
+  std::set<std::size_t> picks;    // the correction rounds' picks
   // Midpoints of boundary edges that a TIN vertex encroached (inside the edge's diametral circle), made
   // in the rounds like the picks: ring points that are not samples.
   std::set<Point2> boundary_splits;
@@ -541,6 +542,8 @@ struct TerrainSession::Impl {
 
   TerrainUpdate patch(int col, int row, int w, int h, std::span<const float> z, std::span<const std::uint8_t> valid,
                       const Domain2* domain);
+  // The mesh equals a fresh one, the triangle cache fresh measurements (std::logic_error otherwise).
+  void check_level() const;
 
   // Inside rings: midpoints of the constrained edges that a Steiner point encroaches from either side (in
   // the edge's diametral circle). measure_triangle sees only the apex of the kept triangle on an edge; a
@@ -589,26 +592,35 @@ struct TerrainSession::Impl {
     return out;
   }
 
+  // The round's output on the current TIN: the picked samples (sorted) and the midpoints of encroached
+  // boundary edges (sorted) that are not samples. A function of the TIN and its points.
+  void round_output(std::vector<std::size_t>& round, std::vector<Point2>& splits, TerrainUpdate& u) {
+    splits = encroached_from_anywhere();
+    const auto t0 = Clock::now();
+    round = picks_of_round(splits);
+    u.error_ms += ms_since(t0);
+    // A midpoint at a sample (to rounding: it halves an edge between samples) is that sample (on the
+    // rectangle, whose ring takes its input samples; inside rings a split stays a ring point).
+    std::erase_if(splits, [&](const Point2& p) {
+      if (custom()) return false;
+      const Point2 g = grid.to_grid(p);
+      const double c = std::round(g[0]), r = std::round(g[1]);
+      if (std::abs(g[0] - c) > 1e-6 || std::abs(g[1] - r) > 1e-6) return false;
+      round.push_back(grid.index(static_cast<int>(c), static_cast<int>(r)));
+      return true;
+    });
+    std::sort(round.begin(), round.end());
+    round.erase(std::unique(round.begin(), round.end()), round.end());
+    std::erase_if(round, [&](std::size_t s) { return samples.count(s) != 0; });
+  }
+
+  // Inside rings: every round goes into this one engine (a patch takes all picks back and replays them).
   void run_rounds(TerrainUpdate& u) {
     rounds = 0;
     for (;;) {
-      std::vector<Point2> splits = encroached_from_anywhere();
-      const auto t0 = Clock::now();
-      std::vector<std::size_t> round = picks_of_round(splits);
-      u.error_ms += ms_since(t0);
-      // A midpoint at a sample (to rounding: it halves an edge between samples) is that sample (on the
-      // rectangle, whose ring takes its input samples; inside rings a split stays a ring point).
-      std::erase_if(splits, [&](const Point2& p) {
-        if (custom()) return false;
-        const Point2 g = grid.to_grid(p);
-        const double c = std::round(g[0]), r = std::round(g[1]);
-        if (std::abs(g[0] - c) > 1e-6 || std::abs(g[1] - r) > 1e-6) return false;
-        round.push_back(grid.index(static_cast<int>(c), static_cast<int>(r)));
-        return true;
-      });
-      std::sort(round.begin(), round.end());
-      round.erase(std::unique(round.begin(), round.end()), round.end());
-      std::erase_if(round, [&](std::size_t s) { return samples.count(s) != 0; });
+      std::vector<std::size_t> round;
+      std::vector<Point2> splits;
+      round_output(round, splits, u);
       if (round.empty() && splits.empty()) break;
       ++rounds;
       picks.insert(round.begin(), round.end());
@@ -617,6 +629,182 @@ struct TerrainSession::Impl {
       change_samples(round, {}, u, splits);
     }
     u.rounds = rounds;
+  }
+
+  // ---- Rounds in levels (the rectangle's TIN; docs/terrain.md "One setting for both targets") -------
+  // Level 0 (this Impl) holds the round-0 input (corners, seeds, block picks); level k + 1 (deeper[k]) holds
+  // level k's input and level k's round output, each level in an engine and a mesh of its own. A level's
+  // TIN is therefore the TIN of round k of a fresh run, and a patch brings every level up to date through
+  // its own engine: a level's round output is recomputed from its flagged triangles (kept exactly by the
+  // mesh deltas), and only its difference goes to the next level.
+  std::vector<std::unique_ptr<Impl>> deeper;
+  std::vector<std::size_t> out_picks;  // this level's round output
+  std::vector<Point2> out_splits;
+  bool layered = false;
+
+  Impl& last() { return deeper.empty() ? *this : *deeper.back(); }
+  const Impl& last() const { return deeper.empty() ? *this : *deeper.back(); }
+  Impl& level(std::size_t k) { return k == 0 ? *this : *deeper[k - 1]; }
+  const Impl& level(std::size_t k) const { return k == 0 ? *this : *deeper[k - 1]; }
+
+  // A build does not make the levels: it runs the rounds in one engine (a walker, which ends as the deepest
+  // level, the session's TIN) and records every round's output; the first patch builds levels 0 to K - 1
+  // from those (each afresh, StableWS on its input), before it changes any height. Until then `deeper`
+  // holds the walker alone.
+  bool levels_ready = true;
+  std::vector<std::pair<std::vector<std::size_t>, std::vector<Point2>>> recorded;
+
+  void walk_rounds(TerrainUpdate& u) {
+    auto walker = std::make_unique<Impl>();
+    walker->grid = grid;
+    walker->options = options;
+    walker->box = box;
+    walker->samples = samples;
+    walker->build_engine(u);
+    recorded.clear();
+    for (;;) {
+      std::vector<std::size_t> round;
+      std::vector<Point2> splits;
+      walker->round_output(round, splits, u);
+      if (round.empty() && splits.empty()) break;
+      walker->picks.insert(round.begin(), round.end());
+      u.picks_added += round.size();
+      u.boundary_splits += splits.size();
+      walker->change_samples(round, {}, u, splits);
+      recorded.emplace_back(std::move(round), std::move(splits));
+    }
+    deeper.clear();
+    deeper.push_back(std::move(walker));
+    levels_ready = false;
+    rounds = recorded.size();
+    u.rounds = rounds;
+  }
+
+  void materialize(TerrainUpdate& u) {
+    if (levels_ready) return;
+    std::unique_ptr<Impl> walker = std::move(deeper.back());
+    deeper.clear();
+    build_engine(u);  // level 0: the round-0 input
+    for (std::size_t k = 0; k < recorded.size(); ++k) {
+      Impl& l = last();
+      l.out_picks = recorded[k].first;
+      l.out_splits = recorded[k].second;
+      if (k + 1 < recorded.size()) push_level(u);
+    }
+    if (!recorded.empty()) deeper.push_back(std::move(walker));  // level K (no rounds: level 0 is it)
+    recorded.clear();
+    levels_ready = true;
+  }
+
+  // A new deepest level: the deepest level's input and its round output, built afresh (StableWS on it).
+  void push_level(TerrainUpdate& u) {
+    const Impl& from = last();
+    auto next = std::make_unique<Impl>();
+    next->grid = from.grid;
+    next->options = options;
+    next->box = box;
+    next->samples = from.samples;
+    next->samples.insert(from.out_picks.begin(), from.out_picks.end());
+    next->picks = from.picks;
+    next->picks.insert(from.out_picks.begin(), from.out_picks.end());
+    next->boundary_splits = from.boundary_splits;
+    next->boundary_splits.insert(from.out_splits.begin(), from.out_splits.end());
+    u.picks_added += from.out_picks.size();
+    u.boundary_splits += from.out_splits.size();
+    next->build_engine(u);
+    deeper.push_back(std::move(next));
+  }
+
+  // From level `k` on: each level's round output, and a new level while it is not empty.
+  void grow_levels(std::size_t k, TerrainUpdate& u) {
+    for (;; ++k) {
+      Impl& l = level(k);
+      l.round_output(l.out_picks, l.out_splits, u);
+      if (l.out_picks.empty() && l.out_splits.empty()) break;
+      push_level(u);
+    }
+    deeper.resize(k);
+    rounds = deeper.size();
+    u.rounds = rounds;
+  }
+
+  // A patch of a layered session: the window's heights are in level 0's grid and `added` / `removed` are
+  // level 0's input change (already applied there). Every deeper level takes the heights, the same change
+  // of the round-0 input, and the change of the picks and splits of the rounds above it.
+  void patch_levels(int col, int row, int w, int h, const std::vector<std::size_t>& base_added,
+                    const std::vector<std::size_t>& base_removed, TerrainUpdate& u) {
+    std::size_t k = 0;
+    for (; k < deeper.size(); ++k) {
+      Impl& above = level(k);
+      above.round_output(above.out_picks, above.out_splits, u);
+      // Nothing over the bound: the fresh run stops at this level, and the deeper ones go.
+      if (above.out_picks.empty() && above.out_splits.empty()) break;
+      Impl& l = *deeper[k];
+      // The level's heights.
+      for (int r = 0; r < h; ++r)
+        for (int c = 0; c < w; ++c) {
+          const std::size_t i = grid.index(col + c, row + r);
+          l.grid.z[i] = grid.z[i];
+        }
+      l.grid.valid = grid.valid;  // small next to a rebuild; only a patch with a mask changes it
+      // Its new input: the level above's input and output.
+      std::set<std::size_t> picks_after(above.picks);
+      picks_after.insert(above.out_picks.begin(), above.out_picks.end());
+      std::set<Point2> splits_after(above.boundary_splits);
+      splits_after.insert(above.out_splits.begin(), above.out_splits.end());
+      std::vector<std::size_t> touched(base_added);
+      touched.insert(touched.end(), base_removed.begin(), base_removed.end());
+      std::set_symmetric_difference(l.picks.begin(), l.picks.end(), picks_after.begin(), picks_after.end(),
+                                    std::back_inserter(touched));
+      std::sort(touched.begin(), touched.end());
+      touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+      std::vector<std::size_t> added, removed;
+      for (std::size_t s : touched) {
+        const bool want = in_base(s) || picks_after.count(s);
+        const bool have = l.samples.count(s) != 0;
+        if (want && !have) added.push_back(s);
+        if (!want && have) removed.push_back(s);
+      }
+      std::vector<Point2> splits_added, splits_removed;
+      std::set_difference(splits_after.begin(), splits_after.end(), l.boundary_splits.begin(), l.boundary_splits.end(),
+                          std::back_inserter(splits_added));
+      std::set_difference(l.boundary_splits.begin(), l.boundary_splits.end(), splits_after.begin(), splits_after.end(),
+                          std::back_inserter(splits_removed));
+      const std::size_t before = l.picks.size();
+      l.picks = std::move(picks_after);
+      u.picks_added += l.picks.size() > before ? l.picks.size() - before : 0;
+      u.picks_removed += before > l.picks.size() ? before - l.picks.size() : 0;
+      l.remeasure_window(col, row, w, h, u);
+      if (!added.empty() || !removed.empty() || !splits_added.empty() || !splits_removed.empty())
+        l.change_samples(added, removed, u, splits_added, splits_removed);
+    }
+    if (k < deeper.size()) {
+      deeper.resize(k);
+      rounds = deeper.size();
+      u.rounds = rounds;
+      return;
+    }
+    // The deepest level may now have an output: new levels.
+    grow_levels(deeper.size(), u);
+  }
+
+  // Level 0's round-0 input membership (the same at every level).
+  bool in_base(std::size_t s) const {
+    const auto c = corners();
+    return std::find(c.begin(), c.end(), s) != c.end() || seeds.contains(s) || blocks.contains(s);
+  }
+
+  // Triangles with a sample or a node in reach of changed heights are measured again.
+  void remeasure_window(int col, int row, int w, int h, TerrainUpdate& u) {
+    const auto t1 = Clock::now();
+    // Within one cell (a node's bilinear height reads the samples less than a cell away); half a cell more
+    // against rounding: measuring a triangle again is harmless.
+    const Point2 a = grid.position(col, row), b = grid.position(col + w - 1, row + h - 1);
+    const double mx = 1.5 * std::abs(grid.dx), my = 1.5 * std::abs(grid.dy);
+    const Point2 lo{std::min(a[0], b[0]) - mx, std::min(a[1], b[1]) - my}, hi{std::max(a[0], b[0]) + mx, std::max(a[1], b[1]) + my};
+    for (const auto& key : mesh->elements_meeting(lo, hi)) measure_triangle(key, u);
+    tin_stale = true;  // heights changed
+    u.error_ms += ms_since(t1);
   }
 };
 
@@ -629,6 +817,12 @@ TerrainSession::TerrainSession(HeightGrid grid, const TerrainOptions& options) :
   if (std::isnan(options.bound_from)) throw ParameterError("the height the error bound applies from is NaN");
   if (!(options.pick_spacing >= 0 && std::isfinite(options.pick_spacing)))
     throw ParameterError("the picks' spacing must be a finite number >= 0 (got " + readable(options.pick_spacing) + ")");
+  if (options.block_cells < 0 || options.block_cells == 1)
+    throw ParameterError("the picks' blocks must be 0 (none) or at least 2 cells wide (got " +
+                         std::to_string(options.block_cells) + ")");
+  if (!(options.block_fraction > 0 && options.block_fraction <= 1))
+    throw ParameterError("the block picks' fraction of the maximum error must lie in (0, 1] (got " +
+                         readable(options.block_fraction) + ")");
   if (custom)
     if (const auto defect = find_ring_defect(options.domain, true))
       throw InputError("the TIN's rings and lines: " + defect->describe());
@@ -658,7 +852,12 @@ TerrainSession::TerrainSession(HeightGrid grid, const TerrainOptions& options) :
   if (!custom)
     for (std::size_t s : m.corners()) m.samples.insert(s);
   for (std::size_t s : m.seeds.sorted()) m.samples.insert(s);
+  if (!custom) {  // inside rings the samples are loose points of the rings' domain: no blocks
+    m.blocks.build(m.grid, options.block_cells, options.block_fraction * options.max_error, options.bound_from);
+    for (std::size_t s : m.blocks.sorted()) m.samples.insert(s);
+  }
   m.build.seeds_added = m.seeds.size();
+  m.build.block_picks_added = m.blocks.size();
   m.build.seed_ms = ms_since(t0);
   const std::array<std::size_t, 4> corners = m.corners();
   std::vector<Point2> corner_points;
@@ -673,8 +872,13 @@ TerrainSession::TerrainSession(HeightGrid grid, const TerrainOptions& options) :
   } else {
     m.box = BoxTransform<2>::fit(corner_points);
   }
-  m.build_engine(m.build);
-  m.run_rounds(m.build);
+  m.layered = !custom;
+  if (m.layered) {
+    m.walk_rounds(m.build);
+  } else {
+    m.build_engine(m.build);
+    m.run_rounds(m.build);
+  }
 }
 
 TerrainSession::~TerrainSession() = default;
@@ -722,8 +926,10 @@ TerrainUpdate TerrainSession::Impl::patch(int col, int row, int w, int h, std::s
     for (std::uint8_t v : valid) still_valid += v != 0;
     if (outside + still_valid == 0) throw InputError("the patch would leave the grid without data");
   }
-  if (!valid.empty() && g.valid.empty()) g.valid.assign(g.z.size(), 1);
   TerrainUpdate u;
+  // The rounds' levels, built on the grid before the patch (their input was recorded by the build).
+  if (m.layered) m.materialize(u);
+  if (!valid.empty() && g.valid.empty()) g.valid.assign(g.z.size(), 1);
   const auto t0 = Clock::now();
   for (int r = 0; r < h; ++r)
     for (int c = 0; c < w; ++c) {
@@ -732,40 +938,34 @@ TerrainUpdate TerrainSession::Impl::patch(int col, int row, int w, int h, std::s
       if (!g.valid.empty()) g.valid[i] = valid.empty() || valid[k] != 0;  // a patch without a mask is all data
     }
   const terrain::SampleWindow changed{col, row, col + w - 1, row + h - 1};
-  std::vector<std::size_t> seeds_added, seeds_removed;
+  std::vector<std::size_t> seeds_added, seeds_removed, blocks_added, blocks_removed;
   m.seeds.update(g, changed, seeds_added, seeds_removed);
+  m.blocks.update(g, changed, blocks_added, blocks_removed);
   u.seeds_added = seeds_added.size();
   u.seeds_removed = seeds_removed.size();
+  u.block_picks_added = blocks_added.size();
+  u.block_picks_removed = blocks_removed.size();
   u.seed_ms = ms_since(t0);
-  // The greedy rounds start again from the seeds: every pick goes (a pick that is now a seed stays).
-  // The samples go from `samples` to samples - picks - seeds_removed + corners + seeds_added, computed
-  // from the change alone (not a copy of every sample).
+  // The correction rounds start again from the round-0 input (corners, seeds, block picks): every
+  // correction pick goes (one that is now a seed or a block pick stays). The samples go from `samples` to
+  // the new round-0 input, computed from the change alone (not a copy of every sample).
   std::set<std::size_t> corner_samples;  // inside rings, the grid's corners are no inputs
   if (!m.custom())
     for (std::size_t s : m.corners()) corner_samples.insert(s);
-  const std::set<std::size_t> staying(seeds_added.begin(), seeds_added.end());
-  std::set<std::size_t> leaving(m.picks.begin(), m.picks.end());
+  auto in_base = [&](std::size_t s) { return corner_samples.count(s) || m.seeds.contains(s) || m.blocks.contains(s); };
+  std::set<std::size_t> leaving(m.picks.begin(), m.picks.end()), coming(corner_samples);
   leaving.insert(seeds_removed.begin(), seeds_removed.end());
+  leaving.insert(blocks_removed.begin(), blocks_removed.end());
+  coming.insert(seeds_added.begin(), seeds_added.end());
+  coming.insert(blocks_added.begin(), blocks_added.end());
   std::vector<std::size_t> added, removed;
   for (std::size_t s : leaving)
-    if (!staying.count(s) && !corner_samples.count(s)) removed.push_back(s);
-  for (const std::set<std::size_t>& from : {staying, corner_samples})
-    for (std::size_t s : from)
-      if (!m.samples.count(s)) added.push_back(s);
+    if (!in_base(s) && m.samples.count(s)) removed.push_back(s);
+  for (std::size_t s : coming)
+    if (in_base(s) && !m.samples.count(s)) added.push_back(s);
   u.picks_removed = m.picks.size();
   m.picks.clear();
-  // Triangles with a sample or a node in reach of the changed heights are measured again.
-  {
-    const auto t1 = Clock::now();
-    // Within one cell (a node's bilinear height reads the samples less than a cell away); half a cell more
-    // against rounding: measuring a triangle again is harmless.
-    const Point2 a = g.position(changed.c0, changed.r0), b = g.position(changed.c1, changed.r1);
-    const double mx = 1.5 * std::abs(g.dx), my = 1.5 * std::abs(g.dy);
-    const Point2 lo{std::min(a[0], b[0]) - mx, std::min(a[1], b[1]) - my}, hi{std::max(a[0], b[0]) + mx, std::max(a[1], b[1]) + my};
-    for (const auto& key : m.mesh->elements_meeting(lo, hi)) m.measure_triangle(key, u);
-    m.tin_stale = true;  // heights changed
-    u.error_ms += ms_since(t1);
-  }
+  m.remeasure_window(col, row, w, h, u);
   const std::vector<Point2> splits_removed(m.boundary_splits.begin(), m.boundary_splits.end());
   if (domain) {
     // The rings move to the patched grid's contours, in the batch that takes back the picks and splits:
@@ -794,25 +994,32 @@ TerrainUpdate TerrainSession::Impl::patch(int col, int row, int w, int h, std::s
   } else if (!added.empty() || !removed.empty() || !splits_removed.empty()) {
     m.change_samples(added, removed, u, {}, splits_removed);
   }
-  m.run_rounds(u);
+  if (m.layered) m.patch_levels(col, row, w, h, added, removed, u);
+  else m.run_rounds(u);
   return u;
+}
+
+void TerrainSession::prepare_patches() {
+  TerrainUpdate u;
+  if (impl_->layered) impl_->materialize(u);
 }
 
 const HeightGrid& TerrainSession::grid() const { return impl_->grid; }
 const TerrainOptions& TerrainSession::options() const { return impl_->options; }
 const TerrainUpdate& TerrainSession::build_stats() const { return impl_->build; }
-const std::vector<Point2>& TerrainSession::points() const { return impl_->current_tin().points; }
-const std::vector<double>& TerrainSession::heights() const { return impl_->current_tin().heights; }
-const std::vector<PointKind>& TerrainSession::kinds() const { return impl_->current_tin().kinds; }
-const std::vector<Element<2>>& TerrainSession::triangles() const { return impl_->current_tin().triangles; }
+const std::vector<Point2>& TerrainSession::points() const { return impl_->last().current_tin().points; }
+const std::vector<double>& TerrainSession::heights() const { return impl_->last().current_tin().heights; }
+const std::vector<PointKind>& TerrainSession::kinds() const { return impl_->last().current_tin().kinds; }
+const std::vector<Element<2>>& TerrainSession::triangles() const { return impl_->last().current_tin().triangles; }
 std::size_t TerrainSession::seed_count() const { return impl_->seeds.size(); }
-std::size_t TerrainSession::pick_count() const { return impl_->picks.size(); }
-std::size_t TerrainSession::input_count() const { return impl_->ws->input_count(); }
-std::size_t TerrainSession::steiner_count() const { return impl_->ws->steiner_count(); }
+std::size_t TerrainSession::pick_count() const { return impl_->last().picks.size(); }
+std::size_t TerrainSession::block_pick_count() const { return impl_->blocks.size(); }
+std::size_t TerrainSession::input_count() const { return impl_->last().ws->input_count(); }
+std::size_t TerrainSession::steiner_count() const { return impl_->last().ws->steiner_count(); }
 std::size_t TerrainSession::rounds() const { return impl_->rounds; }
 
 TerrainError TerrainSession::error() const {
-  const Impl& m = *impl_;
+  const Impl& m = impl_->last();
   const HeightGrid& g = m.grid;
   std::vector<float> err(g.z.size(), -1.0f);
   std::vector<double> exact(g.z.size(), -1.0);
@@ -837,13 +1044,79 @@ TerrainError TerrainSession::error() const {
 }
 
 void TerrainSession::check_valid() const {
-  const Impl& m = *impl_;
+  const Impl& top = *impl_;
+  if (!top.levels_ready) {
+    // Before the first patch: the walker ran every round; it holds the round-0 input and the recorded
+    // round outputs, and its own round output is empty.
+    const Impl& walker = *top.deeper.back();
+    walker.check_level();
+    std::vector<std::size_t> picks;
+    std::vector<Point2> splits;
+    TerrainUpdate u;
+    const_cast<Impl&>(walker).round_output(picks, splits, u);
+    if (!picks.empty() || !splits.empty()) throw std::logic_error("the TIN is over the bound");
+    std::set<std::size_t> samples(top.samples);
+    std::set<Point2> all_splits;
+    for (const auto& [r, sp] : top.recorded) samples.insert(r.begin(), r.end()), all_splits.insert(sp.begin(), sp.end());
+    if (samples != walker.samples || all_splits != walker.boundary_splits)
+      throw std::logic_error("the TIN's input is not the round-0 input with the recorded rounds");
+  }
+  for (std::size_t k = 0; top.levels_ready && k <= top.deeper.size(); ++k) {
+    const Impl& m = top.level(k);
+    m.check_level();
+    // Level k + 1 holds level k's input and its round output (recomputed here from level k's TIN), and the
+    // deepest level's round is empty: the levels are the rounds of a fresh run.
+    std::vector<std::size_t> picks;
+    std::vector<Point2> splits;
+    TerrainUpdate u;
+    const_cast<Impl&>(m).round_output(picks, splits, u);
+    if (picks != m.out_picks || splits != m.out_splits)
+      throw std::logic_error("level " + std::to_string(k) + "'s round output differs from its TIN's");
+    if (k == top.deeper.size()) {
+      if (!picks.empty() || !splits.empty()) throw std::logic_error("the deepest level's TIN is over the bound");
+      break;
+    }
+    const Impl& next = top.level(k + 1);
+    std::set<std::size_t> samples(m.samples), next_picks(m.picks);
+    samples.insert(picks.begin(), picks.end());
+    next_picks.insert(picks.begin(), picks.end());
+    std::set<Point2> next_splits(m.boundary_splits);
+    next_splits.insert(splits.begin(), splits.end());
+    if (samples != next.samples || next_picks != next.picks || next_splits != next.boundary_splits)
+      throw std::logic_error("level " + std::to_string(k + 1) + "'s input is not level " + std::to_string(k) +
+                             "'s with its round output");
+  }
+  const Impl& m = top;
+  const Tin again = m.last().make_tin();
+  const Tin& tin = m.last().current_tin();
+  if (again.points != tin.points || again.triangles != tin.triangles || again.heights != tin.heights)
+    throw std::logic_error("the session's TIN is not the canonical TIN of its mesh");
+  terrain::Seeds fresh_seeds;
+  fresh_seeds.build(m.grid, m.options.seed_fraction * m.options.max_error);
+  if (fresh_seeds.sorted() != m.seeds.sorted()) throw std::logic_error("the seeds differ from a fresh quadtree");
+  if (!m.custom()) {
+    terrain::BlockPicks fresh_blocks;
+    fresh_blocks.build(m.grid, m.options.block_cells, m.options.block_fraction * m.options.max_error, m.options.bound_from);
+    if (fresh_blocks.sorted() != m.blocks.sorted()) throw std::logic_error("the block picks differ from fresh ones");
+  }
+  // The input samples of the first level (of the only one inside rings) are the corners (the rectangle's
+  // TIN only), the seeds, the block picks and its picks, nothing else.
+  std::set<std::size_t> inputs(m.picks.begin(), m.picks.end());
+  for (std::size_t s : m.seeds.sorted()) inputs.insert(s);
+  for (std::size_t s : m.blocks.sorted()) inputs.insert(s);
+  if (!m.custom())
+    for (std::size_t s : m.corners()) inputs.insert(s);
+  if (inputs != m.samples) throw std::logic_error("the input samples are not the corners, seeds and picks");
+}
+
+void TerrainSession::Impl::check_level() const {
+  const Impl& m = *this;
   m.mesh->check_valid();
   // The mesh the updates left equals a fresh one on the engine's output and the rectangle, triangle for
   // triangle; every triangle's cached state equals a fresh measurement.
-  auto corners = [](const Mesh2& mesh) {
-    const auto elements = mesh.elements();
-    return sorted_corners<2>(mesh.points(), elements);
+  auto corners = [](const Mesh2& tin_mesh) {
+    const auto elements = tin_mesh.elements();
+    return sorted_corners<2>(tin_mesh.points(), elements);
   };
   Mesh2 fresh(m.ws->points(), m.ws->input_count(), m.refinement->refined());
   fresh.canonicalize_ties();
@@ -867,19 +1140,6 @@ void TerrainSession::check_valid() const {
         it->second.splits != y.splits || m.flagged.count(key) != copy.flagged.count(key))
       throw std::logic_error("a triangle's cached error differs from a fresh measurement");
   }
-  const Tin again = m.make_tin();
-  const Tin& tin = m.current_tin();
-  if (again.points != tin.points || again.triangles != tin.triangles || again.heights != tin.heights)
-    throw std::logic_error("the session's TIN is not the canonical TIN of its mesh");
-  terrain::Seeds fresh_seeds;
-  fresh_seeds.build(m.grid, m.options.seed_fraction * m.options.max_error);
-  if (fresh_seeds.sorted() != m.seeds.sorted()) throw std::logic_error("the seeds differ from a fresh quadtree");
-  // The input samples are the corners (the rectangle's TIN only), the seeds and the picks, nothing else.
-  std::set<std::size_t> inputs(m.picks.begin(), m.picks.end());
-  for (std::size_t s : m.seeds.sorted()) inputs.insert(s);
-  if (!m.custom())
-    for (std::size_t s : m.corners()) inputs.insert(s);
-  if (inputs != m.samples) throw std::logic_error("the input samples are not the corners, seeds and picks");
 }
 
 }  // namespace shoremesh

@@ -64,4 +64,46 @@ class Seeds {
   std::vector<double> sums_[9];
 };
 
+// The block picks of a terrain TIN (terrain.hpp step 2; docs/terrain.md "One setting for both targets"):
+// the raster is cut into fixed blocks of `block` cells (block (i, j) covers the samples
+// [i B, (i + 1) B] x [j B, (j + 1) B], clipped to the grid; neighbours share their edge samples). Every block edge is approximated on its own by
+// Douglas-Peucker within `tolerance` (the profile of its samples, its ends the block corners); every block
+// then runs Garland-Heckbert greedy insertion (the worst interior sample first, ties the smallest row-major
+// index) on a Delaunay triangulation of its own corners, edge picks and picks, until every interior sample
+// is within `tolerance`. An edge's picks read its samples only, a block's read its closed square only: an
+// edit of a window re-decides the edges and blocks that meet it, and the picks equal a fresh build's.
+class BlockPicks {
+ public:
+  BlockPicks() = default;
+  // block <= 0: no picks.
+  void build(const HeightGrid& grid, int block, double tolerance, double bound_from);
+  // The samples in `changed` were edited: re-decides the edges and blocks that meet it, appending the picks
+  // that came and went (sample indices; a sample that went from one list and came in another is neither).
+  void update(const HeightGrid& grid, const SampleWindow& changed, std::vector<std::size_t>& added,
+              std::vector<std::size_t>& removed);
+  std::vector<std::size_t> sorted() const;  // ascending
+  bool contains(std::size_t sample) const { return !count_.empty() && count_[sample] != 0; }
+  std::size_t size() const { return size_; }
+  std::size_t block_count() const { return blocks_.size(); }
+
+ private:
+  // A block's or an edge's picks, from the grid alone.
+  std::vector<std::size_t> edge_picks(const HeightGrid& grid, int c0, int r0, int c1, int r1) const;
+  std::vector<std::size_t> block_picks(const HeightGrid& grid, int bi, int bj) const;
+  int line_col(int i) const;
+  int line_row(int j) const;
+  void take(const std::vector<std::size_t>& picks, int sign);
+
+  int block_ = 0;
+  double tolerance_ = 0, bound_from_ = 0;
+  int width_ = 0, height_ = 0, nbx_ = 0, nby_ = 0;
+  std::vector<std::vector<std::size_t>> blocks_;  // per block (j * nbx + i): its interior picks
+  std::vector<std::vector<std::size_t>> hedges_;  // horizontal edge (segment i of row line j, j * nbx + i)
+  std::vector<std::vector<std::size_t>> vedges_;  // vertical edge (segment j of column line i, i * nby + j)
+  std::vector<std::uint8_t> count_;               // per sample: the lists holding it
+  std::size_t size_ = 0;
+  std::vector<std::size_t>* added_ = nullptr;
+  std::vector<std::size_t>* removed_ = nullptr;
+};
+
 }  // namespace shoremesh::terrain

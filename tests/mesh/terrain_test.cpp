@@ -87,6 +87,8 @@ void expect_same_tin(const TerrainSession& a, const TerrainSession& b) {
   EXPECT_EQ(a.triangles(), b.triangles());
   EXPECT_EQ(a.pick_count(), b.pick_count());
   EXPECT_EQ(a.seed_count(), b.seed_count());
+  EXPECT_EQ(a.block_pick_count(), b.block_pick_count());
+  EXPECT_EQ(a.rounds(), b.rounds());
 }
 
 TEST(Terrain, EverySampleWithinTheErrorBoundMeasuredIndependently) {
@@ -219,21 +221,31 @@ TEST(Terrain, PatchesInAnyOrderGiveTheSameTin) {
 // each followed by a comparison with a fresh session on the patched grid.
 TEST(Terrain, RandomPatchesEqualAFreshRun) {
   const bool long_run = std::getenv("SHOREMESH_LONG_TESTS") != nullptr;
-  // Seeds or none with the default pick spacing, and every over-bound triangle's pick (spacing 0).
+  // Seeds or none with the default pick spacing and blocks, every over-bound triangle's pick (spacing 0),
+  // blocks of 8 cells (many block edges through every patch), and no blocks (rounds from the corners).
   struct Case {
     double fraction, spacing;
-    int patches;
+    int blocks, patches;
   };
   const TerrainOptions defaults;
-  for (const Case& cs : {Case{0.5, defaults.pick_spacing, long_run ? 60 : 12}, Case{0.0, defaults.pick_spacing, long_run ? 60 : 12},
-                         Case{0.0, 0.0, long_run ? 20 : 4}}) {
+  for (const Case& cs : {Case{0.5, defaults.pick_spacing, defaults.block_cells, long_run ? 60 : 12},
+                         Case{0.0, defaults.pick_spacing, defaults.block_cells, long_run ? 60 : 12},
+                         Case{0.0, 0.0, defaults.block_cells, long_run ? 20 : 4}, Case{0.0, defaults.pick_spacing, 8, long_run ? 30 : 6},
+                         Case{0.0, defaults.pick_spacing, 0, long_run ? 20 : 4}}) {
     const double fraction = cs.fraction;
     const int patches = cs.patches;
     TerrainOptions o;
     o.max_error = 1.0;
     o.seed_fraction = fraction;
     o.pick_spacing = cs.spacing;
+    o.block_cells = cs.blocks;
     TerrainSession s(synthetic_grid(72, 60, 30, 11), o);
+    if (cs.blocks == defaults.block_cells && cs.fraction == 0) {
+      // The rounds' levels built before any patch change nothing a fresh session shows.
+      s.prepare_patches();
+      EXPECT_NO_THROW(s.check_valid());
+      expect_same_tin(s, TerrainSession(s.grid(), o));
+    }
     std::mt19937 rng(1234);
     for (int k = 0; k < patches; ++k) {
       const int w = 1 + int(rng() % 14), h = 1 + int(rng() % 14);
@@ -259,24 +271,30 @@ TEST(Terrain, RandomPatchesEqualAFreshRun) {
       HeightGrid patched = s.grid();
       const TerrainSession fresh(patched, o);
       SCOPED_TRACE("patch " + std::to_string(k) + " seed fraction " + std::to_string(fraction) + " pick spacing " +
-                   std::to_string(cs.spacing));
+                   std::to_string(cs.spacing) + " blocks " + std::to_string(cs.blocks));
       expect_same_tin(s, fresh);
       EXPECT_LE(independent_max_error(s), 1.0);
+      EXPECT_NO_THROW(s.check_valid());
+      EXPECT_NO_THROW(fresh.check_valid());  // a session not yet patched: one engine ran the rounds
       if (testing::Test::HasFailure()) return;
     }
-    s.check_valid();
   }
 }
 
-// A patch changes only triangles within its reach. With seeds the input is local: the seeds are
-// re-decided only for quadtree nodes whose window meets the patch, and the rounds start from them. Its
-// reach here: twice the longest edge of the triangles (old or new) that meet the patch grown by a cell,
-// around the patch. Each patch is also checked against a fresh run.
+// A patch changes only triangles within its reach. The round-0 input is local: seeds are re-decided only
+// for quadtree nodes whose window meets the patch, block picks only for the blocks it meets; each round's
+// level follows through its own engine. The reach here: twice the longest edge of the triangles (old or
+// new) that meet those blocks grown by a cell, around the blocks. Each patch is also checked against a
+// fresh run; with and without seeds.
 TEST(Terrain, DemPatchChangesOnlyTrianglesWithinItsReach) {
+  for (const double fraction : {0.5, 0.0}) {
+  SCOPED_TRACE("seed fraction " + std::to_string(fraction));
   TerrainOptions o;
   o.max_error = 1.0;
-  o.seed_fraction = 0.5;
-  TerrainSession s(synthetic_grid(96, 80, 30, 11), o);
+  o.seed_fraction = fraction;
+  // Without seeds the TIN is coarse: a grid of 12 x 10 blocks, so that four blocks are a small part of it.
+  const int gw = fraction > 0 ? 96 : 192, gh = fraction > 0 ? 80 : 160;
+  TerrainSession s(synthetic_grid(gw, gh, 30, 11), o);
   auto corners = [&]() {
     std::set<std::array<Point2, 3>> out;
     for (const auto& t : s.triangles()) {
@@ -289,17 +307,21 @@ TEST(Terrain, DemPatchChangesOnlyTrianglesWithinItsReach) {
   std::mt19937 rng(99);
   for (int k = 0; k < 5; ++k) {
     const int w = 1 + int(rng() % 10), h = 1 + int(rng() % 10);
-    const int col = int(rng() % (96 - w + 1)), row = int(rng() % (80 - h + 1));
+    const int col = int(rng() % unsigned(gw - w + 1)), row = int(rng() % unsigned(gh - h + 1));
     std::vector<float> z(std::size_t(w) * h);
     for (int r = 0; r < h; ++r)
       for (int c = 0; c < w; ++c) z[std::size_t(r) * w + c] = s.grid().at(col + c, row + r) - 8 + float(rng() % 9);
     const auto before = corners();
     s.patch(col, row, w, h, z);
     const auto after = corners();
-    // Distance in cells from a point to the window.
+    // The blocks the window meets (block edges shared): their block picks are decided again.
+    const int bs = o.block_cells;
+    const int c0 = std::max(0, ((col + bs - 1) / bs - 1) * bs), c1 = std::min(gw - 1, ((col + w - 1) / bs + 1) * bs);
+    const int r0 = std::max(0, ((row + bs - 1) / bs - 1) * bs), r1 = std::min(gh - 1, ((row + h - 1) / bs + 1) * bs);
+    // Distance in cells from a point to those blocks.
     auto distance = [&](const Point2& p) {
       const Point2 g = s.grid().to_grid(p);
-      return std::hypot(std::max({0.0, col - g[0], g[0] - (col + w - 1)}), std::max({0.0, row - g[1], g[1] - (row + h - 1)}));
+      return std::hypot(std::max({0.0, c0 - g[0], g[0] - c1}), std::max({0.0, r0 - g[1], g[1] - r1}));
     };
     auto min_distance = [&](const std::array<Point2, 3>& t) { return std::min({distance(t[0]), distance(t[1]), distance(t[2])}); };
     double longest = 0;  // cells
@@ -318,9 +340,11 @@ TEST(Terrain, DemPatchChangesOnlyTrianglesWithinItsReach) {
         ++changed;
         EXPECT_LE(min_distance(t), 2 * longest) << "patch " << k;
       }
-    EXPECT_LT(changed, after.size() / 20) << "patch " << k;  // a small part of the TIN
+    // A small part of the TIN: without seeds four blocks and their reach cover about a tenth of this grid.
+    EXPECT_LT(changed, after.size() / (fraction > 0 ? 20 : 8)) << "patch " << k;
     expect_same_tin(s, TerrainSession(s.grid(), o));
     if (testing::Test::HasFailure()) return;
+  }
   }
 }
 

@@ -4,17 +4,20 @@
 // engine's quality bound in the plane, and which follows edits of the grid (a window of new heights)
 // through the dynamic engine, ending equal to a fresh run on the edited grid.
 //
-// The input points are a canonical function of the grid, in two steps:
-//  1. Seeds: the corners of the leaves of a quadtree over the samples, a node being split while the
-//     samples of its window (the node grown by half its side) lie farther than seed_fraction * max_error
-//     from their least-squares plane. A node's decision reads only its window: an edit re-decides the
-//     nodes whose window it meets.
-//  2. Greedy rounds (Garland-Heckbert, in canonical batches): while a triangle of the TIN has a sample
-//     farther than max_error from it, the sample of largest error of every such triangle (ties: the
-//     smallest row-major index) becomes an input point, all of one round together, and the engine
-//     updates the well-spaced set (PropagateWS). A round is a function of the TIN, the TIN of the points.
-//     The same rounds halve every boundary edge whose triangle's third corner lies in its diametral circle
-//     (Ruppert's rule): then every triangle is Delaunay, and the angle bound covers it.
+// The input points are a canonical function of the grid, in three steps:
+//  1. Seeds (off by default): the corners of the leaves of a quadtree over the samples, a node being split
+//     while the samples of its window (the node grown by half its side) lie farther than
+//     seed_fraction * max_error from their least-squares plane. A node's decision reads only its window: an
+//     edit re-decides the nodes whose window it meets.
+//  2. Block picks: fixed blocks of block_cells cells, each edge approximated on its own, each block by a
+//     Garland-Heckbert greedy TIN of its own; an edit re-decides the blocks it meets.
+//  3. Greedy rounds (in canonical batches): while a triangle of the TIN has a sample farther than
+//     max_error from it, the sample of largest error of such triangles (ties: the smallest row-major
+//     index; thinned to local maxima, pick_spacing) becomes an input point, all of one round together.
+//     A round is a function of the TIN, the TIN of the points. The same rounds halve every boundary edge
+//     whose triangle's third corner lies in its diametral circle (Ruppert's rule): then every triangle is
+//     Delaunay, and the angle bound covers it. On the rectangle every round's TIN is kept in an engine and
+//     a mesh of its own (a level), so that an edit updates each round where its TIN changed.
 // The TIN is the constrained Delaunay triangulation of the engine's output inside the grid's rectangle
 // (whose sides are canonically split, shore_refinement.hpp), co-circular ties broken by a symbolic
 // perturbation so that it is one triangulation whatever the history. Nodes take the grid's heights:
@@ -55,9 +58,9 @@ struct HeightGrid {
 struct TerrainOptions {
   double max_error = 1;                  // vertical, in the grid's height units; > 0
   Parameters<2> engine;                  // rho: angles >= arcsin(1 / (2 rho)), 20.7 degrees by default
-  // Seeds' plane-fit tolerance over max_error; 0: no seeds, the greedy rounds alone (the fewest triangles).
-  // Seeds make a patch local (they are re-decided only near it, the picks are replayed), for more
-  // triangles: on the Salish Sea DEM 0.5 gives 2 to 2.6 times the triangles of 0 (bench/RESULTS.md).
+  // Seeds' plane-fit tolerance over max_error; 0: no seeds (the fewest triangles). Seeds cost triangles:
+  // on the Salish Sea DEM 0.5 gives 2 to 2.6 times the triangles of 0 (bench/RESULTS.md); patches are
+  // local without them (block picks and levels).
   double seed_fraction = 0;
   // Land and water in one TIN (`mesh --dem --land-up-to`, docs/terrain.md): instead of the grid's rectangle
   // the TIN covers the water of these rings (even-odd rule), their lines (the shoreline) chains of edges
@@ -74,6 +77,16 @@ struct TerrainOptions {
   // the triangles of 0.5, docs/terrain.md "Where the Steiner points come from"). A function of the TIN
   // either way; the round's overall worst sample is always picked. Must be finite and >= 0.
   double pick_spacing = 0.5;
+  // Block picks (docs/terrain.md "One setting for both targets"): the raster cut into fixed blocks of
+  // block_cells cells; each block edge approximated on its own (Douglas-Peucker), each block by greedy
+  // (Garland-Heckbert) insertion on its own Delaunay triangulation, both within block_fraction *
+  // max_error. Their union is the input of the first round, a function of the grid in which a patch
+  // changes only the blocks it touches; the greedy rounds then only correct what the engine's quality TIN
+  // leaves over the bound.
+  // 0: none (rounds from the corners alone: exact patches too, but a patch moves picks far from it and
+  // costs about 14x more on a 10^6-sample DEM, bench/RESULTS.md). Ignored with a domain.
+  int block_cells = 16;
+  double block_fraction = 1;  // in (0, 1]
 };
 
 // The error of the TIN measured sample by sample (valid samples only).
@@ -87,9 +100,10 @@ struct TerrainError {
 // What a build or a patch did.
 struct TerrainUpdate {
   std::size_t seeds_added = 0, seeds_removed = 0;   // quadtree seeds
-  std::size_t picks_added = 0, picks_removed = 0;   // greedy picks (a patch takes back all, then replays)
+  std::size_t block_picks_added = 0, block_picks_removed = 0;
+  std::size_t picks_added = 0, picks_removed = 0;   // greedy round picks, over all levels
   std::size_t boundary_splits = 0;                  // midpoints of encroached boundary edges (in the rounds)
-  std::size_t rounds = 0;                           // greedy rounds
+  std::size_t rounds = 0;                           // greedy rounds (levels below the first)
   std::size_t steiner_added = 0, steiner_removed = 0;
   std::size_t triangles_measured = 0;               // triangles whose error was computed
   std::size_t operations = 0;                       // engine operations undone + executed
@@ -118,6 +132,10 @@ class TerrainSession {
   TerrainUpdate patch(int col, int row, int w, int h, std::span<const float> z, std::span<const std::uint8_t> valid,
                       const Domain2& domain);
 
+  // Builds what patches need that a build does not make (the rounds' levels, docs/terrain.md "One
+  // setting for both targets"); the first patch does it otherwise (about a build's time). Idempotent.
+  void prepare_patches();
+
   const HeightGrid& grid() const;
   const TerrainOptions& options() const;
   const TerrainUpdate& build_stats() const;
@@ -133,10 +151,11 @@ class TerrainSession {
   // samples outside every triangle (outside the domain) are skipped; without one they count as infinite.
   TerrainError error() const;
   std::size_t seed_count() const;
-  std::size_t pick_count() const;
-  std::size_t input_count() const;     // the engine's input points (samples, the rectangle's splits)
+  std::size_t pick_count() const;        // the greedy (correction) rounds' picks
+  std::size_t block_pick_count() const;  // the block picks (corners of blocks included)
+  std::size_t input_count() const;     // the (deepest level's) engine's input points (samples, splits)
   std::size_t steiner_count() const;   // the engine's Steiner points (the whole box, not only the TIN's)
-  std::size_t rounds() const;          // greedy rounds of the last build or patch
+  std::size_t rounds() const;          // greedy rounds (levels below the first; inside rings: of the last build or patch)
 
   // Recomputes the canonical TIN from the engine's mesh and the seeds from the grid, and throws
   // std::logic_error when either differs from what the session holds (tests).
