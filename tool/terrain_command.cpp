@@ -249,6 +249,12 @@ int run_terrain(const TerrainOptionsArgs& opt, Progress& progress) {
     throw InputError(e.message(), opt.dem);
   }
   const double build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  // Patches update each greedy round in a level of its own; building the levels here keeps that one-off
+  // cost out of the first patch's reply (docs/terrain.md, "One setting for both targets").
+  if (!patches.empty() || !opt.edits.empty()) {
+    progress.stage("levels for patches");
+    session->prepare_patches();
+  }
   std::vector<std::string> patch_lines;
   for (std::size_t k = 0; k < patches.size(); ++k) {
     progress.stage("patch " + std::filesystem::path(opt.patches[k]).filename().string());
@@ -348,7 +354,7 @@ Command add_terrain_command(CLI::App& app) {
   cmd->add_option("--rho", opt->rho, "Quality bound rho > 1 (default sqrt 2: angles >= 20.7 degrees)");
   cmd->add_option("--seed-fraction", opt->seed_fraction,
                   "Seeds: corners of quadtree leaves whose cells lie within this fraction of --max-error of a plane; "
-                  "a --patch then re-decides only the seeds near it (default 0: the greedy rounds alone, fewest triangles)")
+                  "(default 0: block picks and greedy rounds, fewest triangles; a patch updates either locally)")
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--patch", opt->patches,
                   "After the build, replace a window of the DEM by this raster (same cells, aligned) and update the TIN; "
@@ -369,7 +375,8 @@ Command add_terrain_command(CLI::App& app) {
       "      shoremesh terrain dem.tif --max-error 1 -o final.vtu --edits -\n"
       "Exit code 3 if the error bound is not met at some sample (never expected: the TIN is refined until it is).");
   return [opt]() {
-    Progress progress(!opt->quiet && Progress::stderr_is_terminal(), 5 + opt->patches.size() + !opt->edits.empty());
+    Progress progress(!opt->quiet && Progress::stderr_is_terminal(),
+                      5 + opt->patches.size() + !opt->edits.empty() + (!opt->patches.empty() || !opt->edits.empty()));
     return run_terrain(*opt, progress);
   };
 }
