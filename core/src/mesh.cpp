@@ -41,6 +41,7 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 enum FaceFlag : std::uint8_t {
   kInWater = 1,  // inside the water (always without a domain, and in 3D)
   kCovered = 2,  // its circumcentre in the box, or no box to clip to
+  kPending = 4,  // 2D: created or changed during an update, classified at its end (never kept meanwhile)
 };
 
 // Per dimension: the triangulation type and the few calls whose names differ between 2D and 3D.
@@ -425,6 +426,10 @@ class MeshTriangulation {
       if (infinite) {
         f->info() = FaceInfo2{};
         f->info().visit = walk;
+      } else if (deferring_) {
+        if (!(C::flags(f) & kPending)) pending_.push_back(f);
+        C::flags(f) = kPending;
+        f->info().stamp = now;
       } else {
         classify(f);
         if (kept(f)) acc.add(key(f));
@@ -432,6 +437,35 @@ class MeshTriangulation {
       for (int i = 0; i < 3; ++i)
         if (first_visit(f->neighbor(i))) todo.push_back(f->neighbor(i));
     }
+  }
+
+  // During an update's point and constraint changes, the faces the sweeps find are classified once, at the
+  // end (classify_pending), not after each change: a face that a later change of the same update deletes
+  // or changes again is never classified. The net delta is the same: such a face's birth and death
+  // cancelled, and a face alive at the end is classified against the same rings and box either way.
+  // Faces are read as not kept while pending, so no death is recorded for one never born.
+  void defer_classification(bool on)
+    requires(D == 2)
+  {
+    deferring_ = on;
+  }
+  void classify_pending(Accumulator& acc)
+    requires(D == 2)
+  {
+    deferring_ = false;
+    const auto& faces = triangulation.tds().faces();
+    for (const Face f : pending_) {
+      // A face deleted since (its slot free, or taken by a face of its own) is skipped or taken once.
+      if (!faces.is_used(f) || !(C::flags(f) & kPending)) continue;
+      if (triangulation.is_infinite(f)) {
+        C::flags(f) = 0;
+        f->info().stamp = {};
+        continue;
+      }
+      classify(f);
+      if (kept(f)) acc.add(key(f));
+    }
+    pending_.clear();
   }
 
   // A fresh mark for a walk over 2D faces: a face is visited by the current walk iff its mark equals it
@@ -885,6 +919,8 @@ class MeshTriangulation {
   Vertex hint_;  // a live vertex near the last change, where the next point location starts
   std::uint32_t walk_ = 0;  // the last walk's mark (next_walk)
   std::vector<Face> todo_;  // sweep's stack, kept between calls
+  bool deferring_ = false;   // defer_classification
+  std::vector<Face> pending_;  // faces marked kPending, to classify (classify_pending), kept between calls
 };
 
 template <int D>
@@ -1067,6 +1103,13 @@ MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domai
   // removals).
   std::function<bool(const Point2&)> ring_vertex;
   if constexpr (D == 2) ring_vertex = [&](const Point2& p) { return t.segment_end(p); };
+  if constexpr (D == 2) t.defer_classification(true);
+  struct StopDeferring {  // also when a change throws half-way
+    MeshTriangulation<D>& t;
+    ~StopDeferring() {
+      if constexpr (D == 2) t.defer_classification(false);
+    }
+  } stop_deferring{t};
   for (const Point<D>& p : change.removed) t.remove(p, points_, kinds_, acc, ring_vertex);
   if constexpr (D == 2) {
     for (const auto& [a, b] : dropped) t.count_segment(a, b, -1);
@@ -1076,6 +1119,7 @@ MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domai
   for (std::size_t i = 0; i < change.added.size(); ++i)
     t.insert(change.added[i], i < change.added_input_count ? PointKind::Input : PointKind::Steiner, points_, kinds_, acc);
   if constexpr (D == 2) t.add_constraints(inserted, acc);
+  if constexpr (D == 2) t.classify_pending(acc);
   if constexpr (D == 2) {
     if (water && water->changed) t.reclassify_within(water->lo, water->hi, water->seed, acc);
     if (shore) t.reclassify_changed(*shore, acc);
