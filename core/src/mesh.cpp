@@ -16,10 +16,12 @@
 #include <bit>
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 #include <iterator>
 #include <limits>
 #include <optional>
 #include <set>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -41,6 +43,7 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 enum FaceFlag : std::uint8_t {
   kInWater = 1,  // inside the water (always without a domain, and in 3D)
   kCovered = 2,  // its circumcentre in the box, or no box to clip to
+  kPending = 4,  // 2D: created or changed during an update, classified at its end (never kept meanwhile)
 };
 
 // Per dimension: the triangulation type and the few calls whose names differ between 2D and 3D.
@@ -51,8 +54,10 @@ struct Cgal;
 // changed in place (a flip) or created is told apart from one it left alone.
 struct FaceInfo2 {
   std::uint8_t flags = 0;
+  std::uint32_t visit = 0;             // the last walk that reached the face (MeshTriangulation::next_walk)
   std::array<const void*, 3> stamp{};  // vertex addresses, sorted; all null for a face never classified
 };
+static_assert(sizeof(FaceInfo2) == 32, "the walk's mark lives in the padding after the flags");
 
 // The constrained Delaunay triangulation of the mesh: the shore's segments are constraints, so that they
 // are mesh edges whatever the points around them. Constraints never cross (the rings are valid), so no
@@ -320,11 +325,16 @@ class MeshTriangulation {
   };
 
   // The mesh of `points`; in 2D every segment of `domain`'s rings is a constraint.
-  void build(std::span<const Point<D>> points, const Domain2& domain) {
-    std::vector<std::pair<decltype(C::to_cgal(points[0])), std::uint32_t>> input;
-    input.reserve(points.size());
-    for (std::uint32_t i = 0; i < points.size(); ++i) input.emplace_back(C::to_cgal(points[i]), i);
-    triangulation.insert(input.begin(), input.end());  // spatially sorted bulk insertion
+  // False (and nothing more done) when two of the points are equal: CGAL merged them.
+  bool build(std::span<const Point<D>> points, const Domain2& domain) {
+    {
+      std::vector<std::pair<decltype(C::to_cgal(points[0])), std::uint32_t>> input;
+      input.reserve(points.size());
+      for (std::uint32_t i = 0; i < points.size(); ++i) input.emplace_back(C::to_cgal(points[i]), i);
+      triangulation.insert(input.begin(), input.end());  // spatially sorted bulk insertion
+    }
+    if (triangulation.number_of_vertices() != points.size()) return false;
+    vertex_of.reserve(points.size());
     for (Vertex v : triangulation.finite_vertex_handles()) vertex_of.emplace(C::from_cgal(v->point()), v);
     if constexpr (D == 2)
       for (const Ring& ring : domain.rings)
@@ -337,6 +347,7 @@ class MeshTriangulation {
           if (a != b && ia != vertex_of.end() && ib != vertex_of.end()) insert_constraint(ia->second, ib->second);
         }
     C::for_each_finite_face(triangulation, [&](Face f) { classify(f); });
+    return true;
   }
 
   // How many shore segments end at each point: a point with constraints that is no segment's end lies
@@ -379,15 +390,26 @@ class MeshTriangulation {
   // seeds through the changed faces finds them all. A changed face's old corners are alive (no vertex
   // was deleted by the operations that change faces in place), so its old key is read from them. A
   // finite face may become infinite in place (a point inserted on the hull): it leaves the mesh.
-  void sweep(const std::vector<Vertex>& seeds, Accumulator& acc)
+  void sweep(std::initializer_list<Vertex> seeds, Accumulator& acc)
     requires(D == 2)
   {
-    std::vector<Face> todo;
-    std::set<Face> seen;
+    sweep(std::span<const Vertex>(seeds.begin(), seeds.size()), acc);
+  }
+  void sweep(std::span<const Vertex> seeds, Accumulator& acc)
+    requires(D == 2)
+  {
+    std::vector<Face>& todo = todo_;
+    todo.clear();
+    const std::uint32_t walk = next_walk();
+    auto first_visit = [walk](Face f) {
+      if (f->info().visit == walk) return false;
+      f->info().visit = walk;
+      return true;
+    };
     for (Vertex v : seeds) {
       auto c = triangulation.incident_faces(v), done = c;
       if (c != nullptr) do {
-          if (seen.insert(c).second) todo.push_back(c);
+          if (first_visit(c)) todo.push_back(c);
         } while (++c != done);
     }
     while (!todo.empty()) {
@@ -405,13 +427,59 @@ class MeshTriangulation {
       }
       if (infinite) {
         f->info() = FaceInfo2{};
+        f->info().visit = walk;
+      } else if (deferring_) {
+        if (!(C::flags(f) & kPending)) pending_.push_back(f);
+        C::flags(f) = kPending;
+        f->info().stamp = now;
       } else {
         classify(f);
         if (kept(f)) acc.add(key(f));
       }
       for (int i = 0; i < 3; ++i)
-        if (seen.insert(f->neighbor(i)).second) todo.push_back(f->neighbor(i));
+        if (first_visit(f->neighbor(i))) todo.push_back(f->neighbor(i));
     }
+  }
+
+  // During an update's point and constraint changes, the faces the sweeps find are classified once, at the
+  // end (classify_pending), not after each change: a face that a later change of the same update deletes
+  // or changes again is never classified. The net delta is the same: such a face's birth and death
+  // cancelled, and a face alive at the end is classified against the same rings and box either way.
+  // Faces are read as not kept while pending, so no death is recorded for one never born.
+  void defer_classification(bool on)
+    requires(D == 2)
+  {
+    deferring_ = on;
+  }
+  void classify_pending(Accumulator& acc)
+    requires(D == 2)
+  {
+    deferring_ = false;
+    const auto& faces = triangulation.tds().faces();
+    for (const Face f : pending_) {
+      // A face deleted since (its slot free, or taken by a face of its own) is skipped or taken once.
+      if (!faces.is_used(f) || !(C::flags(f) & kPending)) continue;
+      if (triangulation.is_infinite(f)) {
+        C::flags(f) = 0;
+        f->info().stamp = {};
+        continue;
+      }
+      classify(f);
+      if (kept(f)) acc.add(key(f));
+    }
+    pending_.clear();
+  }
+
+  // A fresh mark for a walk over 2D faces: a face is visited by the current walk iff its mark equals it
+  // (an O(1) test, no set of faces). When the counter wraps, every face's mark is cleared first.
+  std::uint32_t next_walk()
+    requires(D == 2)
+  {
+    if (++walk_ == 0) {
+      for (Face f : triangulation.all_face_handles()) f->info().visit = 0;
+      walk_ = 1;
+    }
+    return walk_;
   }
 
   // Keys of the kept faces that `faces` lists (about to be deleted).
@@ -820,15 +888,19 @@ class MeshTriangulation {
     Face start = C::locate(triangulation, C::to_cgal(seed), hint_);
     if (triangulation.is_infinite(start)) start = start->neighbor(start->index(triangulation.infinite_vertex()));
     if (!meets(start)) return false;
-    std::set<Face> seen{start};
+    const std::uint32_t walk = next_walk();
     std::vector<Face> todo{start};
+    start->info().visit = walk;
     while (!todo.empty()) {
       const Face f = todo.back();
       todo.pop_back();
       if (!meets(f)) continue;  // the walk stops at the first faces outside the box
       visit(f);
       for (int i = 0; i < 3; ++i)
-        if (seen.insert(f->neighbor(i)).second) todo.push_back(f->neighbor(i));
+        if (const Face g = f->neighbor(i); g->info().visit != walk) {
+          g->info().visit = walk;
+          todo.push_back(g);
+        }
     }
     return true;
   }
@@ -847,6 +919,10 @@ class MeshTriangulation {
   WaterTest water_;
   std::optional<BoxTransform<D>> covered_box_;
   Vertex hint_;  // a live vertex near the last change, where the next point location starts
+  std::uint32_t walk_ = 0;  // the last walk's mark (next_walk)
+  std::vector<Face> todo_;  // sweep's stack, kept between calls
+  bool deferring_ = false;   // defer_classification
+  std::vector<Face> pending_;  // faces marked kPending, to classify (classify_pending), kept between calls
 };
 
 template <int D>
@@ -876,19 +952,28 @@ void Mesh<D>::build(std::span<const Point<D>> points, std::size_t input_count) {
     throw InputError("the box to clip the mesh to needs a finite corner and a finite positive side");
   if (input_count > points.size()) throw InputError("input_count exceeds the number of points");
   if (points.size() >= MeshTriangulation<D>::kMaxPoints) throw InputError("too many points for a mesh");
-  std::unordered_map<Point<D>, std::size_t, PointHash<D>> seen;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    if (!finite<D>(points[i])) throw InputError("point " + std::to_string(i) + " is not finite", {}, i + 1);
-    if (const auto [it, fresh] = seen.emplace(points[i], i); !fresh)
-      throw InputError("point " + std::to_string(i) + " " + describe<D>(points[i]) + " repeats point " +
-                           std::to_string(it->second),
-                       {}, i + 1);
-  }
+  // The first point that is not finite or repeats an earlier one. Duplicates are rare, so they are
+  // looked for only when the triangulation merged some (no hash of every point on the way).
+  auto reject = [&] {
+    std::unordered_map<Point<D>, std::size_t, PointHash<D>> seen;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      if (!finite<D>(points[i])) throw InputError("point " + std::to_string(i) + " is not finite", {}, i + 1);
+      if (const auto [it, fresh] = seen.emplace(points[i], i); !fresh)
+        throw InputError("point " + std::to_string(i) + " " + describe<D>(points[i]) + " repeats point " +
+                             std::to_string(it->second),
+                         {}, i + 1);
+    }
+  };
+  if (!std::all_of(points.begin(), points.end(), [](const Point<D>& p) { return finite<D>(p); })) reject();
   points_.assign(points.begin(), points.end());
   kinds_.assign(points.size(), PointKind::Steiner);
   std::fill_n(kinds_.begin(), input_count, PointKind::Input);
   triangulation_ = std::make_unique<MeshTriangulation<D>>(domain_, covered_box_);
-  triangulation_->build(points_, domain_);
+  if (!triangulation_->build(points_, domain_)) {
+    triangulation_.reset();
+    reject();
+    throw std::logic_error("mesh: the triangulation merged points that are all distinct");
+  }
   element_count_ = count_elements();
 }
 
@@ -1020,6 +1105,13 @@ MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domai
   // removals).
   std::function<bool(const Point2&)> ring_vertex;
   if constexpr (D == 2) ring_vertex = [&](const Point2& p) { return t.segment_end(p); };
+  if constexpr (D == 2) t.defer_classification(true);
+  struct StopDeferring {  // also when a change throws half-way
+    MeshTriangulation<D>& t;
+    ~StopDeferring() {
+      if constexpr (D == 2) t.defer_classification(false);
+    }
+  } stop_deferring{t};
   for (const Point<D>& p : change.removed) t.remove(p, points_, kinds_, acc, ring_vertex);
   if constexpr (D == 2) {
     for (const auto& [a, b] : dropped) t.count_segment(a, b, -1);
@@ -1029,6 +1121,7 @@ MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domai
   for (std::size_t i = 0; i < change.added.size(); ++i)
     t.insert(change.added[i], i < change.added_input_count ? PointKind::Input : PointKind::Steiner, points_, kinds_, acc);
   if constexpr (D == 2) t.add_constraints(inserted, acc);
+  if constexpr (D == 2) t.classify_pending(acc);
   if constexpr (D == 2) {
     if (water && water->changed) t.reclassify_within(water->lo, water->hi, water->seed, acc);
     if (shore) t.reclassify_changed(*shore, acc);

@@ -35,7 +35,6 @@ WaterTest::WaterTest(const Domain2& domain) {
       y_low_ = std::min({y_low_, a[1], b[1]});
       y_high = std::max({y_high, a[1], b[1]});
       // A degenerate edge (a == b) is kept: it crosses no ray, and a point on it is on the ring.
-      slot_of_.emplace(key_of(a, b), static_cast<std::uint32_t>(edges_.size()));
       edges_.push_back({a, b});
     }
   }
@@ -61,7 +60,16 @@ void WaterTest::remove_from_slabs(std::uint32_t e) {
   }
 }
 
+// Only an edit names edges: a mesh built once never needs the index, so it is made at the first edit.
+void WaterTest::index_slots() {
+  if (slots_indexed_) return;
+  slots_indexed_ = true;
+  slot_of_.reserve(edges_.size());
+  for (std::uint32_t e = 0; e < edges_.size(); ++e) slot_of_.emplace(key_of(edges_[e].a, edges_[e].b), e);
+}
+
 void WaterTest::remove_edge(const Point2& a, const Point2& b) {
+  index_slots();
   const auto it = slot_of_.find(key_of(a, b));
   if (it == slot_of_.end()) throw std::logic_error("water test: a removed edge is not there");
   remove_from_slabs(it->second);
@@ -70,6 +78,7 @@ void WaterTest::remove_edge(const Point2& a, const Point2& b) {
 }
 
 void WaterTest::add_edge(const Point2& a, const Point2& b) {
+  index_slots();
   if (empty_) {  // no slab yet: one, which every edge joins (slab_of clamps)
     empty_ = false;
     y_low_ = a[1];
@@ -133,6 +142,13 @@ WaterSide WaterTest::classify(const Point2& p) const {
       // A horizontal edge at the point's height: the point may lie on it.
       if (a[1] == p[1] && b[1] == p[1] && std::min(a[0], b[0]) <= p[0] && p[0] <= std::max(a[0], b[0]))
         return WaterSide::OnRing;
+      continue;
+    }
+    // An edge wholly left or right of the point at its height is decided by comparisons: the crossing
+    // lies left of p (no crossing on the ray) or right of it (a crossing), and p is not on the edge.
+    if (std::max(a[0], b[0]) < p[0]) continue;
+    if (std::min(a[0], b[0]) > p[0]) {
+      inside = !inside;
       continue;
     }
     const int o = detail::orient(a, b, p);

@@ -47,10 +47,13 @@ class WaterTest {
   std::size_t slab_of(double y) const;
   void add_to_slabs(std::uint32_t e);
   void remove_from_slabs(std::uint32_t e);
+  void index_slots();
 
   std::vector<Edge> edges_;  // with free slots (no slab lists them)
-  // Each edge's slot by its ends in lexicographic order: a removal names the edge, not its place.
+  // Each edge's slot by its ends in lexicographic order: a removal names the edge, not its place (made at
+  // the first edit: index_slots).
   std::unordered_multimap<std::pair<Point2, Point2>, std::uint32_t, EdgeKeyHash> slot_of_;
+  bool slots_indexed_ = false;
   std::vector<std::uint32_t> free_edges_;  // slots of removed edges, to reuse
   bool empty_ = true;
   double y_low_ = 0, slab_height_ = 1;
