@@ -2,6 +2,7 @@
 // The algorithm's parameters (paper, section 9) and their validation.
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace shoremesh {
 
@@ -24,8 +25,9 @@ struct Parameters {
   // Where a fill's Steiner point aims: at the vertex of the cell nearest v among those farther than
   // steiner_aim * rho * NN(v), or at the farthest vertex when none is. Any point of the picking region
   // keeps every guarantee (Fact 1); this choice only changes how many points the output has
-  // (docs/picking_region.md). Infinity aims at the farthest vertex always. At least 1.
-  double steiner_aim = 1.15;
+  // (docs/picking_region.md). Infinity aims at the farthest vertex always: the 3D default, where the
+  // nearest vertex beyond 1.15 rho NN measured 1% more points. At least 1.
+  double steiner_aim = D == 2 ? 1.15 : std::numeric_limits<double>::infinity();
 };
 
 // The derived constants every part of the engine agrees on. Construct through `derive`, which refuses
