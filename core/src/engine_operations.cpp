@@ -368,22 +368,50 @@ bool WellSpacedEngine<D>::fill_on_land(VertexId v, Worker& w) const {
   }
 }
 
-// The Steiner point: toward the cell vertex c farthest from v, at distance min(|vc|, beta NN) shrunk by
-// 2^-10 (so it lies strictly inside the cell, away from the bisectors through c, and rounding cannot push
-// it out), but never nearer than rho NN. That is the largest admissible step, which keeps the output
-// small: the farthest Voronoi vertex is the circumcentre of the worst Delaunay simplex at v, the point
-// Delaunay refinement inserts. Every condition of the picking region is then checked exactly.
+// The cell vertex a fill's Steiner point aims at: among the vertices farther from v than steiner_aim rho NN,
+// the nearest; the farthest when none is (always, for an infinite steiner_aim). Aiming at the nearest
+// violating vertex inserts the circumcentre of the mildest bad Delaunay triangle at v first rather than a
+// point beta NN out toward the worst one: on Lake Superior's shore 2.3% fewer water vertices (bench/RESULTS.md).
+// Positions are the midpoints of the vertices' enclosures, a function of the cell alone (canonical, like
+// the cell: Lemma 7.2); ties go by coordinates.
+namespace {
+template <int D>
+Point<D> aim_vertex(const ConvexCell<D>& cell, double beyond2) {
+  Point<D> best{};
+  double best_d2 = -1;
+  cell.for_each_vertex_box([&](const std::array<Interval, D>& box) {
+    Point<D> y;
+    double d2 = 0;
+    for (int i = 0; i < D; ++i) {
+      y[i] = 0.5 * (box[i].inf() + box[i].sup());
+      d2 += y[i] * y[i];
+    }
+    if (d2 > beyond2 && (best_d2 < 0 || d2 < best_d2 || (d2 == best_d2 && y < best))) {
+      best_d2 = d2;
+      best = y;
+    }
+  });
+  return best_d2 < 0 ? cell.farthest_vertex_offset() : best;
+}
+}  // namespace
+
+// The Steiner point: toward a cell vertex c (aim_vertex), at distance min(|vc|, beta NN) shrunk by 2^-10 (so
+// it lies strictly inside the cell, away from the bisectors through c, and rounding cannot push it out), but
+// never nearer than rho NN. When |vc| <= beta NN that is c itself up to the shrink: the circumcentre of a
+// Delaunay triangle at v, the point Delaunay refinement inserts. Every condition of the picking region is
+// then checked exactly, so any choice of c keeps Fact 1 and with it every guarantee.
 template <int D>
 Point<D> WellSpacedEngine<D>::pick_steiner(VertexId v, Worker& wk) const {
   constexpr double kInside = 0x1p-10;  // the step's shrink, and the least margin above rho NN
   PredicateCounters& pc = wk.cell.counters();
   const Point<D> p = positions_[v];
   const Point<D> u = positions_[wk.hood.nearest];
-  const Point<D> y = wk.cell.farthest_vertex_offset();
+  const double nn2 = squared_distance(v, wk.hood.nearest);
+  const Point<D> y = aim_vertex(wk.cell, params_.steiner_aim_squared * nn2);
   double len2 = 0;
   for (int i = 0; i < D; ++i) len2 += y[i] * y[i];
   const double len = std::sqrt(len2);
-  const double nn = std::sqrt(squared_distance(v, wk.hood.nearest));
+  const double nn = std::sqrt(nn2);
   const double reach = std::min(len, params_.beta * nn);
   const double fallback = 0.5 * (params_.rho * nn + reach);
   double target = reach * (1 - kInside);

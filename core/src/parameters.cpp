@@ -18,6 +18,8 @@ DerivedParameters<D> DerivedParameters<D>::derive(const Parameters<D>& p) {
   if (!std::isfinite(p.beta) || p.beta <= p.rho)
     throw ParameterError("beta must be greater than rho (got beta " + readable(p.beta) + ", rho " +
                          readable(p.rho) + ")");
+  if (!(p.steiner_aim >= 1.0))
+    throw ParameterError("steiner_aim must be at least 1 (got " + readable(p.steiner_aim) + ")");
   DerivedParameters<D> d;
   d.rho = p.rho;
   // The canonical rho^2: 2 exactly for the default rho = sqrt(2), so "is v well-spaced" is a polynomial
@@ -45,6 +47,7 @@ DerivedParameters<D> DerivedParameters<D>::derive(const Parameters<D>& p) {
     throw ParameterError("kappa = " + std::to_string(kappa) + " gives over 10^7 colour tiles (Lemma 6.1): choose fewer");
   d.kappa = kappa;
   d.literal_stable_ws = p.literal_stable_ws;
+  d.steiner_aim_squared = p.steiner_aim * p.steiner_aim * d.rho_squared;
   return d;
 }
 

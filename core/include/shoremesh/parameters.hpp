@@ -2,6 +2,7 @@
 // The algorithm's parameters (paper, section 9) and their validation.
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace shoremesh {
 
@@ -21,6 +22,12 @@ struct Parameters {
   // whose vertex already has a neighbour nearer than its rank stops there (record_idle_fill): the same
   // output with far less work. For the tests that check that claim, and to measure it.
   bool literal_stable_ws = false;
+  // Where a fill's Steiner point aims: at the vertex of the cell nearest v among those farther than
+  // steiner_aim * rho * NN(v), or at the farthest vertex when none is. Any point of the picking region
+  // keeps every guarantee (Fact 1); this choice only changes how many points the output has
+  // (docs/picking_region.md). Infinity aims at the farthest vertex always: the 3D default, where the
+  // nearest vertex beyond 1.15 rho NN measured 1% more points. At least 1.
+  double steiner_aim = D == 2 ? 1.15 : std::numeric_limits<double>::infinity();
 };
 
 // The derived constants every part of the engine agrees on. Construct through `derive`, which refuses
@@ -39,6 +46,7 @@ struct DerivedParameters {
   double beta_squared = 0;
   int kappa = 0;          // colours per axis: kappa^D periodic tiles (Lemma 6.1)
   bool literal_stable_ws = false;  // as given
+  double steiner_aim_squared = 0;  // steiner_aim^2 rho^2: the squared distance, in NN^2, beyond which a cell vertex is aimed at
   static DerivedParameters derive(const Parameters<D>& p);
   // l(r) = rho^(r - 1/2) / sqrt(D): side of the rank-r colour tiles.
   double tile_side(int rank) const;
