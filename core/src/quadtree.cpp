@@ -53,7 +53,7 @@ NodeId Quadtree<D>::new_node(NodeId parent, int level, const Coords& coords) {
   nd.parent = parent;
   nd.level = level;
   nd.coords = coords;
-  map_.insert(make_cell_key<D>(level, coords), id);
+  map_.insert<D>(level, coords, id);
   return id;
 }
 
@@ -83,7 +83,7 @@ void Quadtree<D>::split(NodeId n, std::vector<NodeId>* created) {
     ch.parent = n;
     ch.level = parent.level + 1;
     for (int i = 0; i < D; ++i) ch.coords[i] = 2 * parent.coords[i] + ((k >> i) & 1);
-    map_.insert(make_cell_key<D>(ch.level, ch.coords), first + NodeId(k));
+    map_.insert<D>(ch.level, ch.coords, first + NodeId(k));
     if (created) created->push_back(first + NodeId(k));
   }
   for (const LeafVertex<D>& e : parent.vertices) {
@@ -116,7 +116,7 @@ void Quadtree<D>::merge(NodeId n, std::vector<NodeId>* removed) {
     if (!ch.is_leaf()) throw std::logic_error("quadtree merge of a node with an internal child");
     parent.vertices.insert(parent.vertices.end(), ch.vertices.begin(), ch.vertices.end());
     if (ch.input_vertex != kNoVertex) parent.input_vertex = ch.input_vertex;
-    map_.erase(make_cell_key<D>(ch.level, ch.coords));
+    map_.erase<D>(ch.level, ch.coords);
     ch = Node{};
     ch.level = -1;  // marks a free slot
     if (removed) removed->push_back(first + NodeId(k));
@@ -448,7 +448,7 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
       ch.parent = t.node;
       ch.level = level;
       ch.coords = cc;
-      map_.insert(make_cell_key<D>(level, cc), first + NodeId(k));
+      map_.insert<D>(level, cc, first + NodeId(k));
       auto [b, e] = range_of(level, cc);
       tasks.push_back({first + NodeId(k), b, e});
     }

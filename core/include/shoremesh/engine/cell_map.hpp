@@ -1,7 +1,13 @@
 #pragma once
-// Open-addressing hash map from a quadtree cell (level + integer coordinates, packed into 128 bits) to
-// its node. It lets a query jump straight to the cells around a point at any level, which keeps every
-// neighbour search O(1) under the algorithm's invariants instead of O(depth) from the root.
+// Open-addressing hash map from a quadtree cell (level + integer coordinates) to its node. It lets a
+// query jump straight to the cells around a point at any level, which keeps every neighbour search O(1)
+// under the algorithm's invariants instead of O(depth) from the root.
+//
+// Two tables: cells of the levels whose D coordinates fit one 64-bit word with a marker bit (2D: levels
+// <= 31, 3D: <= 21; every cell of a uniform input of up to ~10^9 points) are keyed by that word in
+// 16-byte slots; deeper cells (inputs closer than 2^-31 of the box in 2D) by 128 bits in a second table.
+// Half the slot of a 128-bit key: the table is the tree's largest part after the nodes, and a look-up's
+// probes stay within one cache line more often.
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -24,17 +30,52 @@ inline CellKey make_cell_key(int level, const std::array<std::uint64_t, D>& coor
   return key;
 }
 
-class CellMap {
+// The deepest level whose cells have a 64-bit key: D coordinates of `level` bits and a marker bit above.
+template <int D>
+inline constexpr int kCompactLevels = 63 / D;
+
+// 2^(D level) + the coordinates side by side, `level` bits each: the marker's place names the level, so
+// keys of different levels differ, and none is zero.
+template <int D>
+inline std::uint64_t compact_cell_key(int level, const std::array<std::uint64_t, D>& coords) {
+  std::uint64_t key = std::uint64_t(1) << (D * level);
+  for (int i = 0; i < D; ++i) key |= coords[i] << (level * i);
+  return key;
+}
+
+namespace detail {
+
+inline std::uint64_t mix_hash(std::uint64_t h) {
+  h ^= h >> 31;
+  h *= 0xBF58476D1CE4E5B9ull;
+  h ^= h >> 29;
+  return h;
+}
+inline std::uint64_t hash_key(std::uint64_t key) { return mix_hash(key * 0x9E3779B97F4A7C15ull); }
+inline std::uint64_t hash_key(CellKey key) {
+  return mix_hash(std::uint64_t(key) ^ (std::uint64_t(key >> 64) * 0x9E3779B97F4A7C15ull));
+}
+
+// Unique among all tables of the process (64 bits never wrap): an answer about one table never
+// passes for another's.
+inline std::uint64_t next_generation() {
+  static std::atomic<std::uint64_t> last{0};
+  return last.fetch_add(1, std::memory_order_relaxed) + 1;
+}
+
+// Linear probing at most half full, backward-shift deletion; key 0 marks an empty slot.
+template <class Key>
+class CellTable {
  public:
-  CellMap() { rehash(64); }
-  // A copy shares the recent answers of its original until either changes; a moved-from map has none.
-  CellMap(const CellMap&) = default;
-  CellMap& operator=(const CellMap&) = default;
-  CellMap(CellMap&& other) noexcept
+  explicit CellTable(std::size_t capacity) { rehash(capacity); }
+  // A copy shares the recent answers of its original until either changes; a moved-from table has none.
+  CellTable(const CellTable&) = default;
+  CellTable& operator=(const CellTable&) = default;
+  CellTable(CellTable&& other) noexcept
       : slots_(std::move(other.slots_)), mask_(other.mask_), size_(other.size_), generation_(other.generation_) {
     other.generation_ = next_generation();
   }
-  CellMap& operator=(CellMap&& other) noexcept {
+  CellTable& operator=(CellTable&& other) noexcept {
     slots_ = std::move(other.slots_);
     mask_ = other.mask_;
     size_ = other.size_;
@@ -43,8 +84,8 @@ class CellMap {
     return *this;
   }
 
-  NodeId find(CellKey key) const {
-    const std::uint64_t h = hash(key);
+  NodeId find(Key key) const {
+    const std::uint64_t h = hash_key(key);
     RecentEntry& recent = recent_table()[h >> (64 - kRecentBits)];
     if (recent.key == key && recent.generation == generation_) return recent.node;
     NodeId node = kNoNode;
@@ -59,13 +100,13 @@ class CellMap {
     return node;
   }
 
-  void insert(CellKey key, NodeId node) {
+  void insert(Key key, NodeId node) {
     changed();
     if (2 * (size_ + 1) > slots_.size()) rehash(2 * slots_.size());
     place(key, node);
   }
 
-  void erase(CellKey key) {
+  void erase(Key key) {
     changed();
     std::size_t i = slot_of(key);
     while (slots_[i].key != key) {
@@ -86,10 +127,10 @@ class CellMap {
     --size_;
   }
 
-  void clear() {
+  void clear(std::size_t capacity) {
     changed();
-    slots_.assign(64, Slot{});
-    mask_ = 63;
+    slots_.assign(capacity, Slot{});
+    mask_ = capacity - 1;
     size_ = 0;
   }
   std::size_t size() const { return size_; }
@@ -97,27 +138,14 @@ class CellMap {
 
  private:
   struct Slot {
-    CellKey key = 0;
+    Key key = 0;
     NodeId node = kNoNode;
   };
 
-  static std::uint64_t hash(CellKey key) {
-    std::uint64_t h = std::uint64_t(key) ^ (std::uint64_t(key >> 64) * 0x9E3779B97F4A7C15ull);
-    h ^= h >> 31;
-    h *= 0xBF58476D1CE4E5B9ull;
-    h ^= h >> 29;
-    return h;
-  }
-  std::size_t slot_of(CellKey key) const { return std::size_t(hash(key)) & mask_; }
+  std::size_t slot_of(Key key) const { return std::size_t(hash_key(key)) & mask_; }
   // Every recent answer becomes stale.
   void changed() { generation_ = next_generation(); }
-  // Unique among all maps of the process (64 bits never wrap): an answer about one map never
-  // passes for another's.
-  static std::uint64_t next_generation() {
-    static std::atomic<std::uint64_t> last{0};
-    return last.fetch_add(1, std::memory_order_relaxed) + 1;
-  }
-  void place(CellKey key, NodeId node) {
+  void place(Key key, NodeId node) {
     std::size_t i = slot_of(key);
     while (slots_[i].key != 0 && slots_[i].key != key) i = (i + 1) & mask_;
     if (slots_[i].key == 0) ++size_;
@@ -135,15 +163,15 @@ class CellMap {
   std::vector<Slot> slots_;
   std::size_t mask_ = 0;
   std::size_t size_ = 0;
-  // The answers of recent look-ups (absent cells too), valid while the map is unchanged: one neighbour
+  // The answers of recent look-ups (absent cells too), valid while the table is unchanged: one neighbour
   // search looks up the same few cells several times as its box grows, and the operations of one
   // update lie close together. With millions of cells the table is far larger than the caches, and a
   // look-up there costs a cache and TLB miss. Direct-mapped by the top bits of the hash (the slot index
-  // uses the low ones). One table per thread, shared by all maps (entries name their map's generation):
-  // the operations of a batch look up one map on several threads at once.
+  // uses the low ones). One table per thread and key type, shared by all maps (entries name their
+  // table's generation): the operations of a batch look up one map on several threads at once.
   static constexpr int kRecentBits = 8;
   struct RecentEntry {
-    CellKey key = 0;
+    Key key = 0;
     NodeId node = kNoNode;
     std::uint64_t generation = 0;
   };
@@ -153,6 +181,44 @@ class CellMap {
     return table;
   }
   std::uint64_t generation_ = next_generation();  // new at every change; entries of older ones are stale
+};
+
+}  // namespace detail
+
+class CellMap {
+ public:
+  template <int D>
+  NodeId find(int level, const std::array<std::uint64_t, D>& coords) const {
+    if (level <= kCompactLevels<D>) return compact_.find(compact_cell_key<D>(level, coords));
+    return deep_.find(make_cell_key<D>(level, coords));
+  }
+  template <int D>
+  void insert(int level, const std::array<std::uint64_t, D>& coords, NodeId node) {
+    if (level <= kCompactLevels<D>)
+      compact_.insert(compact_cell_key<D>(level, coords), node);
+    else
+      deep_.insert(make_cell_key<D>(level, coords), node);
+  }
+  template <int D>
+  void erase(int level, const std::array<std::uint64_t, D>& coords) {
+    if (level <= kCompactLevels<D>)
+      compact_.erase(compact_cell_key<D>(level, coords));
+    else
+      deep_.erase(make_cell_key<D>(level, coords));
+  }
+
+  void clear() {
+    compact_.clear(kInitialCapacity);
+    deep_.clear(kInitialDeepCapacity);
+  }
+  std::size_t size() const { return compact_.size() + deep_.size(); }
+  std::size_t memory_bytes() const { return compact_.memory_bytes() + deep_.memory_bytes(); }
+
+ private:
+  static constexpr std::size_t kInitialCapacity = 64;
+  static constexpr std::size_t kInitialDeepCapacity = 4;
+  detail::CellTable<std::uint64_t> compact_{kInitialCapacity};
+  detail::CellTable<CellKey> deep_{kInitialDeepCapacity};
 };
 
 }  // namespace shoremesh::engine

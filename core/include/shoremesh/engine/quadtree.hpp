@@ -205,7 +205,7 @@ class Quadtree {
   // Keep the occupied masks of the ancestors of a leaf that just gained its first vertex / lost its last.
   void mark_occupied(NodeId leaf);
   void mark_vacated(NodeId leaf);
-  NodeId find(int level, const Coords& c) const { return map_.find(make_cell_key<D>(level, c)); }
+  NodeId find(int level, const Coords& c) const { return map_.template find<D>(level, c); }
   NodeId deepest_containing(int level, Coords c) const;
   // The same, with the node's level (read from the cell map, not from the node).
   NodeId deepest_containing(int level, Coords c, int& found_level) const;
