@@ -214,7 +214,7 @@ class LandWaterEdits {
     std::set_difference(now.begin(), now.end(), was.begin(), was.end(), std::back_inserter(ring_come));
     TerrainUpdate u;
     try {
-      u = session_.patch(at.col, at.row, p.width, p.height, p.heights, {}, traced.domain);
+      u = session_.patch(at.col, at.row, p.width, p.height, p.heights, {}, follow.next);
     } catch (const InputError& e) {
       throw InputError("--land-up-to " + readable(*a_.land_up_to) + ": " + e.message(), file);
     }
