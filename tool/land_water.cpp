@@ -214,7 +214,7 @@ class LandWaterEdits {
     std::set_difference(now.begin(), now.end(), was.begin(), was.end(), std::back_inserter(ring_come));
     TerrainUpdate u;
     try {
-      u = session_.patch(at.col, at.row, p.width, p.height, p.heights, {}, traced.domain);
+      u = session_.patch(at.col, at.row, p.width, p.height, p.heights, {}, follow.next);
     } catch (const InputError& e) {
       throw InputError("--land-up-to " + readable(*a_.land_up_to) + ": " + e.message(), file);
     }
@@ -234,7 +234,8 @@ class LandWaterEdits {
                   {"triangles_removed", gone.size()}, {"triangles_added", came.size()},
                   {"triangles", session_.triangles().size()}, {"picks_added", u.picks_added},
                   {"picks_removed", u.picks_removed}, {"rounds", u.rounds}, {"operations", u.operations},
-                  {"ms", t}, {"trace_ms", trace_ms}});
+                  {"ms", t}, {"trace_ms", trace_ms}, {"engine_ms", u.engine_ms}, {"mesh_ms", u.mesh_ms},
+                  {"error_ms", u.error_ms}});
   }
 
   void export_to(const std::string& path, nlohmann::json& reply) {

@@ -82,6 +82,42 @@ TEST(TerrainDomainPatch, RandomPatchesAndRingMovesEqualAFreshRun) {
   }
 }
 
+// The rings in their places, as the tool gives them (follow_contours): the island keeps place 0, empty
+// while it is gone; the session updates its refinement by the places' stretches (docs/terrain.md).
+TEST(TerrainDomainPatch, RingsInTheirPlacesEqualAFreshRun) {
+  HeightGrid g = valley();
+  TerrainOptions o;
+  o.max_error = 1.5;
+  o.bound_from = 0;
+  o.domain = rings(g, 0, 0, true);
+  TerrainSession s(g, o);
+  std::mt19937 rng(371);
+  std::uniform_int_distribution<int> size(2, 10), ring_move(-4, 4), coin(0, 2);
+  for (int step = 0; step < 8; ++step) {
+    const int w = size(rng), h = size(rng);
+    const int col = std::uniform_int_distribution<int>(0, g.width - w)(rng);
+    const int row = std::uniform_int_distribution<int>(0, g.height - h)(rng);
+    std::vector<float> z(static_cast<std::size_t>(w) * h);
+    for (int r = 0; r < h; ++r)
+      for (int c = 0; c < w; ++c) {
+        const float v = g.at(col + c, row + r) + (step % 2 ? 20.0f : -20.0f);
+        z[static_cast<std::size_t>(r) * w + c] = v;
+        g.z[g.index(col + c, row + r)] = v;
+      }
+    const bool island = coin(rng) != 0;
+    const Domain2 fresh_rings = rings(g, 0.5 * ring_move(rng), 0.5 * ring_move(rng), island);
+    Domain2 places = fresh_rings;
+    if (!island) places.rings.insert(places.rings.begin(), Ring{{}, RingRole::Island});
+    s.patch(col, row, w, h, z, {}, places);
+    ASSERT_NO_THROW(s.check_valid()) << "step " << step;
+    TerrainOptions fo = o;
+    fo.domain = fresh_rings;
+    const TerrainSession fresh(g, fo);
+    expect_equal(s, fresh, step);
+    EXPECT_EQ(s.error().over, 0u);
+  }
+}
+
 TEST(TerrainDomainPatch, BadRingsChangeNothing) {
   const HeightGrid g = valley();
   TerrainOptions o;
