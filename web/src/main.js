@@ -543,8 +543,12 @@ const zoom = { texture: null, view: null, timer: null, map: { value: new THREE.V
 }
 let previewing = false;  // the canvas holds a zoom preview, not the view: the next frame other than one is full
 renderer.info.autoReset = false;  // a frame may be several renders: its counts are their sum
-// Redraws the rectangle (CSS pixels, top-left origin) of the view: scissored to it, through a camera of it
-// widened by the largest point's radius (a point whose centre is outside the viewport is not drawn at all).
+// Redraws the rectangle (CSS pixels, top-left origin) of the view, scissored to it. What the grid picks in
+// the rectangle widened by the largest point's radius is drawn through the full frame's camera and
+// viewport: the same transform as a full frame, so a long line or edge crossing the rectangle is
+// rasterized on the same pixels (a camera of the rectangle alone shifted them by rounding). Without the
+// grid, the chunks are culled by a camera of the widened rectangle (a point whose centre is outside the
+// viewport is not drawn at all).
 function renderRect(x, y, rw, rh, w, h) {
   const m = 16;
   const vx = x - m, vy = y - m, vw = rw + 2 * m, vh = rh + 2 * m;
@@ -552,12 +556,16 @@ function renderRect(x, y, rw, rh, w, h) {
   subCamera.right = cam.cx + (vx + vw - w / 2) * cam.scale;
   subCamera.top = cam.cy - (vy - h / 2) * cam.scale;
   subCamera.bottom = cam.cy - (vy + vh - h / 2) * cam.scale;
-  subCamera.updateProjectionMatrix();
-  renderer.setViewport(vx, h - vy - vh, vw, vh);
   renderer.setScissor(x, h - y - rh, rw, rh);
   renderer.setScissorTest(true);
-  const indexed = pick(subCamera.left, subCamera.bottom, subCamera.right, subCamera.top);
-  renderer.render(indexed ? indexScene : fineScene, subCamera);
+  if (pick(subCamera.left, subCamera.bottom, subCamera.right, subCamera.top)) {
+    renderer.setViewport(0, 0, w, h);
+    renderer.render(indexScene, camera);
+    return;
+  }
+  subCamera.updateProjectionMatrix();
+  renderer.setViewport(vx, h - vy - vh, vw, vh);
+  renderer.render(fineScene, subCamera);
 }
 // The boxes' rectangles on the screen (padded by a point's radius and a pixel of antialiasing), clipped to
 // the view, those that overlap or nearly so merged (each rectangle is a render of every chunk it meets);
