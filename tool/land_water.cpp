@@ -201,14 +201,7 @@ class LandWaterEdits {
     for (const RingStretch& e : follow.edits) stretch_points += e.middle.size();
     const double trace_ms = ms_since(t0);
     const auto before = sorted_corners<2>(session_.points(), session_.triangles());
-    auto vertices = [](const Domain2& d) {
-      std::vector<Point2> v;
-      for (const Ring& r : d.rings) v.insert(v.end(), r.points.begin(), r.points.end());
-      std::sort(v.begin(), v.end());
-      v.erase(std::unique(v.begin(), v.end()), v.end());
-      return v;
-    };
-    const std::vector<Point2> was = vertices(domain_.domain), now = vertices(traced.domain);
+    const std::vector<Point2> was = domain_vertices(domain_.domain), now = domain_vertices(traced.domain);
     std::vector<Point2> ring_gone, ring_come;
     std::set_difference(was.begin(), was.end(), now.begin(), now.end(), std::back_inserter(ring_gone));
     std::set_difference(now.begin(), now.end(), was.begin(), was.end(), std::back_inserter(ring_come));

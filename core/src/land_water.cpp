@@ -382,6 +382,14 @@ TracedContours trace_contours(const HeightGrid& grid, const ContourOptions& o) {
   return out;
 }
 
+std::vector<Point2> domain_vertices(const Domain2& domain) {
+  std::vector<Point2> v;
+  for (const Ring& r : domain.rings) v.insert(v.end(), r.points.begin(), r.points.end());
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  return v;
+}
+
 ContourFollow follow_contours(const Domain2& slots, const Domain2& traced) {
   ContourFollow f;
   f.next = slots;
@@ -396,14 +404,7 @@ ContourFollow follow_contours(const Domain2& slots, const Domain2& traced) {
   }
   {
     // The vertices that went or came, whatever ring or line holds them.
-    auto vertices = [](const Domain2& d) {
-      std::vector<Point2> v;
-      for (const Ring& r : d.rings) v.insert(v.end(), r.points.begin(), r.points.end());
-      std::sort(v.begin(), v.end());
-      v.erase(std::unique(v.begin(), v.end()), v.end());
-      return v;
-    };
-    const std::vector<Point2> was = vertices(slots), now = vertices(traced);
+    const std::vector<Point2> was = domain_vertices(slots), now = domain_vertices(traced);
     std::set_symmetric_difference(was.begin(), was.end(), now.begin(), now.end(), std::back_inserter(f.moved));
   }
   std::vector<char> taken(slots.rings.size(), 0);

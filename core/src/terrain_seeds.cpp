@@ -18,6 +18,17 @@ struct Moments {
   double n = 0, c = 0, r = 0, z = 0, cc = 0, cr = 0, rr = 0, cz = 0, rz = 0;
 };
 
+// An update appended samples to added and removed from positions a0 and r0 on; one that went with one
+// leaf or block and came with another is neither: keep the two sorted differences.
+void cancel_moves(std::vector<std::size_t>& added, std::vector<std::size_t>& removed, std::size_t a0, std::size_t r0) {
+  std::vector<std::size_t> a(added.begin() + a0, added.end()), r(removed.begin() + r0, removed.end());
+  std::sort(a.begin(), a.end());
+  std::sort(r.begin(), r.end());
+  added.resize(a0), removed.resize(r0);
+  std::set_difference(a.begin(), a.end(), r.begin(), r.end(), std::back_inserter(added));
+  std::set_difference(r.begin(), r.end(), a.begin(), a.end(), std::back_inserter(removed));
+}
+
 }  // namespace
 
 std::uint64_t Seeds::key(const Node& n) {
@@ -173,13 +184,7 @@ void Seeds::update(const HeightGrid& grid, const SampleWindow& changed, std::vec
   const std::size_t a0 = added.size(), r0 = removed.size();
   refresh(grid, root_, changed);
   added_ = removed_ = nullptr;
-  // A seed that went with one leaf and came with another is neither.
-  std::vector<std::size_t> a(added.begin() + a0, added.end()), r(removed.begin() + r0, removed.end());
-  std::sort(a.begin(), a.end());
-  std::sort(r.begin(), r.end());
-  added.resize(a0), removed.resize(r0);
-  std::set_difference(a.begin(), a.end(), r.begin(), r.end(), std::back_inserter(added));
-  std::set_difference(r.begin(), r.end(), a.begin(), a.end(), std::back_inserter(removed));
+  cancel_moves(added, removed, a0, r0);
 }
 
 std::vector<std::size_t> Seeds::sorted() const {
@@ -392,12 +397,7 @@ void BlockPicks::update(const HeightGrid& grid, const SampleWindow& changed, std
       if (meets(line_col(i), line_row(j), line_col(i + 1), line_row(j + 1)))
         redo(blocks_[static_cast<std::size_t>(j) * nbx_ + i], block_picks(grid, i, j));
   added_ = removed_ = nullptr;
-  std::vector<std::size_t> a(added.begin() + a0, added.end()), r(removed.begin() + r0, removed.end());
-  std::sort(a.begin(), a.end());
-  std::sort(r.begin(), r.end());
-  added.resize(a0), removed.resize(r0);
-  std::set_difference(a.begin(), a.end(), r.begin(), r.end(), std::back_inserter(added));
-  std::set_difference(r.begin(), r.end(), a.begin(), a.end(), std::back_inserter(removed));
+  cancel_moves(added, removed, a0, r0);
 }
 
 std::vector<std::size_t> BlockPicks::sorted() const {

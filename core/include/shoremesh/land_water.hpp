@@ -62,6 +62,8 @@ struct ContourFollow {
   std::vector<Point2> moved;
 };
 ContourFollow follow_contours(const Domain2& slots, const Domain2& traced);
+// The distinct vertices of a domain's rings and lines, sorted.
+std::vector<Point2> domain_vertices(const Domain2& domain);
 
 struct ShoreLines {
   std::vector<Ring> lines;
