@@ -20,9 +20,12 @@
 
 #include "cli_test_util.hpp"
 #include "dem_test_util.hpp"
+#include "../mesh/terrain_test_util.hpp"
 
 namespace shoremesh::cli_test {
 namespace {
+
+using terrain_test::coast;
 
 const std::string kSalish = samples("salish/salish_sea_topobathy.tif");
 
@@ -384,17 +387,6 @@ void random_patches_equal_fresh_runs(const std::vector<float>& dem, int w, int h
     EXPECT_TRUE(a.triangles == b.triangles) << "patch " << k;
   }
   EXPECT_EQ(read_file(dir / "final.obj"), read_file(dir / ("fresh" + std::to_string(steps - 1) + ".obj")));
-}
-
-// A coast: water on the left, a beach, hills on the right, bumps.
-std::vector<float> coast(int w, int h) {
-  std::vector<float> z;
-  for (int r = 0; r < h; ++r)
-    for (int c = 0; c < w; ++c) {
-      const double x = double(c) / w, y = double(r) / h;
-      z.push_back(static_cast<float>(-20 + 60 * x + 8 * std::sin(9 * x) * std::cos(7 * y) + 4 * std::sin(17 * y)));
-    }
-  return z;
 }
 
 TEST(LandWaterEdits, RandomDemPatchesEqualFreshRunsOnASyntheticDem) {

@@ -16,9 +16,12 @@
 #include "shoremesh/io/dem.hpp"
 #include "shoremesh/land_water.hpp"
 #include "shoremesh/shore_refinement.hpp"
+#include "terrain_test_util.hpp"
 
 namespace shoremesh {
 namespace {
+
+using terrain_test::coast;
 
 HeightGrid grid_of(int w, int h, std::vector<float> z) {
   HeightGrid g;
@@ -159,17 +162,6 @@ PatchStats random_patches(HeightGrid g, double z_top, double level, int stride, 
     slots = f.next;
   }
   return stats;
-}
-
-// The coast of the land-and-water CLI tests: water on the left, a beach, hills, bumps.
-std::vector<float> coast(int w, int h) {
-  std::vector<float> z;
-  for (int r = 0; r < h; ++r)
-    for (int c = 0; c < w; ++c) {
-      const double x = double(c) / w, y = double(r) / h;
-      z.push_back(static_cast<float>(-20 + 60 * x + 8 * std::sin(9 * x) * std::cos(7 * y) + 4 * std::sin(17 * y)));
-    }
-  return z;
 }
 
 TEST(LocalContours, RandomPatchesOnASyntheticCoastMoveOnlyNearbyVertices) {

@@ -45,12 +45,28 @@ void expect_equal(const TerrainSession& s, const TerrainSession& fresh, int step
   ASSERT_EQ(s.pick_count(), fresh.pick_count()) << "step " << step;
 }
 
-TEST(TerrainDomainPatch, RandomPatchesAndRingMovesEqualAFreshRun) {
-  HeightGrid g = valley();
+// The patch tests' session: the valley with its rings (the island present), the bound from 0 m up.
+TerrainOptions valley_options(const HeightGrid& g, double max_error) {
   TerrainOptions o;
-  o.max_error = 1.5;
+  o.max_error = max_error;
   o.bound_from = 0;
   o.domain = rings(g, 0, 0, true);
+  return o;
+}
+
+// After the patch of `step`: the session is valid, equals a fresh session on the patched grid with
+// `fresh_rings`, and meets the bound.
+void expect_fresh(const TerrainSession& s, const HeightGrid& g, TerrainOptions o, const Domain2& fresh_rings, int step) {
+  ASSERT_NO_THROW(s.check_valid()) << "step " << step;
+  o.domain = fresh_rings;
+  const TerrainSession fresh(g, o);
+  expect_equal(s, fresh, step);
+  EXPECT_EQ(s.error().over, 0u);
+}
+
+TEST(TerrainDomainPatch, RandomPatchesAndRingMovesEqualAFreshRun) {
+  HeightGrid g = valley();
+  const TerrainOptions o = valley_options(g, 1.5);
   TerrainSession s(g, o);
   std::mt19937 rng(37);
   std::uniform_int_distribution<int> size(2, 12), kind(0, 3), ring_move(-4, 4), coin(0, 1);
@@ -73,12 +89,7 @@ TEST(TerrainDomainPatch, RandomPatchesAndRingMovesEqualAFreshRun) {
       for (int c = 0; c < w; ++c) g.z[g.index(col + c, row + r)] = z[static_cast<std::size_t>(r) * w + c];
     const Domain2 d = rings(g, 0.5 * ring_move(rng), 0.5 * ring_move(rng), coin(rng) == 1);
     s.patch(col, row, w, h, z, {}, d);
-    ASSERT_NO_THROW(s.check_valid()) << "step " << step;
-    TerrainOptions fo = o;
-    fo.domain = d;
-    const TerrainSession fresh(g, fo);
-    expect_equal(s, fresh, step);
-    EXPECT_EQ(s.error().over, 0u);
+    ASSERT_NO_FATAL_FAILURE(expect_fresh(s, g, o, d, step));
   }
 }
 
@@ -86,10 +97,7 @@ TEST(TerrainDomainPatch, RandomPatchesAndRingMovesEqualAFreshRun) {
 // while it is gone; the session updates its refinement by the places' stretches (docs/terrain.md).
 TEST(TerrainDomainPatch, RingsInTheirPlacesEqualAFreshRun) {
   HeightGrid g = valley();
-  TerrainOptions o;
-  o.max_error = 1.5;
-  o.bound_from = 0;
-  o.domain = rings(g, 0, 0, true);
+  const TerrainOptions o = valley_options(g, 1.5);
   TerrainSession s(g, o);
   std::mt19937 rng(371);
   std::uniform_int_distribution<int> size(2, 10), ring_move(-4, 4), coin(0, 2);
@@ -109,22 +117,13 @@ TEST(TerrainDomainPatch, RingsInTheirPlacesEqualAFreshRun) {
     Domain2 places = fresh_rings;
     if (!island) places.rings.insert(places.rings.begin(), Ring{{}, RingRole::Island});
     s.patch(col, row, w, h, z, {}, places);
-    ASSERT_NO_THROW(s.check_valid()) << "step " << step;
-    TerrainOptions fo = o;
-    fo.domain = fresh_rings;
-    const TerrainSession fresh(g, fo);
-    expect_equal(s, fresh, step);
-    EXPECT_EQ(s.error().over, 0u);
+    ASSERT_NO_FATAL_FAILURE(expect_fresh(s, g, o, fresh_rings, step));
   }
 }
 
 TEST(TerrainDomainPatch, BadRingsChangeNothing) {
   const HeightGrid g = valley();
-  TerrainOptions o;
-  o.max_error = 2;
-  o.bound_from = 0;
-  o.domain = rings(g, 0, 0, true);
-  TerrainSession s(g, o);
+  TerrainSession s(g, valley_options(g, 2));
   const auto triangles = s.triangles();
   const std::vector<float> z(4, 100.0f);
   Domain2 crossing = rings(g, 0, 0, true);

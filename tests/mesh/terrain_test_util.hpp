@@ -1,7 +1,8 @@
 #pragma once
-// The synthetic DEM of the land-and-water domain tests (terrain_domain_test.cpp,
-// terrain_domain_patch_test.cpp).
+// The synthetic DEMs of the land-and-water tests (terrain_domain_test.cpp, terrain_domain_patch_test.cpp,
+// land_water_contour_test.cpp, and the CLI's land_water_test.cpp).
 #include <cmath>
+#include <vector>
 
 #include "shoremesh/point.hpp"
 #include "shoremesh/terrain.hpp"
@@ -19,6 +20,17 @@ inline HeightGrid valley(int w = 60, int h = 50) {
       g.z.push_back(static_cast<float>(-30 + 80 * x + 12 * std::sin(9 * x) * std::cos(7 * y) + 5 * std::sin(23 * y)));
     }
   return g;
+}
+
+// A coast, row by row: water on the left, a beach, hills on the right, bumps.
+inline std::vector<float> coast(int w, int h) {
+  std::vector<float> z;
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) {
+      const double x = double(c) / w, y = double(r) / h;
+      z.push_back(static_cast<float>(-20 + 60 * x + 8 * std::sin(9 * x) * std::cos(7 * y) + 4 * std::sin(17 * y)));
+    }
+  return z;
 }
 
 // The plane position of (column c, row r) in cells.
