@@ -20,6 +20,8 @@
 // of the changed points), and the median and 99th percentile of that step are printed too: what an edit
 // costs after the engine, and a yardstick for the engine's own time (the same change, applied by CGAL, with
 // the elements removed and added worked out).
+// Last come the engine's bytes after the changes (the last input's), in all and per output vertex part by
+// part (WellSpacedEngine::memory_breakdown, by capacity), and the process's resident memory then.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -29,7 +31,10 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "shoremesh/box_transform.hpp"
+#include "shoremesh/engine/engine.hpp"
 #include "shoremesh/error.hpp"
 #include "shoremesh/families.hpp"
 #include "shoremesh/io/read_input.hpp"
@@ -81,6 +86,16 @@ struct CellWork {
   }
 };
 
+// The process's resident memory now (Linux: /proc/self/statm), 0 when unknown.
+std::size_t resident_bytes() {
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  if (!f) return 0;
+  unsigned long pages = 0, resident = 0;
+  const int read = std::fscanf(f, "%lu %lu", &pages, &resident);
+  std::fclose(f);
+  return read == 2 ? std::size_t(resident) * std::size_t(sysconf(_SC_PAGESIZE)) : 0;
+}
+
 template <class T>
 T quantile(std::vector<T> v, double q) {
   std::sort(v.begin(), v.end());
@@ -95,6 +110,9 @@ void run(const Options& opt) {
   double first_update_seconds = 0;
   std::vector<double> latencies, update_ops, steiner_changes, mesh_latencies;
   CellWork build_work, update_work;
+  // The last input's engine after its changes, and its output then.
+  typename shoremesh::WellSpacedEngine<D>::MemoryBreakdown memory;
+  double memory_output = 1;
   const std::size_t updates_per_change = opt.input.empty() ? 2 : 1;
   std::size_t n = opt.n;
   for (std::size_t input = 0; input < opt.inputs; ++input) {
@@ -184,6 +202,8 @@ void run(const Options& opt) {
       }
     }
     update_work.add(set.counters(), after_build);
+    memory = set.engine().memory_breakdown();
+    memory_output = double(set.input_count() + set.steiner_count());
   }
   const double k = double(opt.inputs), changes = double(opt.inputs * opt.changes);
   const double updates = double(updates_per_change) * changes;
@@ -197,7 +217,10 @@ void run(const Options& opt) {
       "update_median_ops=%.0f update_max_ops=%.0f first_update_seconds=%.6g speedup_ops=%.1f speedup_time=%.1f "
       "build_leaves_per_cell=%.1f build_candidates_per_cell=%.1f build_clips_per_cell=%.1f "
       "update_cells=%.1f update_leaves_per_cell=%.1f update_candidates_per_cell=%.1f update_clips_per_cell=%.1f build_searches_per_cell=%.2f update_searches_per_cell=%.2f update_cells_reused=%.1f update_cells_from_lists=%.1f update_cells_updated=%.1f "
-      "update_steiner_changes_median=%.0f%s points=%s\n",
+      "update_steiner_changes_median=%.0f%s engine_memory_bytes=%zu engine_bytes_per_vertex=%.1f "
+      "bytes_per_vertex_vertices=%.1f bytes_per_vertex_positions=%.1f bytes_per_vertex_operations=%.1f "
+      "bytes_per_vertex_children=%.1f bytes_per_vertex_reads=%.1f bytes_per_vertex_readers=%.1f "
+      "bytes_per_vertex_tree=%.1f bytes_per_vertex_other=%.1f rss_bytes=%zu points=%s\n",
       D, n, opt.inputs, opt.changes, output / k, build_seconds / k, build_ops / k, unit_seconds / changes,
       unit_ops / changes, quantile(latencies, 0.5), quantile(latencies, 0.99), quantile(update_ops, 0.5),
       quantile(update_ops, 1.0), first_update_seconds, (build_ops / k) / (unit_ops / changes), (build_seconds / k) / (unit_seconds / changes),
@@ -205,7 +228,12 @@ void run(const Options& opt) {
       update_work.cells / updates, update_work.leaves / update_work.cells, update_work.candidates / update_work.cells,
       update_work.clips / update_work.cells, build_work.searches / build_work.cells,
       update_work.searches / update_work.cells, update_work.reused / updates, update_work.listed / updates,
-      update_work.updated / updates, quantile(steiner_changes, 0.5), mesh_fields,
+      update_work.updated / updates, quantile(steiner_changes, 0.5), mesh_fields, memory.total(),
+      double(memory.total()) / memory_output, double(memory.vertices) / memory_output,
+      double(memory.positions) / memory_output, double(memory.operations) / memory_output,
+      double(memory.children) / memory_output, double(memory.reads) / memory_output,
+      double(memory.readers) / memory_output, double(memory.tree) / memory_output,
+      double(memory.other) / memory_output, resident_bytes(),
       opt.input.empty() ? "uniform" : opt.input.c_str());
 }
 

@@ -613,19 +613,23 @@ std::vector<std::tuple<Point<D>, int, std::uint32_t>> WellSpacedEngine<D>::opera
 }
 
 template <int D>
-std::size_t WellSpacedEngine<D>::memory_bytes() const {
-  std::size_t bytes = vertices_.capacity() * sizeof(Vertex) + positions_.capacity() * sizeof(Point<D>) +
-                      ops_.capacity() * sizeof(Op) + children_.memory_bytes() +
-                      reads_.memory_bytes() + readers_.size() * sizeof(std::vector<OpId>) +
-                      (free_ops_.capacity() + free_vertices_.capacity()) * sizeof(std::uint32_t) +
-                      tree_.memory_bytes();
-  for (const auto& r : readers_) bytes += r.capacity() * sizeof(OpId);
-  for (const auto& bucket : agenda_) bytes += bucket.capacity() * sizeof(OpId);
-  bytes += cell_cache_.capacity() * sizeof(CachedCell) + cache_table_.capacity() * sizeof(CacheSlot);
+typename WellSpacedEngine<D>::MemoryBreakdown WellSpacedEngine<D>::memory_breakdown() const {
+  MemoryBreakdown m;
+  m.vertices = vertices_.capacity() * sizeof(Vertex);
+  m.positions = positions_.capacity() * sizeof(Point<D>);
+  m.operations = ops_.capacity() * sizeof(Op);
+  m.children = children_.memory_bytes();
+  m.reads = reads_.memory_bytes();
+  m.readers = readers_.size() * sizeof(std::vector<OpId>);
+  for (const auto& r : readers_) m.readers += r.capacity() * sizeof(OpId);
+  m.tree = tree_.memory_bytes();
+  m.other = (free_ops_.capacity() + free_vertices_.capacity()) * sizeof(std::uint32_t);
+  for (const auto& bucket : agenda_) m.other += bucket.capacity() * sizeof(OpId);
+  m.other += cell_cache_.capacity() * sizeof(CachedCell) + cache_table_.capacity() * sizeof(CacheSlot);
   for (const CachedCell& c : cell_cache_)
-    bytes += c.candidates.capacity() * sizeof(Candidate) + c.covering.capacity() * sizeof(NodeId) +
-             (c.unborn.capacity() + c.arrived.capacity()) * sizeof(TimedVertex) + c.cell.memory_bytes();
-  return bytes;
+    m.other += c.candidates.capacity() * sizeof(Candidate) + c.covering.capacity() * sizeof(NodeId) +
+               (c.unborn.capacity() + c.arrived.capacity()) * sizeof(TimedVertex) + c.cell.memory_bytes();
+  return m;
 }
 
 template <int D>

@@ -159,7 +159,15 @@ class WellSpacedEngine {
   const engine::Quadtree<D>& quadtree() const { return tree_; }
   const DerivedParameters<D>& parameters() const { return params_; }
   const Counters& counters() const { return counters_; }
-  std::size_t memory_bytes() const;
+  // Bytes held by the live structures, by capacity, part by part (bench_dynamic prints them per output
+  // vertex): what an engine kept for updates costs, and where.
+  struct MemoryBreakdown {
+    std::size_t vertices = 0, positions = 0, operations = 0, children = 0, reads = 0, readers = 0, tree = 0;
+    std::size_t other = 0;  // the agenda, the free lists, the cell cache
+    std::size_t total() const { return vertices + positions + operations + children + reads + readers + tree + other; }
+  };
+  MemoryBreakdown memory_breakdown() const;
+  std::size_t memory_bytes() const { return memory_breakdown().total(); }
   void check_valid() const;
 
  private:
