@@ -7,9 +7,6 @@
 #include <span>
 #include <stdexcept>
 #include <string>
-#ifdef __SSE2__
-#include <emmintrin.h>
-#endif
 
 #include "shoremesh/error.hpp"
 #include "engine_internal.hpp"
@@ -18,26 +15,6 @@ namespace shoremesh {
 
 using namespace engine;
 using namespace engine_detail;
-
-namespace {
-// Where id x is in ids (ids.size() if absent), eight entries per step: the reader lists of coarse
-// squares hold hundreds of operations, and undo looks one up in each square its operation read
-// (std::find there was 4 % of a 2D update's instructions).
-std::size_t position_of(std::span<const std::uint32_t> ids, std::uint32_t x) {
-  std::size_t i = 0;
-#ifdef __SSE2__
-  const __m128i key = _mm_set1_epi32(int(x));
-  for (; i + 8 <= ids.size(); i += 8) {
-    const __m128i a = _mm_loadu_si128(reinterpret_cast<const __m128i*>(ids.data() + i));
-    const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(ids.data() + i + 4));
-    if (_mm_movemask_epi8(_mm_or_si128(_mm_cmpeq_epi32(a, key), _mm_cmpeq_epi32(b, key))) != 0) break;
-  }
-#endif
-  for (; i < ids.size(); ++i)
-    if (ids[i] == x) return i;
-  return ids.size();
-}
-}
 
 template <int D>
 WellSpacedEngine<D>::WellSpacedEngine(const Parameters<D>& parameters)
@@ -124,7 +101,7 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(s
     if (nd.level < 0 || !nd.is_leaf()) continue;
     for (const LeafVertex<D>& e : nd.vertices) vertices_[e.id].leaf = n;
   }
-  if (recording_) readers_.assign(tree_.node_capacity(), {});
+  if (recording_) readers_.grow_to(tree_.node_capacity());
   // Input dispatches at the rank of QTApxNN(v) (a quarter of the side of its leaf): NN from below.
   for (VertexId v = 0; v < input_count_; ++v) {
     const int rank = ranks_.rank_of_length(tree_.approximate_nn(vertices_[v].leaf));
@@ -139,10 +116,10 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(s
     for (VertexId& v : vertex_of_point) v = new_id[v];
     renumber_operations_by_place();
     // Room to grow in every reader list. Updates register readers again, and a list that outgrows its
-    // block moves wherever the allocator finds room, away from the lists of its neighbours, which
-    // marking and undo walk together: at 2D n = 1e6 the median update grew by a fifth over 40,000
-    // changes without it, by about a tenth with it (bench/RESULTS.md), for 2 to 3 % more memory.
-    for (auto& list : readers_) list.reserve(list.size() + list.size() / 2 + 2);
+    // block moves to a block elsewhere, away from the lists of its neighbours, which marking and undo
+    // walk together: at 2D n = 1e6 the median update grew by a fifth over 40,000 changes without room,
+    // by about a tenth with it (bench/RESULTS.md).
+    readers_.lay_out();
   }
   dynamic_ = for_updates;
   return vertex_of_point;
@@ -221,7 +198,7 @@ void WellSpacedEngine<D>::mark_readers_at(VertexId w, const Point<D>& p, NodeId 
   const bool inserted = change == VertexChange::Inserted;
   const auto bits = facet_bits(w);
   for (NodeId n = leaf; n != kNoNode; n = tree_.node(n).parent)
-    for (OpId o : readers_[n]) {
+    for (OpId o : readers_.list(n)) {
       const Op& op = ops_[o];
       if (op.rank < rank || (op.rank == rank && op.color <= color)) continue;
       if (!inserted && !op.facets.may_hold(bits)) continue;
@@ -247,7 +224,7 @@ void WellSpacedEngine<D>::record_facets(OpId o, const Worker& wk) {
 
 template <int D>
 void WellSpacedEngine<D>::mark_all_readers(NodeId n) {
-  for (OpId o : readers_[n]) mark_redo(o);
+  for (OpId o : readers_.list(n)) mark_redo(o);
 }
 
 // Processes the agenda in time order. At each time: fills nobody asks for any more become obsolete;
@@ -371,14 +348,7 @@ void WellSpacedEngine<D>::undo(OpId o) {
       if (stats_) stats_->steiner_removed.push_back(positions_[w]);
     }
   }
-  for (std::uint32_t k = ops_[o].reads_begin; k < ops_[o].reads_end; ++k) {
-    auto& rs = readers_[reads_[k]];
-    const std::size_t at = position_of(rs, o);
-    if (at != rs.size()) {
-      rs[at] = rs.back();
-      rs.pop_back();
-    }
-  }
+  for (std::uint32_t k = ops_[o].reads_begin; k < ops_[o].reads_end; ++k) readers_.erase(reads_[k], o);
   Op& again = ops_[o];
   release_reads(again);
   if (!(again.flags & kStashed)) release_children(again);  // a stashed fill's go when it runs (fill)
@@ -432,7 +402,7 @@ template <int D>
 void WellSpacedEngine<D>::register_reads(OpId o, std::span<const NodeId> nodes) {
   ops_[o].reads_begin = reads_.allocate(nodes);
   ops_[o].reads_end = ops_[o].reads_begin + std::uint32_t(nodes.size());
-  for (NodeId n : nodes) readers_[n].push_back(o);
+  for (NodeId n : nodes) readers_.push(n, o);
 }
 
 
@@ -460,10 +430,10 @@ typename WellSpacedEngine<D>::VertexId WellSpacedEngine<D>::new_vertex(const Poi
 // leaves have a new QTApxNN, so their dispatches are replaced.
 template <int D>
 void WellSpacedEngine<D>::apply_tree_change(const typename engine::Quadtree<D>::Change& change) {
-  if (readers_.size() < tree_.node_capacity()) readers_.resize(tree_.node_capacity());
+  readers_.grow_to(tree_.node_capacity());
   for (NodeId n : change.removed_leaves) {
     mark_all_readers(n);
-    readers_[n].clear();
+    readers_.clear(n);
   }
   for (NodeId n : change.new_leaves) {
     for (const LeafVertex<D>& e : tree_.node(n).vertices) vertices_[e.id].leaf = n;
@@ -519,8 +489,8 @@ void WellSpacedEngine<D>::mark_water_readers(const Point<D>& lo, const Point<D>&
     bool meets = true;
     for (int i = 0; i < D; ++i) meets = meets && box.lo[i] <= hi[i] && lo[i] <= box.hi[i];
     if (!meets) continue;
-    if (n < readers_.size())
-      for (OpId o : readers_[n]) {
+    if (n < readers_.node_count())
+      for (OpId o : readers_.list(n)) {
         const Op& op = ops_[o];
         // Only a fill that tested the water read it: one skipped on land, or one that inserted (a fill
         // that found its vertex well-spaced, or idle by rank, decided without it). Its box lies within
@@ -620,8 +590,7 @@ typename WellSpacedEngine<D>::MemoryBreakdown WellSpacedEngine<D>::memory_breakd
   m.operations = ops_.capacity() * sizeof(Op);
   m.children = children_.memory_bytes();
   m.reads = reads_.memory_bytes();
-  m.readers = readers_.size() * sizeof(std::vector<OpId>);
-  for (const auto& r : readers_) m.readers += r.capacity() * sizeof(OpId);
+  m.readers = readers_.memory_bytes();
   m.tree = tree_.memory_bytes();
   m.other = (free_ops_.capacity() + free_vertices_.capacity()) * sizeof(std::uint32_t);
   for (const auto& bucket : agenda_) m.other += bucket.capacity() * sizeof(OpId);
@@ -672,15 +641,16 @@ void WellSpacedEngine<D>::check_valid() const {
       if (ops_[c].rank < op.rank) fail("a child runs before its parent");
     }
     for (NodeId n : reads(o)) {
-      const auto& rs = readers_[n];
+      const auto rs = readers_.list(n);
       if (std::find(rs.begin(), rs.end(), o) == rs.end()) fail("read edge without reader entry");
     }
   }
   // Memory is reclaimed: no reader entry of a deleted operation survives, and every block of the pools
   // holds a live operation's run or is free.
-  for (const auto& rs : readers_)
-    for (OpId o : rs)
+  for (NodeId n = 0; n < readers_.node_count(); ++n)
+    for (OpId o : readers_.list(n))
       if (ops_[o].flags & kDead) fail("reader entry of a deleted operation");
+  if (readers_.live_block_entries() + readers_.free_entries() != readers_.size()) fail("a reader block lost");
   const PoolEntries live = live_pool_entries();
   if (live.children + children_.free_entries() != children_.size()) fail("a children block lost");
   if (live.reads + reads_.free_entries() != reads_.size()) fail("a reads block lost");

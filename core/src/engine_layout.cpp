@@ -89,8 +89,7 @@ void WellSpacedEngine<D>::renumber_operations_by_place() {
   }
   for (const Op& op : ops_)
     for (std::uint32_t k = op.children_begin; k < op.children_end; ++k) children_[k] = new_id[children_[k]];
-  for (auto& list : readers_)
-    for (OpId& o : list) o = new_id[o];
+  readers_.rename([&](OpId o) { return new_id[o]; });
   for (OpId& o : free_ops_) o = new_id[o];
   lay_out_pools();  // the children and reads pools in the new order too
 }

@@ -5,7 +5,6 @@
 // records for every operation its children (the fills a dispatch asked for, the dispatches of the Steiner
 // vertices a fill inserted) and for every leaf the operations that read it: what PropagateWS replays.
 #include <cstdint>
-#include <deque>
 #include <limits>
 #include <memory>
 #include <span>
@@ -19,6 +18,7 @@
 #include "shoremesh/engine/ids.hpp"
 #include "shoremesh/engine/quadtree.hpp"
 #include "shoremesh/engine/rank_scale.hpp"
+#include "shoremesh/engine/reader_lists.hpp"
 #include "shoremesh/engine/water.hpp"
 #include "shoremesh/parameters.hpp"
 #include "shoremesh/point.hpp"
@@ -313,9 +313,8 @@ class WellSpacedEngine {
   engine::BlockPool children_;  // each operation's run: [children_begin, children_end)
   engine::BlockPool reads_;     // [reads_begin, reads_end)
   std::vector<OpId> new_children_;  // the children of the operation being executed, stored when it ends
-  // Per quadtree node: the operations that read it. A deque, so that growing with the tree never moves
-  // the lists: a vector of them reallocating took ~13 ms of one update at n = 1e5.
-  std::deque<std::vector<OpId>> readers_;
+  // Per quadtree node: the operations that read it (reader_lists.hpp).
+  engine::ReaderLists readers_;
   // The agenda: one bucket of operations per time (rank, colour) from agenda_base_rank_ on, the
   // buckets before agenda_next_ empty. Ranks span O(log spread) and colours kappa^D + 1.
   std::vector<std::vector<OpId>> agenda_;
