@@ -20,12 +20,14 @@
 // of the changed points), and the median and 99th percentile of that step are printed too: what an edit
 // costs after the engine, and a yardstick for the engine's own time (the same change, applied by CGAL, with
 // the elements removed and added worked out).
-// Last come the engine's bytes after the changes (the last input's), in all and per output vertex part by
-// part (WellSpacedEngine::memory_breakdown, by capacity), and the process's resident memory then.
+// update_median_cpu_seconds: the same latencies in the updating thread's CPU time. Last come the engine's
+// bytes after the changes (the last input's), in all and per output vertex part by part
+// (WellSpacedEngine::memory_breakdown, by capacity), and the process's resident memory then.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <optional>
 #include <random>
 #include <string>
@@ -45,6 +47,13 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+// This thread's CPU seconds (updates run on the calling thread): on a machine loaded by other work, the
+// wall-clock latencies grow with the load and these do not.
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
 
 struct Options {
   int dim = 2;
@@ -108,7 +117,7 @@ void run(const Options& opt) {
   // The first change after a build, the slower of its two updates, the slowest over the inputs: what the
   // first edit after loading costs (growing a pool or a table then shows here, not in the median).
   double first_update_seconds = 0;
-  std::vector<double> latencies, update_ops, steiner_changes, mesh_latencies;
+  std::vector<double> latencies, cpu_latencies, update_ops, steiner_changes, mesh_latencies;
   CellWork build_work, update_work;
   // The last input's engine after its changes, and its output then.
   typename shoremesh::WellSpacedEngine<D>::MemoryBreakdown memory;
@@ -161,7 +170,9 @@ void run(const Options& opt) {
         shoremesh::Point<D> to;
         for (int i = 0; i < D; ++i) to[i] = std::clamp(from[i] + step * (2 * u(rng) - 1), 0.0, 1.0);
         auto t = Clock::now();
+        const double c0 = thread_cpu_seconds();
         set.move(id, to, &moved);
+        cpu_latencies.push_back(thread_cpu_seconds() - c0);
         const double a = seconds_since(t);
         follow(moved, &from, &to);
         if (c == 0) first_update_seconds = std::max(first_update_seconds, a);
@@ -174,12 +185,16 @@ void run(const Options& opt) {
         const std::size_t k = rng() % ids.size();
         const shoremesh::Point<D> gone = set.input_point(ids[k]);
         auto t1 = Clock::now();
+        const double c1 = thread_cpu_seconds();
         set.remove(ids[k], &removed);
+        cpu_latencies.push_back(thread_cpu_seconds() - c1);
         const double a = seconds_since(t1);
         shoremesh::Point<D> p;
         for (auto& x : p) x = u(rng);
         auto t2 = Clock::now();
+        const double c2 = thread_cpu_seconds();
         const std::size_t id = set.add(p, &added);
+        cpu_latencies.push_back(thread_cpu_seconds() - c2);
         const double b = seconds_since(t2);
         ids[k] = id;
         follow(removed, &gone, nullptr);
@@ -217,7 +232,7 @@ void run(const Options& opt) {
       "update_median_ops=%.0f update_max_ops=%.0f first_update_seconds=%.6g speedup_ops=%.1f speedup_time=%.1f "
       "build_leaves_per_cell=%.1f build_candidates_per_cell=%.1f build_clips_per_cell=%.1f "
       "update_cells=%.1f update_leaves_per_cell=%.1f update_candidates_per_cell=%.1f update_clips_per_cell=%.1f build_searches_per_cell=%.2f update_searches_per_cell=%.2f update_cells_reused=%.1f update_cells_from_lists=%.1f update_cells_updated=%.1f "
-      "update_steiner_changes_median=%.0f%s engine_memory_bytes=%zu engine_bytes_per_vertex=%.1f "
+      "update_steiner_changes_median=%.0f%s update_median_cpu_seconds=%.6g update_p99_cpu_seconds=%.6g engine_memory_bytes=%zu engine_bytes_per_vertex=%.1f "
       "bytes_per_vertex_vertices=%.1f bytes_per_vertex_positions=%.1f bytes_per_vertex_operations=%.1f "
       "bytes_per_vertex_children=%.1f bytes_per_vertex_reads=%.1f bytes_per_vertex_readers=%.1f "
       "bytes_per_vertex_tree=%.1f bytes_per_vertex_other=%.1f rss_bytes=%zu points=%s\n",
@@ -228,7 +243,8 @@ void run(const Options& opt) {
       update_work.cells / updates, update_work.leaves / update_work.cells, update_work.candidates / update_work.cells,
       update_work.clips / update_work.cells, build_work.searches / build_work.cells,
       update_work.searches / update_work.cells, update_work.reused / updates, update_work.listed / updates,
-      update_work.updated / updates, quantile(steiner_changes, 0.5), mesh_fields, memory.total(),
+      update_work.updated / updates, quantile(steiner_changes, 0.5), mesh_fields, quantile(cpu_latencies, 0.5),
+      quantile(cpu_latencies, 0.99), memory.total(),
       double(memory.total()) / memory_output, double(memory.vertices) / memory_output,
       double(memory.positions) / memory_output, double(memory.operations) / memory_output,
       double(memory.children) / memory_output, double(memory.reads) / memory_output,
