@@ -89,7 +89,6 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(s
   vertices_.resize(input_count_);
   std::vector<VertexId> ids(input_count_);
   for (VertexId v = 0; v < input_count_; ++v) {
-    vertices_[v].position = positions_[v];
     vertices_[v].is_input = true;
     vertices_[v].alive = true;
     vertices_[v].filter_key = v;
@@ -409,7 +408,6 @@ void WellSpacedEngine<D>::register_reads(OpId o, std::span<const NodeId> nodes) 
 template <int D>
 typename WellSpacedEngine<D>::VertexId WellSpacedEngine<D>::new_vertex(const Point<D>& p) {
   Vertex vx;
-  vx.position = p;
   vx.alive = true;
   if (!free_vertices_.empty()) {
     const VertexId id = free_vertices_.back();
@@ -610,7 +608,6 @@ void WellSpacedEngine<D>::check_valid() const {
     const Vertex& vx = vertices_[v];
     if (!vx.alive) continue;
     if (vx.is_input) ++inputs;
-    if (vx.position != positions_[v]) fail("vertex position copy");
     const auto& list = tree_.node(vx.leaf).vertices;
     if (!tree_.node(vx.leaf).is_leaf() ||
         std::none_of(list.begin(), list.end(), [&](const LeafVertex<D>& e) { return e.id == v; }))

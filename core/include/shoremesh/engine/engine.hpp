@@ -41,8 +41,8 @@ class WellSpacedEngine {
 
   enum class OpKind : std::uint8_t { Dispatch, Fill };
 
+  // Its position is positions_[v] (positions()): the one copy, contiguous for the tree and the searches.
   struct Vertex {
-    Point<D> position{};
     NodeId leaf = engine::kNoNode;
     OpId creator = engine::kNoOp;      // the fill that inserted this Steiner vertex; none for inputs
     OpId dispatch = engine::kNoOp;     // the one dispatch acting on it
@@ -307,7 +307,7 @@ class WellSpacedEngine {
   engine::RankScale<D> ranks_;
   engine::Quadtree<D> tree_;
   std::vector<Vertex> vertices_;
-  std::vector<Point<D>> positions_;     // positions_[v] == vertices_[v].position, contiguous for the tree
+  std::vector<Point<D>> positions_;     // by vertex id
   std::size_t input_count_ = 0;
   std::vector<Op> ops_;
   engine::BlockPool children_;  // each operation's run: [children_begin, children_end)
