@@ -16,9 +16,23 @@ namespace shoremesh {
 using namespace engine;
 using namespace engine_detail;
 
+namespace {
+// A run's length as an Op keeps it. Runs are short: a dispatch asks for a fill per cell neighbour, a fill
+// inserts at most a thousand points, an operation reads the few nodes covering one box.
+std::uint16_t run_length(std::size_t length) {
+  if (length > std::numeric_limits<std::uint16_t>::max()) throw std::length_error("an operation's run of over 65535 ids");
+  return std::uint16_t(length);
+}
+}  // namespace
+
 template <int D>
 WellSpacedEngine<D>::WellSpacedEngine(const Parameters<D>& parameters)
-    : params_(DerivedParameters<D>::derive(parameters)), ranks_(params_) {}
+    : params_(DerivedParameters<D>::derive(parameters)), ranks_(params_) {
+  // An Op keeps its rank and colour in 16 bits each.
+  if (ranks_.min_rank() < std::numeric_limits<std::int16_t>::min() || ranks_.max_rank() > std::numeric_limits<std::int16_t>::max() ||
+      ranks_.color_count() >= std::numeric_limits<std::uint16_t>::max())
+    throw std::invalid_argument("parameters give over 2^15 ranks or 2^16 colours (rho too near 1 or kappa too large)");
+}
 
 template <int D>
 WellSpacedEngine<D>::~WellSpacedEngine() = default;
@@ -130,8 +144,8 @@ typename WellSpacedEngine<D>::OpId WellSpacedEngine<D>::new_op(OpKind kind, Vert
   Op op;
   op.kind = kind;
   op.vertex = v;
-  op.rank = rank;
-  op.color = color;
+  op.rank = std::int16_t(rank);
+  op.color = std::uint16_t(color);
   if (!free_ops_.empty()) {
     const OpId o = free_ops_.back();
     free_ops_.pop_back();
@@ -324,7 +338,7 @@ void WellSpacedEngine<D>::undo(OpId o) {
   Op& op = ops_[o];
   const int rank = op.rank;
   const std::uint32_t color = op.color;
-  const std::uint32_t cb = op.children_begin, ce = op.children_end;
+  const std::uint32_t cb = op.children_begin, ce = op.children_begin + op.children_count;
   if (op.kind == OpKind::Dispatch) {
     for (std::uint32_t k = cb; k < ce; ++k) {
       Op& child = ops_[children_[k]];
@@ -347,7 +361,7 @@ void WellSpacedEngine<D>::undo(OpId o) {
       if (stats_) stats_->steiner_removed.push_back(positions_[w]);
     }
   }
-  for (std::uint32_t k = ops_[o].reads_begin; k < ops_[o].reads_end; ++k) readers_.erase(reads_[k], o);
+  for (NodeId n : reads(o)) readers_.erase(n, o);
   Op& again = ops_[o];
   release_reads(again);
   if (!(again.flags & kStashed)) release_children(again);  // a stashed fill's go when it runs (fill)
@@ -380,27 +394,29 @@ void WellSpacedEngine<D>::kill(OpId o) {
 
 template <int D>
 void WellSpacedEngine<D>::release_reads(Op& op) {
-  reads_.release(op.reads_begin, op.reads_end - op.reads_begin);
-  op.reads_begin = op.reads_end = 0;
+  reads_.release(op.reads_begin, op.reads_count);
+  op.reads_begin = 0;
+  op.reads_count = 0;
 }
 
 template <int D>
 void WellSpacedEngine<D>::release_children(Op& op) {
-  children_.release(op.children_begin, op.children_end - op.children_begin);
-  op.children_begin = op.children_end = 0;
+  children_.release(op.children_begin, op.children_count);
+  op.children_begin = 0;
+  op.children_count = 0;
 }
 
 // The children the operation being executed gathered in new_children_ become its run.
 template <int D>
 void WellSpacedEngine<D>::store_children(OpId o) {
+  ops_[o].children_count = run_length(new_children_.size());
   ops_[o].children_begin = children_.allocate(new_children_);
-  ops_[o].children_end = ops_[o].children_begin + std::uint32_t(new_children_.size());
 }
 
 template <int D>
 void WellSpacedEngine<D>::register_reads(OpId o, std::span<const NodeId> nodes) {
+  ops_[o].reads_count = run_length(nodes.size());
   ops_[o].reads_begin = reads_.allocate(nodes);
-  ops_[o].reads_end = ops_[o].reads_begin + std::uint32_t(nodes.size());
   for (NodeId n : nodes) readers_.push(n, o);
 }
 
@@ -493,7 +509,7 @@ void WellSpacedEngine<D>::mark_water_readers(const Point<D>& lo, const Point<D>&
         // Only a fill that tested the water read it: one skipped on land, or one that inserted (a fill
         // that found its vertex well-spaced, or idle by rank, decided without it). Its box lies within
         // sqrt(depends2) of its vertex (docs/water_only.md): farther from the changed box, nothing it read changed.
-        if (op.kind != OpKind::Fill || (!op.on_land && op.children_begin == op.children_end)) continue;
+        if (op.kind != OpKind::Fill || (!op.on_land && op.children_count == 0)) continue;
         const Point<D>& q = positions_[op.vertex];
         double d2 = 0;
         for (int i = 0; i < D; ++i) {

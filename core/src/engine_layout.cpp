@@ -88,7 +88,7 @@ void WellSpacedEngine<D>::renumber_operations_by_place() {
     vx.first_fill = renamed(vx.first_fill);
   }
   for (const Op& op : ops_)
-    for (std::uint32_t k = op.children_begin; k < op.children_end; ++k) children_[k] = new_id[children_[k]];
+    for (std::uint32_t k = op.children_begin; k < op.children_begin + op.children_count; ++k) children_[k] = new_id[children_[k]];
   readers_.rename([&](OpId o) { return new_id[o]; });
   for (OpId& o : free_ops_) o = new_id[o];
   lay_out_pools();  // the children and reads pools in the new order too
@@ -106,12 +106,8 @@ void WellSpacedEngine<D>::lay_out_pools() {
   children.reserve(live.children + live.children / 8 + 1024);
   reads.reserve(live.reads + live.reads / 8 + 1024);
   for (Op& op : ops_) {
-    const std::uint32_t children_count = op.children_end - op.children_begin;
-    op.children_begin = children.allocate(children_.run(op.children_begin, op.children_end));
-    op.children_end = op.children_begin + children_count;
-    const std::uint32_t reads_count = op.reads_end - op.reads_begin;
-    op.reads_begin = reads.allocate(reads_.run(op.reads_begin, op.reads_end));
-    op.reads_end = op.reads_begin + reads_count;
+    op.children_begin = children.allocate(children_.run(op.children_begin, op.children_begin + op.children_count));
+    op.reads_begin = reads.allocate(reads_.run(op.reads_begin, op.reads_begin + op.reads_count));
   }
   children_ = std::move(children);
   reads_ = std::move(reads);
@@ -123,8 +119,8 @@ typename WellSpacedEngine<D>::PoolEntries WellSpacedEngine<D>::live_pool_entries
   PoolEntries live;
   for (const Op& op : ops_)
     if (!(op.flags & kDead)) {
-      live.children += engine::BlockPool::block_size(op.children_end - op.children_begin);
-      live.reads += engine::BlockPool::block_size(op.reads_end - op.reads_begin);
+      live.children += engine::BlockPool::block_size(op.children_count);
+      live.reads += engine::BlockPool::block_size(op.reads_count);
     }
   return live;
 }

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -177,6 +178,8 @@ template <int D>
 void WellSpacedEngine<D>::request_fill(VertexId w, int rank, bool crowded) {
   for (OpId f = vertices_[w].first_fill; f != kNoOp; f = ops_[f].next_fill)
     if (ops_[f].rank == rank && !(ops_[f].flags & kDead)) {
+      if (ops_[f].requesters == std::numeric_limits<std::uint16_t>::max())
+        throw std::length_error("a fill asked for by over 65535 dispatches");
       ++ops_[f].requesters;
       ops_[f].flags &= std::uint8_t(~kObsolete);  // asked for again before its time: it lives on
       new_children_.push_back(f);

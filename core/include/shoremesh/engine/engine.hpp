@@ -65,34 +65,40 @@ class WellSpacedEngine {
     kStashed = 64,    // an inconsistent fill undone but for its Steiner vertices: it may insert them again
   };
 
+  // Packed: 56 bytes in 2D, 88 in 3D (it was 72 and 96), an engine's largest array after its quadtree,
+  // which updates read one reader after the other (mark_readers_at). Ranks lie within
+  // [RankScale::min_rank, max_rank] (a few hundred at most) and colours within kappa^D + 1 (checked at
+  // construction); runs and requesters are counted in 16 bits (checked where they are written).
   struct Op {
+    // Removing a vertex matters only if it bounds the cell (facet_filter.hpp); everything: any vertex.
+    engine::FacetFilter<D> facets = engine::FacetFilter<D>::everything();
     VertexId vertex = engine::kNoVertex;
-    std::int32_t rank = 0;
-    std::uint32_t color = 0;           // 0 for dispatches
-    OpKind kind = OpKind::Dispatch;
-    std::uint8_t flags = 0;
-    // A hint for its searches, kept for its life: one of its cells had many candidates, or it was made
-    // by an operation that was crowded (a fill asked for by a crowded dispatch, the dispatch of a
-    // Steiner vertex a crowded fill inserted: they lie near). Its searches then skip what cannot cut
-    // its cell (compute_cell). Changes only the work, never the result.
-    bool crowded = false;
-    // A fill skipped because its vertex's cell could not meet the water (docs/water_only.md).
-    bool on_land = false;
     OpId next_fill = engine::kNoOp;    // next fill acting on the same vertex
-    std::uint32_t requesters = 0;      // fills: how many dispatches currently ask for it
-    std::uint32_t children_begin = 0, children_end = 0;  // into children_
-    std::uint32_t reads_begin = 0, reads_end = 0;        // into reads_
+    std::uint32_t children_begin = 0;  // into children_, children_count of them
+    std::uint32_t reads_begin = 0;     // into reads_, reads_count of them
     // Its result depends only on the vertices within these squared distances: removing one within
     // depends2, or inserting one within inserted_depends2 (smaller for a fill that found its vertex
     // well-spaced: a new vertex farther than NN only shrinks the cell, and it stays well-spaced).
     // Floats rounded up (see at_least): a radius only ever errs on the side of a rerun.
     float depends2 = 0;
     float inserted_depends2 = 0;
-    // Removing a vertex matters only if it bounds the cell (facet_filter.hpp); everything: any vertex.
-    engine::FacetFilter<D> facets = engine::FacetFilter<D>::everything();
+    std::int16_t rank = 0;
+    std::uint16_t color = 0;           // 0 for dispatches
+    std::uint16_t children_count = 0, reads_count = 0;
+    std::uint16_t requesters = 0;      // fills: how many dispatches currently ask for it
+    OpKind kind = OpKind::Dispatch;
+    std::uint8_t flags = 0;
     // Inserting a vertex within inserted_depends2 matters only if it can cut the cell (cell_reach.hpp).
     engine::CellReach<D> reach = engine::CellReach<D>::unbounded();
+    // A hint for its searches, kept for its life: one of its cells had many candidates, or it was made
+    // by an operation that was crowded (a fill asked for by a crowded dispatch, the dispatch of a
+    // Steiner vertex a crowded fill inserted: they lie near). Its searches then skip what cannot cut
+    // its cell (compute_cell). Changes only the work, never the result.
+    bool crowded : 1 = false;
+    // A fill skipped because its vertex's cell could not meet the water (docs/water_only.md).
+    bool on_land : 1 = false;
   };
+  static_assert(sizeof(Op) == (D == 2 ? 56 : 88), "Op packs to 56 bytes in 2D and 88 in 3D");
 
   // One edit for apply(): add a point (id returned) or remove an input vertex.
   struct InputEdit {
@@ -151,10 +157,10 @@ class WellSpacedEngine {
   std::size_t op_count() const { return ops_.size(); }
   const Op& op(OpId o) const { return ops_[o]; }
   std::span<const OpId> children(OpId o) const {
-    return children_.run(ops_[o].children_begin, ops_[o].children_end);
+    return children_.run(ops_[o].children_begin, ops_[o].children_begin + ops_[o].children_count);
   }
   std::span<const NodeId> reads(OpId o) const {
-    return reads_.run(ops_[o].reads_begin, ops_[o].reads_end);
+    return reads_.run(ops_[o].reads_begin, ops_[o].reads_begin + ops_[o].reads_count);
   }
   const engine::Quadtree<D>& quadtree() const { return tree_; }
   const DerivedParameters<D>& parameters() const { return params_; }
@@ -310,8 +316,8 @@ class WellSpacedEngine {
   std::vector<Point<D>> positions_;     // by vertex id
   std::size_t input_count_ = 0;
   std::vector<Op> ops_;
-  engine::BlockPool children_;  // each operation's run: [children_begin, children_end)
-  engine::BlockPool reads_;     // [reads_begin, reads_end)
+  engine::BlockPool children_;  // each operation's run: children_count from children_begin
+  engine::BlockPool reads_;     // reads_count from reads_begin
   std::vector<OpId> new_children_;  // the children of the operation being executed, stored when it ends
   // Per quadtree node: the operations that read it (reader_lists.hpp).
   engine::ReaderLists readers_;
