@@ -28,6 +28,16 @@ void permute_in_place(std::vector<T>& items, const std::vector<std::uint32_t>& n
     }
   }
 }
+// The items in an array with room for an eighth more (and a thousand): the room a pool keeps.
+template <class T>
+void with_room(std::vector<T>& items) {
+  const std::size_t room = items.size() + items.size() / 8 + 1024;
+  if (items.capacity() <= room) return;
+  std::vector<T> copy;
+  copy.reserve(room);
+  copy.assign(items.begin(), items.end());
+  items.swap(copy);
+}
 }  // namespace
 
 // The build numbers Steiner vertices and operations in time order (each time's batch along the curve),
@@ -92,6 +102,11 @@ void WellSpacedEngine<D>::renumber_operations_by_place() {
   readers_.rename([&](OpId o) { return new_id[o]; });
   for (OpId& o : free_ops_) o = new_id[o];
   lay_out_pools();  // the children and reads pools in the new order too
+  // The arrays grew by doubling during the build: keep room for an eighth more (what an update adds
+  // before the slots it frees come back), not up to twice as much.
+  with_room(ops_);
+  with_room(vertices_);
+  with_room(positions_);
 }
 
 // Rewrites the children and reads pools with each operation's runs in operation order (after the
