@@ -143,8 +143,8 @@ QualityReport<D> quality_report(std::span<const Point<D>> points, std::span<cons
 
   // A radius-edge ratio a few ulps above rho is rounding in the construction, not a broken guarantee.
   const double tolerance = rho * (1 + 1e-12);
-  // The worst are chosen among (radius-edge, index) pairs, 16 bytes an element, not whole shapes (88:
-  // 63 MB at Superior's 716k triangles). partial_sort makes the same comparisons of the same values in
+  // The worst are chosen among (radius-edge, index) pairs, 16 bytes an element, not whole shapes (72:
+  // 52 MB at Superior's 716k triangles). partial_sort makes the same comparisons of the same values in
   // the same order either way, so it picks the same elements in the same order, ties included.
   struct Ranked {
     double radius_edge;
