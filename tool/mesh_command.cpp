@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "free_memory.hpp"
 #include "input_args.hpp"
 #include "land_water.hpp"
 #include "pipeline.hpp"
@@ -67,6 +68,7 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
   io::OutputBatch batch(read);
   const OutputPaths staged = plan_outputs(batch, output, format, opt.preview);
 
+  release_free_memory();  // the reading's temporaries
   progress.stage("StableWS on " + std::to_string(points.size()) + " points");
   StableResult<D> result;
   try {
@@ -74,6 +76,7 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
   } catch (const PointInputError& e) {
     rethrow_with_origin(e, set);
   }
+  release_free_memory();  // the engine's
   progress.stage("meshing " + std::to_string(result.points.size()) + " points");
   const Mesh<D> mesh = well_spaced_mesh<D>(result.points, result.input_count, in.domain, result.box, opt.engine.keep_hull);
   if (mesh.element_count() == 0 && (!point_set || !opt.preview.empty()))

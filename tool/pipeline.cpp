@@ -242,11 +242,12 @@ void write_preview(const Mesh<D>& mesh, const std::filesystem::path& path, const
 template <int D>
 QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransform<D>& box, const UserFrame& frame,
                                const Domain2* input_rings) {
-  const QualityReport<D> r = mesh.quality(rho, box);
+  // One list of the elements for the report and the counts below (Mesh::quality would make its own).
+  const auto elements = mesh.elements();
+  const QualityReport<D> r = quality_report<D>(mesh.points(), elements, rho, box);
   QualityNumbers q;
   q.elements = r.elements;
   // Points of the mesh: those an element uses (the fill on land is not part of it).
-  const auto elements = mesh.elements();
   std::vector<bool> used(mesh.points().size(), elements.empty());
   for (const auto& e : elements)
     for (auto i : e) used[i] = true;

@@ -298,7 +298,33 @@ class MeshTriangulation {
       : water_(domain), covered_box_(covered_box) {}
 
   Triangulation triangulation;
-  std::unordered_map<Point<D>, Vertex, PointHash<D>> vertex_of;
+
+  // Each vertex by its exact coordinates, for the updates, which name points. Made at the first call: a
+  // mesh built once and exported never looks a point up (the map took 30 MB at Superior's 480k points,
+  // beside CGAL's 100 MB of faces).
+  std::unordered_map<Point<D>, Vertex, PointHash<D>>& vertex_of() const {
+    if (!vertex_map_made_) {
+      vertex_map_.reserve(triangulation.number_of_vertices());
+      for (Vertex v : triangulation.finite_vertex_handles()) vertex_map_.emplace(C::from_cgal(v->point()), v);
+      vertex_map_made_ = true;
+    }
+    return vertex_map_;
+  }
+  bool has_vertex_map() const { return vertex_map_made_; }
+
+  // The mesh vertex at each point of `domain`'s rings (a null handle where none is), by one pass over the
+  // vertices: what the build and a report on the shore need, without vertex_of's map of every vertex.
+  std::unordered_map<Point2, Vertex, PointHash<2>> vertices_at(const Domain2& domain) const
+    requires(D == 2)
+  {
+    std::unordered_map<Point2, Vertex, PointHash<2>> at;
+    for (const Ring& ring : domain.rings)
+      for (const Point2& p : ring.points) at.emplace(p, Vertex());
+    if (!at.empty())
+      for (Vertex v : triangulation.finite_vertex_handles())
+        if (const auto it = at.find(C::from_cgal(v->point())); it != at.end()) it->second = v;
+    return at;
+  }
 
   // The elements a change destroyed and created, netted once at the end: an element removed then
   // recreated (or created then removed) cancels. Each element's births and deaths alternate, so the net is
@@ -334,18 +360,18 @@ class MeshTriangulation {
       triangulation.insert(input.begin(), input.end());  // spatially sorted bulk insertion
     }
     if (triangulation.number_of_vertices() != points.size()) return false;
-    vertex_of.reserve(points.size());
-    for (Vertex v : triangulation.finite_vertex_handles()) vertex_of.emplace(C::from_cgal(v->point()), v);
-    if constexpr (D == 2)
+    if constexpr (D == 2) {
+      const auto ring_vertex = vertices_at(domain);
       for (const Ring& ring : domain.rings)
         for (std::size_t k = 0; k < ring.segment_count(); ++k) {
           const Point2& a = ring.points[k];
           const Point2& b = ring.points[(k + 1) % ring.points.size()];
           if (a != b) count_segment(a, b, 1);
-          const auto ia = vertex_of.find(a), ib = vertex_of.find(b);
+          const Vertex va = ring_vertex.at(a), vb = ring_vertex.at(b);
           // A ring vertex that is not a mesh point leaves its segments out (shoreline_crossings says so).
-          if (a != b && ia != vertex_of.end() && ib != vertex_of.end()) insert_constraint(ia->second, ib->second);
+          if (a != b && va != Vertex() && vb != Vertex()) insert_constraint(va, vb);
         }
+    }
     C::for_each_finite_face(triangulation, [&](Face f) { classify(f); });
     return true;
   }
@@ -523,8 +549,8 @@ class MeshTriangulation {
     requires(D == 2)
   {
     for (const auto& [a, b] : segments) {
-      const auto ia = vertex_of.find(a), ib = vertex_of.find(b);
-      if (ia == vertex_of.end() || ib == vertex_of.end()) continue;  // a removed point takes it along
+      const auto ia = vertex_of().find(a), ib = vertex_of().find(b);
+      if (ia == vertex_of().end() || ib == vertex_of().end()) continue;  // a removed point takes it along
       const std::vector<Vertex> chain = constrained_chain(ia->second, ib->second);
       for (std::size_t k = 0; k + 1 < chain.size(); ++k) {
         Face f;
@@ -540,8 +566,8 @@ class MeshTriangulation {
     requires(D == 2)
   {
     for (const auto& [a, b] : segments) {
-      const auto ia = vertex_of.find(a), ib = vertex_of.find(b);
-      if (ia == vertex_of.end() || ib == vertex_of.end()) continue;  // as in build
+      const auto ia = vertex_of().find(a), ib = vertex_of().find(b);
+      if (ia == vertex_of().end() || ib == vertex_of().end()) continue;  // as in build
       constrain(ia->second, ib->second, acc);
     }
   }
@@ -578,8 +604,8 @@ class MeshTriangulation {
       for (int i = 0; i < 3; ++i) stack.emplace_back(f, i);
     };
     for (const Key& k : keys) {
-      const auto it = vertex_of.find(k[0]);
-      if (it == vertex_of.end()) continue;
+      const auto it = vertex_of().find(k[0]);
+      if (it == vertex_of().end()) continue;
       C::for_each_incident_finite_face(triangulation, it->second, [&](Face f) {
         if (kept(f) && key(f) == k) push_face(f);
       });
@@ -677,7 +703,7 @@ class MeshTriangulation {
   // constraints that is not one lies inside a ring segment, whose constraint is joined again around it.
   void remove(const Point<D>& p, std::vector<Point<D>>& points, std::vector<PointKind>& kinds, Accumulator& acc,
               const std::function<bool(const Point2&)>& ring_vertex = {}) {
-    const Vertex v = vertex_of.at(p);
+    const Vertex v = vertex_of().at(p);
     const std::uint32_t slot = v->info();
     std::vector<Vertex> rejoin;  // the ends of the segment's constrained edges at v
     if constexpr (D == 2) {
@@ -733,14 +759,14 @@ class MeshTriangulation {
       }
       for (Vertex u : link) u->info() &= ~kLinkMark;
     }
-    vertex_of.erase(p);
+    vertex_of().erase(p);
     if (hint_ == v) hint_ = Vertex();
     // Keep the point array compact: the last point moves into the freed slot.
     const std::size_t last = points.size() - 1;
     if (slot != last) {
       points[slot] = points[last];
       kinds[slot] = kinds[last];
-      vertex_of.at(points[slot])->info() = slot;
+      vertex_of().at(points[slot])->info() = slot;
     }
     points.pop_back();
     kinds.pop_back();
@@ -752,7 +778,7 @@ class MeshTriangulation {
     v->info() = static_cast<std::uint32_t>(points.size());
     points.push_back(p);
     kinds.push_back(kind);
-    vertex_of.emplace(p, v);
+    vertex_of().emplace(p, v);
   }
 
   void insert(const Point<D>& p, PointKind kind, std::vector<Point<D>>& points, std::vector<PointKind>& kinds,
@@ -857,7 +883,7 @@ class MeshTriangulation {
           box.hi[k] = std::max(box.hi[k], (*p)[k]);
         }
         // A mesh point to start the walk from, where there is one.
-        if (!box.seeded && vertex_of.count(*p)) box.seed = *p, box.seeded = true;
+        if (!box.seeded && vertex_of().count(*p)) box.seed = *p, box.seeded = true;
       }
     }
     // Walked in the order of the boxes' corners.
@@ -923,6 +949,8 @@ class MeshTriangulation {
   std::vector<Face> todo_;  // sweep's stack, kept between calls
   bool deferring_ = false;   // defer_classification
   std::vector<Face> pending_;  // faces marked kPending, to classify (classify_pending), kept between calls
+  mutable std::unordered_map<Point<D>, Vertex, PointHash<D>> vertex_map_;  // vertex_of()
+  mutable bool vertex_map_made_ = false;
 };
 
 template <int D>
@@ -1064,20 +1092,21 @@ std::vector<std::pair<Point2, Point2>> Mesh<D>::constrained_edges() const
 template <int D>
 MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domain2* domain, const ShoreChange* shore) {
   auto& t = *triangulation_;
+  t.vertex_of();  // made before the triangulation changes
   // Validate everything first, so that a bad change leaves the mesh as it was.
   if (change.added_input_count > change.added.size())
     throw InputError("added_input_count exceeds the number of added points");
   std::unordered_map<Point<D>, std::size_t, PointHash<D>> removed;
   for (std::size_t i = 0; i < change.removed.size(); ++i) {
     const Point<D>& p = change.removed[i];
-    if (!t.vertex_of.count(p)) throw InputError("removed point " + describe<D>(p) + " is not in the mesh", {}, i + 1);
+    if (!t.vertex_of().count(p)) throw InputError("removed point " + describe<D>(p) + " is not in the mesh", {}, i + 1);
     if (!removed.emplace(p, i).second) throw InputError("removed point " + describe<D>(p) + " is given twice", {}, i + 1);
   }
   std::unordered_map<Point<D>, std::size_t, PointHash<D>> added;
   for (std::size_t i = 0; i < change.added.size(); ++i) {
     const Point<D>& p = change.added[i];
     if (!finite<D>(p)) throw InputError("added point " + std::to_string(i) + " is not finite", {}, i + 1);
-    if (t.vertex_of.count(p) && !removed.count(p))
+    if (t.vertex_of().count(p) && !removed.count(p))
       throw InputError("added point " + describe<D>(p) + " is already in the mesh", {}, i + 1);
     if (!added.emplace(p, i).second) throw InputError("added point " + describe<D>(p) + " is given twice", {}, i + 1);
   }
@@ -1178,7 +1207,7 @@ template <int D>
 void Mesh<D>::check_valid() const {
   const auto& t = *triangulation_;
   if (!t.triangulation.is_valid()) throw std::logic_error("mesh: CGAL triangulation is not valid");
-  if (t.triangulation.number_of_vertices() != points_.size() || t.vertex_of.size() != points_.size() ||
+  if (t.triangulation.number_of_vertices() != points_.size() || t.vertex_of().size() != points_.size() ||
       kinds_.size() != points_.size())
     throw std::logic_error("mesh: vertex count, vertex map and point list disagree");
   for (auto v : t.triangulation.finite_vertex_handles()) {
@@ -1207,6 +1236,14 @@ ShorelineReport Mesh<D>::shoreline_crossings() const
   };
 
   const Domain2& domain = this->domain();
+  // The rings' vertices: from the map of every vertex when updates have made it, else by one pass.
+  std::unordered_map<Point2, C::Vertex, PointHash<2>> ring_vertex;
+  if (!t.has_vertex_map()) ring_vertex = t.vertices_at(domain);
+  auto vertex_at = [&](const Point2& p) {
+    if (!t.has_vertex_map()) return ring_vertex.at(p);
+    const auto it = t.vertex_of().find(p);
+    return it == t.vertex_of().end() ? C::Vertex() : it->second;
+  };
   for (std::size_t r = 0; r < domain.rings.size(); ++r) {
     const auto& ring = domain.rings[r].points;
     for (std::size_t s = 0; s < domain.rings[r].segment_count(); ++s) {
@@ -1217,11 +1254,11 @@ ShorelineReport Mesh<D>::shoreline_crossings() const
       ShoreSegmentIssue issue;
       issue.ring = r, issue.segment = s, issue.a = a, issue.b = b;
       const auto pa = C::to_cgal(a), pb = C::to_cgal(b);
-      const auto ia = t.vertex_of.find(a), ib = t.vertex_of.find(b);
-      if (ia == t.vertex_of.end() || ib == t.vertex_of.end() || dt.dimension() < 2) {
+      const C::Vertex va = vertex_at(a), vb = vertex_at(b);
+      if (va == C::Vertex() || vb == C::Vertex() || dt.dimension() < 2) {
         issue.endpoint_missing = true;
         for (const auto& p : {pa, pb})
-          if (!t.vertex_of.count(C::from_cgal(p))) {
+          if (vertex_at(C::from_cgal(p)) == C::Vertex()) {
             double nearest = std::numeric_limits<double>::infinity();
             for (const Point2& q : points_) nearest = std::min(nearest, std::hypot(q[0] - p.x(), q[1] - p.y()));
             if (!points_.empty()) issue.depth = std::max(issue.depth, nearest);
@@ -1229,8 +1266,7 @@ ShorelineReport Mesh<D>::shoreline_crossings() const
         report.issues.push_back(issue);
         continue;
       }
-      const auto vb = ib->second;
-      auto v = ia->second;
+      auto v = va;
       bool uncovered = false;
       std::vector<C::Face> passed;
       while (v != vb) {

@@ -5,6 +5,9 @@
 // the view has them, follow as the node field "depth" ($NodeData).
 #include <algorithm>
 #include <array>
+#include <cstddef>
+#include <cstdint>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -19,10 +22,21 @@ namespace {
 
 enum : int { kLine = 1, kTriangle = 2, kTetrahedron = 4 };
 
+// One entity's elements, flat (`arity` node indices each, 0-based): a vector per element cost 40 bytes
+// and an allocation for each of a 600k-triangle mesh.
 struct Block {
   int dim = 0, entity = 0, physical = 0, type = 0;
-  std::vector<std::vector<std::uint32_t>> elements;  // node indices, 0-based
+  std::size_t arity = 0;
+  std::vector<std::uint32_t> nodes;
+  std::size_t size() const { return nodes.size() / arity; }
+  template <class Nodes>
+  void push(const Nodes& e) {
+    nodes.insert(nodes.end(), std::begin(e), std::end(e));
+  }
 };
+
+// The text goes to the stream in pieces of about this many bytes, not as one string of the whole file.
+constexpr std::size_t kFlushBytes = std::size_t(1) << 20;
 
 template <int D>
 std::string bounding_box(const MeshView<D>& view, const std::vector<std::uint32_t>& nodes) {
@@ -54,22 +68,24 @@ void write_gmsh(const std::filesystem::path& path, const MeshView<D>& view) {
     physical_names.push_back("2 3 \"water\"");
     int curve = 0;
     for (const BoundaryLoop& loop : view.boundary) {
-      Block b{1, ++curve, loop.role == RingRole::Shore ? 1 : 2, kLine, {}};
+      Block b{1, ++curve, loop.role == RingRole::Shore ? 1 : 2, kLine, 2, {}};
       for (std::size_t i = 0; i < loop.nodes.size(); ++i)
-        b.elements.push_back({loop.nodes[i], loop.nodes[(i + 1) % loop.nodes.size()]});
+        b.push(std::array<std::uint32_t, 2>{loop.nodes[i], loop.nodes[(i + 1) % loop.nodes.size()]});
       blocks.push_back(std::move(b));
     }
-    Block water{2, 1, 3, kTriangle, {}};
-    for (const auto& e : view.elements) water.elements.push_back({e.begin(), e.end()});
+    Block water{2, 1, 3, kTriangle, 3, {}};
+    water.nodes.reserve(view.elements.size() * 3);
+    for (const auto& e : view.elements) water.push(e);
     blocks.push_back(std::move(water));
   } else {
     physical_names.push_back("2 1 \"boundary\"");
     physical_names.push_back("3 2 \"domain\"");
-    Block boundary{2, 1, 1, kTriangle, {}};
-    for (const auto& f : boundary_faces(view.elements)) boundary.elements.push_back({f.begin(), f.end()});
+    Block boundary{2, 1, 1, kTriangle, 3, {}};
+    for (const auto& f : boundary_faces(view.elements)) boundary.push(f);
     blocks.push_back(std::move(boundary));
-    Block domain{3, 1, 2, kTetrahedron, {}};
-    for (const auto& e : view.elements) domain.elements.push_back({e.begin(), e.end()});
+    Block domain{3, 1, 2, kTetrahedron, 4, {}};
+    domain.nodes.reserve(view.elements.size() * 4);
+    for (const auto& e : view.elements) domain.push(e);
     blocks.push_back(std::move(domain));
   }
 
@@ -85,9 +101,7 @@ void write_gmsh(const std::filesystem::path& path, const MeshView<D>& view) {
     for (int dim = 1; dim <= 3; ++dim)
       for (const Block& b : blocks) {
         if (b.dim != dim) continue;
-        std::vector<std::uint32_t> nodes;
-        for (const auto& e : b.elements) nodes.insert(nodes.end(), e.begin(), e.end());
-        append(s, b.entity, ' ', bounding_box<D>(view, nodes), "1 ", b.physical);
+        append(s, b.entity, ' ', bounding_box<D>(view, b.nodes), "1 ", b.physical);
         if (dim == 1) {
           s += " 0\n";  // closed loops: no bounding points
         } else {
@@ -103,26 +117,31 @@ void write_gmsh(const std::filesystem::path& path, const MeshView<D>& view) {
     const std::size_t np = view.points.size();
     append(s, "1 ", np, " 1 ", np, '\n');
     append(s, D, " 1 0 ", np, '\n');
-    for (std::size_t i = 1; i <= np; ++i) append(s, i, '\n');
+    auto flush = [&](std::size_t at_least) {
+      if (s.size() < at_least) return;
+      out << s;
+      s.clear();
+    };
+    for (std::size_t i = 1; i <= np; ++i) append(s, i, '\n'), flush(kFlushBytes);
     for (std::size_t n = 0; n < np; ++n) {
       for (int i = 0; i < 3; ++i) {
         append_number(s, node_coordinate(view, n, i));
         s += i < 2 ? ' ' : '\n';
       }
+      flush(kFlushBytes);
     }
-    out << s;
-    s.clear();
     s += "$EndNodes\n$Elements\n";
     std::size_t total = 0;
-    for (const Block& b : blocks) total += b.elements.size();
+    for (const Block& b : blocks) total += b.size();
     append(s, blocks.size(), ' ', total, " 1 ", total, '\n');
     std::size_t tag = 0;
     for (const Block& b : blocks) {
-      append(s, b.dim, ' ', b.entity, ' ', b.type, ' ', b.elements.size(), '\n');
-      for (const auto& e : b.elements) {
+      append(s, b.dim, ' ', b.entity, ' ', b.type, ' ', b.size(), '\n');
+      for (std::size_t k = 0; k < b.nodes.size(); k += b.arity) {
         append(s, ++tag);
-        for (auto n : e) append(s, ' ', n + 1);
+        for (std::size_t j = k; j < k + b.arity; ++j) append(s, ' ', b.nodes[j] + 1);
         s += '\n';
+        flush(kFlushBytes);
       }
     }
     s += "$EndElements\n";
@@ -130,7 +149,10 @@ void write_gmsh(const std::filesystem::path& path, const MeshView<D>& view) {
       // The depths as a node field (string tag "depth", one real tag: time 0, three integer tags: step 0,
       // one component, the node count).
       append(s, "$NodeData\n1\n\"depth\"\n1\n0\n3\n0\n1\n", np, '\n');
-      for (std::size_t i = 0; i < np; ++i) append(s, i + 1, ' '), append_number(s, view.depths[i]), s += '\n';
+      for (std::size_t i = 0; i < np; ++i) {
+        append(s, i + 1, ' '), append_number(s, view.depths[i]), s += '\n';
+        flush(kFlushBytes);
+      }
       s += "$EndNodeData\n";
     }
     out << s;
