@@ -258,6 +258,8 @@ class WellSpacedEngine {
   // computes v's cell clipped to the box and to the cube of half-side beta NN(v). For a fill, returns
   // false without a cell when v's nearest neighbour makes the fill idle (record_idle_fill).
   bool compute_cell(OpId o, VertexId v, bool fill, Worker& w);
+  // Its steps: gathering the candidates, clipping, recording the dependencies (engine_cells.cpp).
+  struct CellSearch;
   void record_idle_fill(OpId o, VertexId v, Worker& w);
   // The nodes covering the box of half-side h around p, left in w.covering (when recording): what op
   // o's commit registers it as a reader of.
