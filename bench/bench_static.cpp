@@ -28,6 +28,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <string>
 #include <string_view>
@@ -94,6 +95,7 @@ struct RunResult {
   std::size_t output_vertices = 0;
   double operations = -1;          // stablews only
   double engine_memory_bytes = -1; // stablews only
+  std::uint64_t output_hash = 0;   // stablews only: FNV-1a of the sorted output's bits (equal outputs, equal hashes)
   bool verified = false;
   std::string verdict;             // when --verify
 };
@@ -151,6 +153,16 @@ std::pair<RunResult, Timings> bench_stablews(const std::vector<Point<D>>& input,
   result.output_vertices = last.points.size();
   result.operations = static_cast<double>(last.counters.operations());
   result.engine_memory_bytes = static_cast<double>(last.memory_bytes);
+  std::vector<Point<D>> sorted = last.points;
+  std::sort(sorted.begin(), sorted.end());
+  std::uint64_t h = 1469598103934665603ull;
+  for (const Point<D>& p : sorted)
+    for (double x : p) {
+      std::uint64_t bits = 0;
+      std::memcpy(&bits, &x, sizeof bits);
+      for (int k = 0; k < 8; ++k) h = (h ^ ((bits >> (8 * k)) & 0xff)) * 1099511628211ull;
+    }
+  result.output_hash = h;
   if (o.verify) result.verdict = verdict<D>(last.points, input, box);
   return {result, timings};
 }
@@ -211,7 +223,8 @@ int run(const Options& o) {
               median(timings.cpu),
               result.operations < 0 ? NAN : result.operations / out, rss, static_cast<double>(rss) / out,
               result.engine_memory_bytes < 0 ? NAN : result.engine_memory_bytes);
-  if (o.algo == "stablews") std::printf(" threads=%u", engine::thread_count());
+  if (o.algo == "stablews")
+    std::printf(" threads=%u output_hash=%016llx", engine::thread_count(), static_cast<unsigned long long>(result.output_hash));
   if (o.verify) std::printf(" verify=%s", result.verdict.c_str());
   std::printf("\n");
   return 0;
