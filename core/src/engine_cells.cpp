@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <limits>
 
 #include "engine_internal.hpp"
 
@@ -116,6 +118,10 @@ struct WellSpacedEngine<D>::CellSearch {
     seen = box;
   }
   void gather_from_tree();
+  bool gather_from_delaunay(engine::DelaunayNeighbours::Walk& walk);
+  bool clip_from_delaunay(engine::DelaunayNeighbours::Walk& walk);
+  // The cube of half-side beta NN(v) about v, cut to [0,1]^D, as the cell to clip (and cap2).
+  void start_clipping();
   // Clipping: the cell clipped to the box and to the cube of half-side beta NN(v), from the candidates
   // (searching a larger box while a vertex outside may still cut it).
   void clip();
@@ -171,8 +177,62 @@ void WellSpacedEngine<D>::CellSearch::gather_from_tree() {
   searched = half;
 }
 
+// 2D one-shot builds: the candidates from a walk through the triangulation of M_t outward from v in
+// the order cells clip in, (d2, position), instead of the tree search. The cell is clipped by exactly
+// the vertices, in exactly the order, that the tree search's clip() takes: every vertex within the reach
+// as the cell shrinks (what lies beyond the reach cannot cut, and clip() stops at the first such vertex
+// too). The walk has met them all: a vertex of a Delaunay triangulation has a neighbour strictly nearer
+// v, so the vertices within any distance of v are connected to v within it (the walk goes a margin past
+// the reach, for the rounding of d2). Same planes in the same order: the same cell bit for bit, with
+// the same nearest neighbour (v's neighbours hold every vertex nearest it, chosen by the same rule). The
+// candidates kept for pick_steiner include v's neighbours, which bound its Voronoi cell: a point is
+// nearer v than all of them iff it is in the cell, as it is for the tree search's.
 template <int D>
-void WellSpacedEngine<D>::CellSearch::clip() {
+bool WellSpacedEngine<D>::CellSearch::gather_from_delaunay(engine::DelaunayNeighbours::Walk& walk) {
+  if constexpr (D != 2) {
+    (void)walk;
+    return false;
+  } else {
+    if (!e.delaunay_->start_walk(v, p, walk)) return false;
+    for (const engine::DelaunayNeighbours::Near& x : walk.pending()) offer(x.id, x.position, x.d2);
+    return true;
+  }
+}
+
+template <int D>
+bool WellSpacedEngine<D>::CellSearch::clip_from_delaunay(engine::DelaunayNeighbours::Walk& walk) {
+  if constexpr (D != 2) {
+    (void)walk;
+    return false;
+  } else {
+    // A vertex within the reach is met through ones nearer v, exactly; their rounded d2 may exceed its
+    // own by a few ulps.
+    constexpr double kWalkMargin = 1e-12;
+    start_clipping();
+    pool.clear();
+    double reach2 = std::min(4 * w.cell.max_vertex_distance2() * (1 + kReachMargin), cap2);
+    engine::DelaunayNeighbours::Near x;
+    while (walk.next_d2() <= reach2 * (1 + kWalkMargin)) {
+      // Among many (a large cell at a dense shore), the tree search skips what cannot cut the cell.
+      if (walk.returned() >= kCrowdedPool) return false;
+      e.delaunay_->next(walk, x);
+      pool.push_back({x.d2, x.id, x.position});
+      ++w.counters.candidates;
+      if (x.d2 <= reach2) {
+        ++w.counters.clips;
+        if (w.cell.clip(x.id, x.position, x.d2)) reach2 = std::min(4 * w.cell.max_vertex_distance2() * (1 + kReachMargin), cap2);
+      }
+    }
+    // Distances tied up to rounding met out of order: clip() would have cut in another order.
+    if (walk.out_of_order()) return false;
+    for (const engine::DelaunayNeighbours::Near& y : walk.pending()) pool.push_back({y.d2, y.id, y.position});
+    half = searched = std::numeric_limits<double>::infinity();  // nothing else is needed
+    return true;
+  }
+}
+
+template <int D>
+void WellSpacedEngine<D>::CellSearch::start_clipping() {
   // The box around v of half-side beta NN(v) (a little more, so it surely holds the beta-ball), cut to
   // [0,1]^D: inside the ball the cut cell equals the true Voronoi cell, which is all any decision uses.
   const double nn = std::sqrt(best_d2);
@@ -182,6 +242,14 @@ void WellSpacedEngine<D>::CellSearch::clip() {
     cube_lo[i] = std::max(0.0, p[i] - s);
     cube_hi[i] = std::min(1.0, p[i] + s);
   }
+  w.cell.reset(p, cube_lo, cube_hi);
+  next = 0;
+  has_cell = true;
+  cap2 = 4 * e.params_.beta_squared * best_d2 * (1 + kReachMargin);
+}
+
+template <int D>
+void WellSpacedEngine<D>::CellSearch::clip() {
   // Clip by the vertices in order of distance (ties by coordinates: a canonical order, so the rounded
   // cell does not depend on insertion history). A vertex farther than twice the cell's reach cannot cut
   // it, nor can one beyond 2 beta NN cut the beta-ball: the search grows only while a cut is possible.
@@ -189,7 +257,6 @@ void WellSpacedEngine<D>::CellSearch::clip() {
     if (a.d2 != b.d2) return a.d2 < b.d2;
     return a.position < b.position;
   };
-  cap2 = 4 * e.params_.beta_squared * best_d2 * (1 + kReachMargin);
   next = 0;
   // With the same nearest neighbour (so the same clipping box) the earlier cell only has to be cut by
   // the vertices born since: none of the earlier candidates left, and the cut cell is the same polygon.
@@ -199,11 +266,10 @@ void WellSpacedEngine<D>::CellSearch::clip() {
   bool incremental = earlier != nullptr && w.hood.nearest == earlier->nearest;
   auto start_afresh = [&] {
     incremental = false;
-    w.cell.reset(p, cube_lo, cube_hi);
-    next = 0;
-    has_cell = true;
+    start_clipping();
   };
   if (incremental) {
+    cap2 = 4 * e.params_.beta_squared * best_d2 * (1 + kReachMargin);
     w.cell.assign_geometry(earlier->cell);
     w.cell.begin_out_of_order_cuts();
     next = known;
@@ -293,6 +359,14 @@ void WellSpacedEngine<D>::CellSearch::record_lone_vertex() {
   e.ops_[o].depends2 = e.ops_[o].inserted_depends2 = at_least(4.0 * D);
 }
 
+namespace {
+// The walk of the operation a thread computes (scratch, reused).
+engine::DelaunayNeighbours::Walk& delaunay_walk() {
+  static thread_local engine::DelaunayNeighbours::Walk walk;
+  return walk;
+}
+}  // namespace
+
 template <int D>
 bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill, Worker& w) {
   if (recording_) {
@@ -315,7 +389,12 @@ bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill, Worker& w)
   ++w.counters.clipped_voronoi_calls;
   w.unborn.clear();
   CellSearch search(*this, o, v, w, earlier, now);
-  search.gather_from_tree();
+  // A 2D one-shot build walks the triangulation of M_t for the candidates (gather_from_delaunay), else
+  // searches the tree. It records nothing and caches nothing.
+  const bool asked = delaunay_ && !recording_ && !caching_;
+  engine::DelaunayNeighbours::Walk* walk = asked ? &delaunay_walk() : nullptr;
+  bool from_delaunay = asked && search.gather_from_delaunay(*walk);
+  if (!from_delaunay) search.gather_from_tree();
   if (w.hood.nearest == kNoVertex) {
     search.record_lone_vertex();
     return true;
@@ -324,6 +403,23 @@ bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill, Worker& w)
     record_idle_fill(o, v, w);
     return false;
   }
+  if (from_delaunay) {
+    if (search.clip_from_delaunay(*walk)) {
+      ++w.counters.delaunay_cells;
+      search.keep_cutting_candidates();
+      search.record_dependencies();
+      return true;
+    }
+    // Crowded, or distances tied up to rounding: the tree search's cell (the same nearest neighbour).
+    CellSearch again(*this, o, v, w, earlier, now);
+    again.gather_from_tree();
+    ++w.counters.delaunay_fallbacks;
+    again.clip();
+    again.keep_cutting_candidates();
+    again.record_dependencies();
+    return true;
+  }
+  if (asked) ++w.counters.delaunay_fallbacks;
   search.clip();
   search.keep_cutting_candidates();
   search.record_dependencies();

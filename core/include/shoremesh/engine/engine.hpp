@@ -15,6 +15,7 @@
 #include "shoremesh/engine/block_pool.hpp"
 #include "shoremesh/engine/cell_reach.hpp"
 #include "shoremesh/engine/convex_cell.hpp"
+#include "shoremesh/engine/delaunay_neighbours.hpp"
 #include "shoremesh/engine/facet_filter.hpp"
 #include "shoremesh/engine/ids.hpp"
 #include "shoremesh/engine/quadtree.hpp"
@@ -330,6 +331,9 @@ class WellSpacedEngine {
   };
   std::unique_ptr<Workers, WorkersDeleter> workers_;
   bool recording_ = true;                 // false: a one-shot build (build without for_updates)
+  // 2D one-shot builds (engine::delaunay_neighbours()): M_t triangulated, where cells find their
+  // neighbours (engine_cells.cpp: CellSearch::gather_from_delaunay).
+  std::unique_ptr<engine::DelaunayNeighbours> delaunay_;
   std::unique_ptr<engine::WaterRings> water_;  // 2D: skip fills on land (docs/water_only.md)
   std::vector<OpId> free_ops_, dead_ops_;
   std::vector<VertexId> free_vertices_, dead_vertices_;
