@@ -1,12 +1,12 @@
 // The neighbourhood of an operation's vertex: its nearest neighbour and the vertices that can cut its
-// cell, found in the quadtree (or the propagation's cell cache), and the cell clipped from them. Reads
+// cell, found in the quadtree (or the propagation's cell cache, or a 2D one-shot build's Delaunay
+// triangulation: docs/delaunay_neighbours.md), and the cell clipped from them. Reads
 // the engine only (and writes the operation's own dependency radii and hints): safe on several threads
 // for the operations of one time when the cell cache is off (engine.hpp: compute).
 #include "shoremesh/engine/engine.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <limits>
 
 #include "engine_internal.hpp"

@@ -331,8 +331,8 @@ class WellSpacedEngine {
   };
   std::unique_ptr<Workers, WorkersDeleter> workers_;
   bool recording_ = true;                 // false: a one-shot build (build without for_updates)
-  // 2D one-shot builds (engine::delaunay_neighbours()): M_t triangulated, where cells find their
-  // neighbours (engine_cells.cpp: CellSearch::gather_from_delaunay).
+  // 2D one-shot builds with engine::delaunay_neighbours(): M_t triangulated, which cells walk for their
+  // candidates instead of searching the tree (docs/delaunay_neighbours.md).
   std::unique_ptr<engine::DelaunayNeighbours> delaunay_;
   std::unique_ptr<engine::WaterRings> water_;  // 2D: skip fills on land (docs/water_only.md)
   std::vector<OpId> free_ops_, dead_ops_;
