@@ -2,8 +2,11 @@
 // key=value pairs (bench/run.sh starts one process per configuration, so peak memory is per algorithm).
 //
 //   bench_static --algo stablews|cgal --dim 2|3 --n N --family uniform --repeats K --seed S [--threads T] [--verify]
+//                [--neighbours tree|delaunay|both]
 //
 // --threads: the engine's thread count (default every core; the output is the same for any count).
+// --neighbours: where a 2D one-shot build's cells find their neighbours (engine::set_delaunay_neighbours);
+//   both: the two alternately, run after run, one line each (the same output, the same hash).
 //
 // stablews: shoremesh::stable_well_spaced on the points in the unit box.
 // cgal:     the 2D reference: a constrained Delaunay triangulation of the unit square's corners and edges
@@ -28,11 +31,13 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "shoremesh/engine/delaunay_neighbours.hpp"
 #include "shoremesh/engine/engine.hpp"
 #include "shoremesh/error.hpp"
 #include "shoremesh/families.hpp"
@@ -51,6 +56,7 @@ struct Options {
   int repeats = 3;
   std::uint64_t seed = 1;
   unsigned threads = 0;  // 0: every core
+  std::string neighbours = "default";  // stablews 2D: tree, delaunay, both (alternating runs), or the engine's default
   bool verify = false;
 };
 
@@ -80,6 +86,7 @@ Options parse_options(int argc, char** argv) {
     else if (arg == "--repeats") o.repeats = parse_number<int>(value, arg);
     else if (arg == "--seed") o.seed = parse_number<std::uint64_t>(value, arg);
     else if (arg == "--threads") o.threads = parse_number<unsigned>(value, arg);
+    else if (arg == "--neighbours") o.neighbours = value;
     else throw InputError("unknown option " + std::string(arg));
   }
   if (o.algo != "stablews" && o.algo != "cgal") throw InputError("--algo must be stablews or cgal");
@@ -94,6 +101,7 @@ struct RunResult {
   std::size_t output_vertices = 0;
   double operations = -1;          // stablews only
   double engine_memory_bytes = -1; // stablews only
+  std::uint64_t output_hash = 0;   // stablews only: FNV-1a of the sorted output's bits (equal outputs, equal hashes)
   bool verified = false;
   std::string verdict;             // when --verify
 };
@@ -151,6 +159,16 @@ std::pair<RunResult, Timings> bench_stablews(const std::vector<Point<D>>& input,
   result.output_vertices = last.points.size();
   result.operations = static_cast<double>(last.counters.operations());
   result.engine_memory_bytes = static_cast<double>(last.memory_bytes);
+  std::vector<Point<D>> sorted = last.points;
+  std::sort(sorted.begin(), sorted.end());
+  std::uint64_t h = 1469598103934665603ull;
+  for (const Point<D>& p : sorted)
+    for (double x : p) {
+      std::uint64_t bits = 0;
+      std::memcpy(&bits, &x, sizeof bits);
+      for (int k = 0; k < 8; ++k) h = (h ^ ((bits >> (8 * k)) & 0xff)) * 1099511628211ull;
+    }
+  result.output_hash = h;
   if (o.verify) result.verdict = verdict<D>(last.points, input, box);
   return {result, timings};
 }
@@ -192,28 +210,53 @@ std::size_t peak_rss_bytes() {
 }
 
 template <int D>
-int run(const Options& o) {
-  const std::vector<Point<D>> input = families::generate<D>(o.family, o.n, o.seed);
-  if (o.threads > 0) engine::set_thread_count(o.threads);
-  std::pair<RunResult, Timings> measured;
-  if constexpr (D == 2)
-    measured = o.algo == "cgal" ? bench_cgal(input, o) : bench_stablews<2>(input, o);
-  else
-    measured = bench_stablews<D>(input, o);  // parse_options refuses cgal in 3D
-  const auto& [result, timings] = measured;
+void print_line(const Options& o, const char* neighbours, std::size_t n, const RunResult& result, const Timings& timings) {
   const std::size_t rss = peak_rss_bytes();
   const double out = static_cast<double>(result.output_vertices);
   std::printf("algo=%s dim=%d family=%s n=%zu seed=%llu repeats=%d output_vertices=%zu median_seconds=%.6f "
               "median_cpu_seconds=%.6f ops_per_vertex=%.4g peak_rss_bytes=%zu bytes_per_vertex=%.1f "
               "engine_memory_bytes=%.0f",
-              o.algo.c_str(), D, std::string(families::family_name(o.family)).c_str(), input.size(),
+              o.algo.c_str(), D, std::string(families::family_name(o.family)).c_str(), n,
               static_cast<unsigned long long>(o.seed), o.repeats, result.output_vertices, median(timings.wall),
               median(timings.cpu),
               result.operations < 0 ? NAN : result.operations / out, rss, static_cast<double>(rss) / out,
               result.engine_memory_bytes < 0 ? NAN : result.engine_memory_bytes);
-  if (o.algo == "stablews") std::printf(" threads=%u", engine::thread_count());
+  if (o.algo == "stablews")
+    std::printf(" threads=%u neighbours=%s output_hash=%016llx", engine::thread_count(), neighbours,
+                static_cast<unsigned long long>(result.output_hash));
   if (o.verify) std::printf(" verify=%s", result.verdict.c_str());
   std::printf("\n");
+}
+
+template <int D>
+int run(const Options& o) {
+  const std::vector<Point<D>> input = families::generate<D>(o.family, o.n, o.seed);
+  if (o.threads > 0) engine::set_thread_count(o.threads);
+  if (o.neighbours == "tree" || o.neighbours == "delaunay") engine::set_delaunay_neighbours(o.neighbours == "delaunay");
+  const char* neighbours = D == 3 ? "tree" : engine::delaunay_neighbours() ? "delaunay" : "tree";
+  if (o.algo == "stablews" && o.neighbours == "both") {
+    // Alternately, so that both see the same load on a shared machine. Peak RSS is the process's: both.
+    Options one = o;
+    one.repeats = 1;
+    std::pair<RunResult, Timings> paths[2];
+    for (int r = 0; r < o.repeats; ++r)
+      for (int k = 0; k < 2; ++k) {
+        engine::set_delaunay_neighbours(k == 1);
+        auto [result, t] = bench_stablews<D>(input, one);
+        paths[k].first = result;
+        paths[k].second.wall.push_back(t.wall[0]);
+        paths[k].second.cpu.push_back(t.cpu[0]);
+      }
+    print_line<D>(o, "tree", input.size(), paths[0].first, paths[0].second);
+    print_line<D>(o, D == 3 ? "tree" : "delaunay", input.size(), paths[1].first, paths[1].second);
+    return 0;
+  }
+  std::pair<RunResult, Timings> measured;
+  if constexpr (D == 2)
+    measured = o.algo == "cgal" ? bench_cgal(input, o) : bench_stablews<2>(input, o);
+  else
+    measured = bench_stablews<D>(input, o);  // parse_options refuses cgal in 3D
+  print_line<D>(o, neighbours, input.size(), measured.first, measured.second);
   return 0;
 }
 

@@ -60,6 +60,7 @@ void WellSpacedEngine<D>::reset() {
   recording_ = true;
   cell_cache_live_ = 0;
   cache_table_.clear();
+  delaunay_.reset();
 }
 
 template <int D>
@@ -115,6 +116,11 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(s
     for (const LeafVertex<D>& e : nd.vertices) vertices_[e.id].leaf = n;
   }
   if (recording_) readers_.grow_to(tree_.node_capacity());
+  if constexpr (D == 2)
+    if (!for_updates && engine::delaunay_neighbours()) {
+      delaunay_ = std::make_unique<engine::DelaunayNeighbours>();
+      delaunay_->build(positions_);
+    }
   // Input dispatches at the rank of QTApxNN(v) (a quarter of the side of its leaf): NN from below.
   for (VertexId v = 0; v < input_count_; ++v) {
     const int rank = ranks_.rank_of_length(tree_.approximate_nn(vertices_[v].leaf));
@@ -255,6 +261,8 @@ void WellSpacedEngine<D>::propagate(PropagationStats* stats) {
     batch_.swap(agenda_[agenda_next_]);
     agenda_size_ -= batch_.size();
     for (OpId o : batch_) ops_[o].flags &= std::uint8_t(~kQueued);
+    // The vertices committed at earlier times join the triangulation; this time's wait (M_t).
+    if (delaunay_) delaunay_->insert_born_before(time_key(ops_[batch_[0]].rank, ops_[batch_[0]].color));
     // In any order (Lemma 6.1); along the curve, so that the Steiner vertices and operations a large
     // batch creates (a build's) are numbered, and later read, in the order of their places.
     if (batch_.size() > kSortedBatch) sort_batch_by_place();
@@ -606,6 +614,7 @@ typename WellSpacedEngine<D>::MemoryBreakdown WellSpacedEngine<D>::memory_breakd
   m.reads = reads_.memory_bytes();
   m.readers = readers_.memory_bytes();
   m.tree = tree_.memory_bytes();
+  m.delaunay = delaunay_ ? delaunay_->memory_bytes() : 0;
   m.other = (free_ops_.capacity() + free_vertices_.capacity()) * sizeof(std::uint32_t);
   for (const auto& bucket : agenda_) m.other += bucket.capacity() * sizeof(OpId);
   m.other += cell_cache_.capacity() * sizeof(CachedCell) + cache_table_.capacity() * sizeof(CacheSlot);

@@ -1,11 +1,13 @@
 // The neighbourhood of an operation's vertex: its nearest neighbour and the vertices that can cut its
-// cell, found in the quadtree (or the propagation's cell cache), and the cell clipped from them. Reads
+// cell, found in the quadtree (or the propagation's cell cache, or a 2D one-shot build's Delaunay
+// triangulation: docs/delaunay_neighbours.md), and the cell clipped from them. Reads
 // the engine only (and writes the operation's own dependency radii and hints): safe on several threads
 // for the operations of one time when the cell cache is off (engine.hpp: compute).
 #include "shoremesh/engine/engine.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "engine_internal.hpp"
 
@@ -14,46 +16,23 @@ namespace shoremesh {
 using namespace engine;
 using namespace engine_detail;
 
+// One cell's computation in three steps: gathering the candidates (the vertices of M_t that may cut
+// v's cell, and v's nearest neighbour among them), clipping the cell by them, and recording what the
+// operation's result depends on. Clipping may ask the gathering for more (a larger box).
 template <int D>
-bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill, Worker& w) {
-  if (recording_) {
-    ops_[o].facets = engine::FacetFilter<D>::everything();
-    ops_[o].reach = engine::CellReach<D>::unbounded();
-  }
-  const Point<D> p = positions_[v];
-  // Only vertices born before this operation's time exist for it (M_t).
-  const std::uint64_t now = time_key(ops_[o].rank, ops_[o].color);
-  const bool may_idle = fill && !params_.literal_stable_ws;
-  // v's cell computed earlier in this propagation, if any: taken as it is when it still holds, else
-  // the vertices its entry lists spare the search (below).
-  const CachedCell* earlier = caching_ ? cached_neighbourhood(v, p) : nullptr;
-  if (earlier && may_idle && now < earlier->valid_until &&
-      ranks_.rank_below(p, positions_[earlier->nearest], ops_[o].rank, w.cell.counters())) {
-    w.hood.nearest = earlier->nearest;  // still v's nearest neighbour: nothing came within its reach
-    record_idle_fill(o, v, w);
-    return false;
-  }
-  if (earlier && reuse_cell(o, *earlier, now)) return true;
-  ++w.counters.clipped_voronoi_calls;
-  w.unborn.clear();
-  PredicateCounters& pc = w.cell.counters();
-  auto& pool = w.hood.candidates;
-  w.hood.nearest = kNoVertex;
-  pool.clear();
-  double best_d2 = 0;
-  // Takes vertex u at q (squared distance d2 from v) as a candidate, tracking the nearest.
-  auto offer = [&](VertexId u, const Point<D>& q, double d2) {
-    pool.push_back({d2, u, q});
-    ++w.counters.candidates;
-    if (w.hood.nearest != kNoVertex && d2 > best_d2 * (1 + kNearestTie)) return;
-    if (w.hood.nearest != kNoVertex && d2 >= best_d2 * (1 - kNearestTie)) {
-      // Nearly tied: decide exactly, then by coordinates, so the nearest neighbour is canonical.
-      const int c = compare_squared_distances<D>(pc, p, q, p, positions_[w.hood.nearest]);
-      if (c > 0 || (c == 0 && !(q < positions_[w.hood.nearest]))) return;
-    }
-    w.hood.nearest = u;
-    best_d2 = d2;
-  };
+struct WellSpacedEngine<D>::CellSearch {
+  using Box = typename Quadtree<D>::Box;
+
+  WellSpacedEngine& e;
+  const OpId o;
+  const VertexId v;
+  Worker& w;
+  const CachedCell* const earlier;  // v's entry in the propagation's cell cache, if any
+  const Point<D> p;
+  const std::uint64_t now;          // only vertices born before this operation's time exist for it (M_t)
+  PredicateCounters& pc;
+  std::vector<Candidate>& pool;
+  double best_d2 = 0;               // |v - nearest|^2, rounded
   // Once the cell exists among many candidates (or the operation is crowded, see Op::crowded),
   // searches skip what cannot cut it (ConvexCell::surely_uncut_by_box): the cell only shrinks, so such
   // a vertex never cuts it, now or at a later time that reuses the cell (cell_cache.cpp), and it is not
@@ -61,19 +40,47 @@ bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill, Worker& w)
   // Along a dense shore seen from far out on the water, nearly all of a large cell's box is such
   // vertices. Among few (uniform inputs) the tests would cost more than they save.
   bool has_cell = false, pruning = false;
-  auto cannot_cut = [&](const Point<D>& lo, const Point<D>& hi) {
+  // The leaves searched so far: those that meet this box (the boxes only grow).
+  Box seen = Box::empty();
+  double half = 0;                  // the half-side of the box searched for the nearest neighbour
+  double searched = 0;              // the half-side of the box searched so far
+  std::size_t known = 0;            // pool[0, known): the candidates earlier->cell was computed from
+  std::size_t next = 0;             // pool[0, next): the candidates clipped (or found unable to cut)
+  double cap2 = 0;                  // nothing beyond 2 beta NN can cut the beta-ball
+
+  CellSearch(WellSpacedEngine& engine, OpId op, VertexId vertex, Worker& worker, const CachedCell* entry, std::uint64_t t)
+      : e(engine), o(op), v(vertex), w(worker), earlier(entry), p(engine.positions_[vertex]), now(t),
+        pc(worker.cell.counters()), pool(worker.hood.candidates) {
+    w.hood.nearest = kNoVertex;
+    pool.clear();
+  }
+
+  // Gathering. Takes vertex u at q (squared distance d2 from v) as a candidate, tracking the nearest.
+  void offer(VertexId u, const Point<D>& q, double d2) {
+    pool.push_back({d2, u, q});
+    ++w.counters.candidates;
+    if (w.hood.nearest != kNoVertex && d2 > best_d2 * (1 + kNearestTie)) return;
+    if (w.hood.nearest != kNoVertex && d2 >= best_d2 * (1 - kNearestTie)) {
+      // Nearly tied: decide exactly, then by coordinates, so the nearest neighbour is canonical.
+      const int c = compare_squared_distances<D>(pc, p, q, p, e.positions_[w.hood.nearest]);
+      if (c > 0 || (c == 0 && !(q < e.positions_[w.hood.nearest]))) return;
+    }
+    w.hood.nearest = u;
+    best_d2 = d2;
+  }
+  bool cannot_cut(const Point<D>& lo, const Point<D>& hi) const {
     Point<D> a, b;
     for (int i = 0; i < D; ++i) {
       a[i] = lo[i] - p[i];
       b[i] = hi[i] - p[i];
     }
     return w.cell.surely_uncut_by_box(a, b);
-  };
+  }
   // A vertex of the tree other than v: a candidate if born before now, else remembered for the cache.
-  auto consider = [&](VertexId u, const Point<D>& q, std::uint64_t birth) {
+  void consider(VertexId u, const Point<D>& q, std::uint64_t birth) {
     if (pruning && cannot_cut(q, q)) return;
     if (birth >= now) {
-      if (caching_) w.unborn.push_back({q, birth, u});
+      if (e.caching_) w.unborn.push_back({q, birth, u});
       return;
     }
     double d2 = 0;
@@ -82,45 +89,60 @@ bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill, Worker& w)
     // propagation (an input was just added there): it is not a neighbour.
     if (d2 == 0 && q == p) return;
     offer(u, q, d2);
-  };
-  // Adds the vertices of the leaves of box [p - half, p + half] not searched yet. The boxes only grow,
-  // so the leaves searched so far are those that meet the previous box.
-  using Box = typename Quadtree<D>::Box;
-  Box seen = Box::empty();
-  auto box_of = [&](double half) {
+  }
+  Box box_of(double h) const {
     Box box;
     for (int i = 0; i < D; ++i) {
-      box.lo[i] = p[i] - half;
-      box.hi[i] = p[i] + half;
+      box.lo[i] = p[i] - h;
+      box.hi[i] = p[i] + h;
     }
     return box;
-  };
-  auto search = [&](double half) {
-    const Box box = box_of(half);
-    pruning = has_cell && (ops_[o].crowded || pool.size() > kCrowdedPool);
+  }
+  // Adds the vertices of the leaves of box [p - h, p + h] not searched yet.
+  void search(double h) {
+    const Box box = box_of(h);
+    pruning = has_cell && (e.ops_[o].crowded || pool.size() > kCrowdedPool);
     ++w.counters.neighbour_searches;
     const auto visit = [&](NodeId, std::span<const LeafVertex<D>> leaf) {
-      for (const LeafVertex<D>& e : leaf)
-        if (e.id != v) consider(e.id, e.position, e.tag);
+      for (const LeafVertex<D>& x : leaf)
+        if (x.id != v) consider(x.id, x.position, x.tag);
     };
     if (pruning) {
-      w.counters.leaves_visited += tree_.for_each_occupied_leaf(box, seen, visit, [&](int level, const auto& cell) {
+      w.counters.leaves_visited += e.tree_.for_each_occupied_leaf(box, seen, visit, [&](int level, const auto& cell) {
         const Box node = Quadtree<D>::cell_box(level, cell);
         return !cannot_cut(node.lo, node.hi);
       });
     } else {
-      w.counters.leaves_visited += tree_.for_each_occupied_leaf(box, seen, visit);
+      w.counters.leaves_visited += e.tree_.for_each_occupied_leaf(box, seen, visit);
     }
     seen = box;
-  };
-  // Grow the box until it holds a vertex no farther than its half-side: no vertex outside is nearer.
+  }
+  void gather_from_tree();
+  bool gather_from_delaunay(engine::DelaunayNeighbours::Walk& walk);
+  bool clip_from_delaunay(engine::DelaunayNeighbours::Walk& walk);
+  // The cube of half-side beta NN(v) about v, cut to [0,1]^D, as the cell to clip (and cap2).
+  void start_clipping();
+  // Clipping: the cell clipped to the box and to the cube of half-side beta NN(v), from the candidates
+  // (searching a larger box while a vertex outside may still cut it).
+  void clip();
+  // Among many candidates, keeps only those that may cut the cell.
+  void keep_cutting_candidates();
+  // Dependency recording: what op o read, and the radii within which a change may change its result.
+  void record_dependencies();
+  void record_lone_vertex();
+};
+
+// Grow the box until it holds a vertex no farther than its half-side: no vertex outside is nearer.
+template <int D>
+void WellSpacedEngine<D>::CellSearch::gather_from_tree() {
   // The first box spans v's leaf and a leaf-side margin (NN(v) is about 1.15 leaf sides in uniform 2D
   // inputs): a box of one leaf side mostly had to grow again, which cost 5 % more instructions per
   // update in 2D and 3 % in 3D. The result does not depend on the first box, only the work does. A
   // crowded operation's starts at half a side: the tree is refined for the input points only, so a
   // large leaf out on the water can hold many Steiner vertices near a shore, and a box of two of its
   // sides thousands.
-  double half = (ops_[o].crowded ? 0.5 : 2.0) * tree_.side(vertices_[v].leaf);
+  const Op& op = e.ops_[o];
+  half = (op.crowded ? 0.5 : 2.0) * e.tree_.side(e.vertices_[v].leaf);
   // An operation run again (inconsistent) mostly needs the box it needed last time: starting from its
   // previous dependency radius saves most of the searches that grow the box step by step (2.4 -> 1.5
   // per 2D cell). Bounded, so that a vertex alone before does not search the whole domain. Not for a
@@ -131,18 +153,17 @@ bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill, Worker& w)
   // shore points). (A fresh fill starting from the radius of its vertex's cell computed earlier in the
   // propagation searched more leaves than it saved: that cell is stale because a vertex came near, so
   // it shrank.)
-  const double previous2 = ops_[o].depends2;
-  if (!ops_[o].crowded && previous2 > half * half && previous2 < 16 * half * half) half = std::sqrt(previous2) * (1 + kRadiusMargin);
+  const double previous2 = op.depends2;
+  if (!op.crowded && previous2 > half * half && previous2 < 16 * half * half) half = std::sqrt(previous2) * (1 + kRadiusMargin);
   // With a stale entry (its cell computed earlier in this propagation): it lists what the leaves of
   // its box held then and what arrived there since, which is what they hold now, as a search would
   // find it (cell_cache.cpp). Only growing that box searches.
-  std::size_t known = 0;  // pool[0, known): the candidates earlier->cell was computed from
   if (earlier) {
     for (const Candidate& c : earlier->candidates) offer(c.id, c.position, c.d2);
     known = pool.size();
     for (const auto* list : {&earlier->unborn, &earlier->arrived})
       for (const TimedVertex& u : *list)
-        if (vertices_[u.id].alive) consider(u.id, u.position, u.birth);
+        if (e.vertices_[u.id].alive) consider(u.id, u.position, u.birth);
     half = earlier->searched;
     seen = box_of(half);
     ++w.counters.neighbourhoods_reused;
@@ -153,26 +174,82 @@ bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill, Worker& w)
     half *= 2;  // until the box covers [0,1]^D
     search(half);
   }
-  if (w.hood.nearest == kNoVertex) {
-    if (caching_) forget_cell(v);
-    record_reads(w, p, half);
-    ops_[o].depends2 = ops_[o].inserted_depends2 = at_least(4.0 * D);  // anything in the box gives it a neighbour
+  searched = half;
+}
+
+// 2D one-shot builds: the candidates from a walk through the triangulation of M_t outward from v in
+// the order cells clip in, (d2, position), instead of the tree search. The cell is clipped by exactly
+// the vertices, in exactly the order, that the tree search's clip() takes: every vertex within the reach
+// as the cell shrinks (what lies beyond the reach cannot cut, and clip() stops at the first such vertex
+// too). The walk has met them all: a vertex of a Delaunay triangulation has a neighbour strictly nearer
+// v, so the vertices within any distance of v are connected to v within it (the walk goes a margin past
+// the reach, for the rounding of d2). Same planes in the same order: the same cell bit for bit, with
+// the same nearest neighbour (v's neighbours hold every vertex nearest it, chosen by the same rule). The
+// candidates kept for pick_steiner include v's neighbours, which bound its Voronoi cell: a point is
+// nearer v than all of them iff it is in the cell, as it is for the tree search's.
+template <int D>
+bool WellSpacedEngine<D>::CellSearch::gather_from_delaunay(engine::DelaunayNeighbours::Walk& walk) {
+  if constexpr (D != 2) {
+    (void)walk;
+    return false;
+  } else {
+    if (!e.delaunay_->start_walk(v, p, walk)) return false;
+    for (const engine::DelaunayNeighbours::Near& x : walk.pending()) offer(x.id, x.position, x.d2);
     return true;
   }
-  if (may_idle && ranks_.rank_below(p, positions_[w.hood.nearest], ops_[o].rank, pc)) {
-    record_idle_fill(o, v, w);
-    return false;
-  }
+}
 
+template <int D>
+bool WellSpacedEngine<D>::CellSearch::clip_from_delaunay(engine::DelaunayNeighbours::Walk& walk) {
+  if constexpr (D != 2) {
+    (void)walk;
+    return false;
+  } else {
+    // A vertex within the reach is met through ones nearer v, exactly; their rounded d2 may exceed its
+    // own by a few ulps.
+    constexpr double kWalkMargin = 1e-12;
+    start_clipping();
+    pool.clear();
+    double reach2 = std::min(4 * w.cell.max_vertex_distance2() * (1 + kReachMargin), cap2);
+    engine::DelaunayNeighbours::Near x;
+    while (walk.next_d2() <= reach2 * (1 + kWalkMargin)) {
+      // Among many (a large cell at a dense shore), the tree search skips what cannot cut the cell.
+      if (walk.returned() >= kCrowdedPool) return false;
+      e.delaunay_->next(walk, x);
+      pool.push_back({x.d2, x.id, x.position});
+      ++w.counters.candidates;
+      if (x.d2 <= reach2) {
+        ++w.counters.clips;
+        if (w.cell.clip(x.id, x.position, x.d2)) reach2 = std::min(4 * w.cell.max_vertex_distance2() * (1 + kReachMargin), cap2);
+      }
+    }
+    // Distances tied up to rounding met out of order: clip() would have cut in another order.
+    if (walk.out_of_order()) return false;
+    for (const engine::DelaunayNeighbours::Near& y : walk.pending()) pool.push_back({y.d2, y.id, y.position});
+    half = searched = std::numeric_limits<double>::infinity();  // nothing else is needed
+    return true;
+  }
+}
+
+template <int D>
+void WellSpacedEngine<D>::CellSearch::start_clipping() {
   // The box around v of half-side beta NN(v) (a little more, so it surely holds the beta-ball), cut to
   // [0,1]^D: inside the ball the cut cell equals the true Voronoi cell, which is all any decision uses.
   const double nn = std::sqrt(best_d2);
-  const double s = params_.beta * nn * (1 + 0x1p-20);
+  const double s = e.params_.beta * nn * (1 + 0x1p-20);
   Point<D> cube_lo, cube_hi;
   for (int i = 0; i < D; ++i) {
     cube_lo[i] = std::max(0.0, p[i] - s);
     cube_hi[i] = std::min(1.0, p[i] + s);
   }
+  w.cell.reset(p, cube_lo, cube_hi);
+  next = 0;
+  has_cell = true;
+  cap2 = 4 * e.params_.beta_squared * best_d2 * (1 + kReachMargin);
+}
+
+template <int D>
+void WellSpacedEngine<D>::CellSearch::clip() {
   // Clip by the vertices in order of distance (ties by coordinates: a canonical order, so the rounded
   // cell does not depend on insertion history). A vertex farther than twice the cell's reach cannot cut
   // it, nor can one beyond 2 beta NN cut the beta-ball: the search grows only while a cut is possible.
@@ -180,9 +257,7 @@ bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill, Worker& w)
     if (a.d2 != b.d2) return a.d2 < b.d2;
     return a.position < b.position;
   };
-  const double cap2 = 4 * params_.beta_squared * best_d2 * (1 + kReachMargin);
-  double searched = half;
-  std::size_t next = 0;
+  next = 0;
   // With the same nearest neighbour (so the same clipping box) the earlier cell only has to be cut by
   // the vertices born since: none of the earlier candidates left, and the cut cell is the same polygon.
   // Without a vertex on D + 1 planes at once (checked, as for caching) each vertex of it is solved from
@@ -191,11 +266,10 @@ bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill, Worker& w)
   bool incremental = earlier != nullptr && w.hood.nearest == earlier->nearest;
   auto start_afresh = [&] {
     incremental = false;
-    w.cell.reset(p, cube_lo, cube_hi);
-    next = 0;
-    has_cell = true;
+    start_clipping();
   };
   if (incremental) {
+    cap2 = 4 * e.params_.beta_squared * best_d2 * (1 + kReachMargin);
     w.cell.assign_geometry(earlier->cell);
     w.cell.begin_out_of_order_cuts();
     next = known;
@@ -250,23 +324,105 @@ bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill, Worker& w)
     searched = std::min(std::sqrt(need2) * (1 + kReachMargin), 1.5 * searched);
     search(searched);
   }
-  // Many candidates (a large cell among dense ones): the operation is crowded from now on, and keeps
-  // only the candidates that may cut its cell. The cell cache lists them, and a fill checks its Steiner
-  // point against each (pick_steiner: a point inside the cell is nearer v than any of the others).
-  if (pool.size() > kCrowdedPool) {
-    ops_[o].crowded = true;
-    const double reach_final2 = 4 * w.cell.max_vertex_distance2() * (1 + kRadiusMargin);
-    pool.erase(std::remove_if(pool.begin(), pool.end(), [&](const Candidate& c) {
-                 return c.d2 > reach_final2 || cannot_cut(c.position, c.position);
-               }), pool.end());
-  }
-  record_reads(w, p, searched);
+}
+
+// Many candidates (a large cell among dense ones): the operation is crowded from now on, and keeps
+// only the candidates that may cut its cell. The cell cache lists them, and a fill checks its Steiner
+// point against each (pick_steiner: a point inside the cell is nearer v than any of the others).
+template <int D>
+void WellSpacedEngine<D>::CellSearch::keep_cutting_candidates() {
+  if (pool.size() <= kCrowdedPool) return;
+  e.ops_[o].crowded = true;
+  const double reach_final2 = 4 * w.cell.max_vertex_distance2() * (1 + kRadiusMargin);
+  pool.erase(std::remove_if(pool.begin(), pool.end(), [&](const Candidate& c) {
+               return c.d2 > reach_final2 || cannot_cut(c.position, c.position);
+             }), pool.end());
+}
+
+template <int D>
+void WellSpacedEngine<D>::CellSearch::record_dependencies() {
+  e.record_reads(w, p, searched);
   // Only a vertex that could cut the cell or be nearer than NN can change what this operation decides:
   // one within 2 x the cell's reach (capped at 2 beta NN), or within NN. A little margin on the rounding.
+  Op& op = e.ops_[o];
   const double reach2 = std::min(4 * w.cell.max_vertex_distance2(), cap2);
-  ops_[o].depends2 = ops_[o].inserted_depends2 = at_least(std::max(reach2, best_d2) * (1 + kRadiusMargin));
-  if (recording_) ops_[o].reach = engine::CellReach<D>::of([&](auto&& f) { w.cell.for_each_vertex_box(f); });
-  if (caching_) store_cell(o, v, p, searched);
+  op.depends2 = op.inserted_depends2 = at_least(std::max(reach2, best_d2) * (1 + kRadiusMargin));
+  if (e.recording_) op.reach = engine::CellReach<D>::of([&](auto&& f) { w.cell.for_each_vertex_box(f); });
+  if (e.caching_) e.store_cell(o, v, p, searched);
+}
+
+// No other vertex in the box [0,1]^D: v is alone, and anything in the box gives it a neighbour.
+template <int D>
+void WellSpacedEngine<D>::CellSearch::record_lone_vertex() {
+  if (e.caching_) e.forget_cell(v);
+  e.record_reads(w, p, half);
+  e.ops_[o].depends2 = e.ops_[o].inserted_depends2 = at_least(4.0 * D);
+}
+
+namespace {
+// The walk of the operation a thread computes (scratch, reused).
+engine::DelaunayNeighbours::Walk& delaunay_walk() {
+  static thread_local engine::DelaunayNeighbours::Walk walk;
+  return walk;
+}
+}  // namespace
+
+template <int D>
+bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill, Worker& w) {
+  if (recording_) {
+    ops_[o].facets = engine::FacetFilter<D>::everything();
+    ops_[o].reach = engine::CellReach<D>::unbounded();
+  }
+  const Point<D> p = positions_[v];
+  const std::uint64_t now = time_key(ops_[o].rank, ops_[o].color);
+  const bool may_idle = fill && !params_.literal_stable_ws;
+  // v's cell computed earlier in this propagation, if any: taken as it is when it still holds, else
+  // the vertices its entry lists spare the search (gather_from_tree).
+  const CachedCell* earlier = caching_ ? cached_neighbourhood(v, p) : nullptr;
+  if (earlier && may_idle && now < earlier->valid_until &&
+      ranks_.rank_below(p, positions_[earlier->nearest], ops_[o].rank, w.cell.counters())) {
+    w.hood.nearest = earlier->nearest;  // still v's nearest neighbour: nothing came within its reach
+    record_idle_fill(o, v, w);
+    return false;
+  }
+  if (earlier && reuse_cell(o, *earlier, now)) return true;
+  ++w.counters.clipped_voronoi_calls;
+  w.unborn.clear();
+  CellSearch search(*this, o, v, w, earlier, now);
+  // A 2D one-shot build walks the triangulation of M_t for the candidates (gather_from_delaunay), else
+  // searches the tree. It records nothing and caches nothing.
+  const bool asked = delaunay_ && !recording_ && !caching_;
+  engine::DelaunayNeighbours::Walk* walk = asked ? &delaunay_walk() : nullptr;
+  bool from_delaunay = asked && search.gather_from_delaunay(*walk);
+  if (!from_delaunay) search.gather_from_tree();
+  if (w.hood.nearest == kNoVertex) {
+    search.record_lone_vertex();
+    return true;
+  }
+  if (may_idle && ranks_.rank_below(p, positions_[w.hood.nearest], ops_[o].rank, w.cell.counters())) {
+    record_idle_fill(o, v, w);
+    return false;
+  }
+  if (from_delaunay) {
+    if (search.clip_from_delaunay(*walk)) {
+      ++w.counters.delaunay_cells;
+      search.keep_cutting_candidates();
+      search.record_dependencies();
+      return true;
+    }
+    // Crowded, or distances tied up to rounding: the tree search's cell (the same nearest neighbour).
+    CellSearch again(*this, o, v, w, earlier, now);
+    again.gather_from_tree();
+    ++w.counters.delaunay_fallbacks;
+    again.clip();
+    again.keep_cutting_candidates();
+    again.record_dependencies();
+    return true;
+  }
+  if (asked) ++w.counters.delaunay_fallbacks;
+  search.clip();
+  search.keep_cutting_candidates();
+  search.record_dependencies();
   return true;
 }
 

@@ -153,6 +153,8 @@ void add(Counters& to, const Counters& c) {
   to.leaves_visited += c.leaves_visited;
   to.candidates += c.candidates;
   to.clips += c.clips;
+  to.delaunay_cells += c.delaunay_cells;
+  to.delaunay_fallbacks += c.delaunay_fallbacks;
   to.operations_undone += c.operations_undone;
 }
 }  // namespace
@@ -322,6 +324,8 @@ void WellSpacedEngine<D>::commit_fill(OpId o, Outcome& out) {
     ++counters_.steiner_points;
     if (dynamic_) mark_readers_at(id, q, vertices_[id].leaf, VertexChange::Inserted, op_rank, op_color);
     if (caching_) vertex_arrived(id, q, time_key(op_rank, op_color));
+    if constexpr (D == 2)
+      if (delaunay_) delaunay_->defer(id, q, v, time_key(op_rank, op_color));
     if (stats_) stats_->steiner_added.push_back(q);
     const OpId d = new_op(OpKind::Dispatch, id, rank, 0);
     ops_[d].crowded = ops_[o].crowded;

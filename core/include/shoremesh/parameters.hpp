@@ -69,6 +69,8 @@ struct Counters {
   std::uint64_t leaves_visited = 0;    // leaves holding a vertex that neighbour searches read
   std::uint64_t candidates = 0;        // vertices those searches looked at
   std::uint64_t clips = 0;             // half-spaces offered to the clipper
+  std::uint64_t delaunay_cells = 0;     // 2D one-shot: cells clipped from a walk of the triangulation
+  std::uint64_t delaunay_fallbacks = 0; // of the cells it was asked for, those left to the tree search
   std::uint64_t operations_undone = 0; // by dynamic updates
   std::uint64_t operations() const { return dispatches + fills; }
 };

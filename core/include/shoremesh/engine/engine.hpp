@@ -14,6 +14,7 @@
 #include "shoremesh/engine/block_pool.hpp"
 #include "shoremesh/engine/cell_reach.hpp"
 #include "shoremesh/engine/convex_cell.hpp"
+#include "shoremesh/engine/delaunay_neighbours.hpp"
 #include "shoremesh/engine/facet_filter.hpp"
 #include "shoremesh/engine/ids.hpp"
 #include "shoremesh/engine/quadtree.hpp"
@@ -169,8 +170,11 @@ class WellSpacedEngine {
   // vertex): what an engine kept for updates costs, and where.
   struct MemoryBreakdown {
     std::size_t vertices = 0, positions = 0, operations = 0, children = 0, reads = 0, readers = 0, tree = 0;
-    std::size_t other = 0;  // the agenda, the free lists, the cell cache
-    std::size_t total() const { return vertices + positions + operations + children + reads + readers + tree + other; }
+    std::size_t delaunay = 0;  // the one-shot build's triangulation of M_t, when it is the neighbour source
+    std::size_t other = 0;     // the agenda, the free lists, the cell cache
+    std::size_t total() const {
+      return vertices + positions + operations + children + reads + readers + tree + delaunay + other;
+    }
   };
   MemoryBreakdown memory_breakdown() const;
   std::size_t memory_bytes() const { return memory_breakdown().total(); }
@@ -272,6 +276,8 @@ class WellSpacedEngine {
   // computes v's cell clipped to the box and to the cube of half-side beta NN(v). For a fill, returns
   // false without a cell when v's nearest neighbour makes the fill idle (record_idle_fill).
   bool compute_cell(OpId o, VertexId v, bool fill, Worker& w);
+  // Its steps: gathering the candidates, clipping, recording the dependencies (engine_cells.cpp).
+  struct CellSearch;
   void record_idle_fill(OpId o, VertexId v, Worker& w);
   // The nodes covering the box of half-side h around p, left in w.covering (when recording): what op
   // o's commit registers it as a reader of.
@@ -341,6 +347,9 @@ class WellSpacedEngine {
   };
   std::unique_ptr<Workers, WorkersDeleter> workers_;
   bool recording_ = true;                 // false: a one-shot build (build without for_updates)
+  // 2D one-shot builds with engine::delaunay_neighbours(): M_t triangulated, which cells walk for their
+  // candidates instead of searching the tree (docs/delaunay_neighbours.md).
+  std::unique_ptr<engine::DelaunayNeighbours> delaunay_;
   std::unique_ptr<engine::WaterRings> water_;  // 2D: skip fills on land (docs/water_only.md)
   std::vector<OpId> free_ops_, dead_ops_;
   std::vector<VertexId> free_vertices_, dead_vertices_;
