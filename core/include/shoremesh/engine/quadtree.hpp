@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <new>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -85,14 +86,16 @@ class Quadtree {
   }();
   using Coords = std::array<std::uint64_t, D>;
 
+  // A node as the owner reads it: assembled from the tree's arrays on each call (a view: `vertices`
+  // stays valid until the tree changes). Free slots have level -1.
   struct Node {
     NodeId parent = kNoNode;
     NodeId first_child = kNoNode;        // the 2^D children are contiguous; kNoNode for a leaf
-    std::int32_t level = 0;
+    int level = -1;
     Coords coords{};                     // cell index at its level
     std::uint32_t input_count = 0;       // input points in the subtree
     VertexId input_vertex = kNoVertex;   // leaves: the input vertex inside, if any
-    std::vector<LeafVertex<D>> vertices; // leaves: every vertex inside (input and Steiner)
+    std::span<const LeafVertex<D>> vertices;  // leaves: every vertex inside (input and Steiner)
     bool is_leaf() const { return first_child == kNoNode; }
   };
 
@@ -131,11 +134,26 @@ class Quadtree {
   void rename_vertices(std::span<const VertexId> new_id);
 
   NodeId root() const { return 0; }
-  const Node& node(NodeId n) const { return nodes_[n]; }
+  Node node(NodeId n) const {
+    const Record& r = nodes_[n];
+    const SearchEntry& e = search_[n];
+    Node out;
+    out.parent = e.parent;
+    out.first_child = e.first_child;
+    out.level = r.level;
+    out.coords = r.coords();
+    out.input_count = r.input_count;
+    out.input_vertex = r.input_vertex;
+    if (e.first_child == kNoNode) out.vertices = leaf_vertices(e);
+    return out;
+  }
   std::size_t node_capacity() const { return nodes_.size(); }
   double side(NodeId n) const { return power_of_two(-nodes_[n].level); }
   // QTApxNN of the input vertex in leaf n: a lower bound on its nearest-neighbour distance.
   double approximate_nn(NodeId n) const { return power_of_two(-nodes_[n].level - kCrowdingMargin); }
+  // The leaves' arrays share one pool: slots in use by leaves, and the pool's size (free blocks included).
+  std::size_t pool_slots_used() const;
+  std::size_t pool_size() const { return pool_.size(); }
   Point<D> lower_corner(NodeId n) const;
 
   // The leaf containing p (hint: a leaf near p, to start from; optional).
@@ -155,11 +173,11 @@ class Quadtree {
   // Whether a search of the box [center - half, center + half] that already searched it counts `leaf`
   // as seen (the test for_each_occupied_leaf applies to its `seen` box).
   bool leaf_meets_box(NodeId leaf, const Point<D>& center, double half) const {
-    const Node& nd = nodes_[leaf];
+    const Record& nd = nodes_[leaf];
     const double scale = power_of_two(nd.level);
     for (int i = 0; i < D; ++i) {
       const auto [first, last] = meeting_cells(center[i] - half, center[i] + half, scale);
-      const auto c = std::int64_t(nd.coords[i]);
+      const auto c = std::int64_t(nd.coord(i));
       if (c < first || c > last) return false;
     }
     return true;
@@ -198,7 +216,74 @@ class Quadtree {
   }
 
  private:
-  NodeId new_node(NodeId parent, int level, const Coords& coords);
+  // What only edits read of a node (the search reads SearchEntry): 20 bytes in 2D, 28 in 3D. The cell
+  // index is at most 40 bits per axis, kept as a low 32-bit word and a high byte.
+  struct Record {
+    std::uint32_t input_count = 0;      // input points in the subtree
+    VertexId input_vertex = kNoVertex;  // leaves: the input vertex inside, if any
+    std::array<std::uint32_t, D> coords_low{};
+    std::int8_t level = -1;             // -1: a free slot
+    std::uint8_t size_class = 0;        // leaf: its pool block holds 2^(size_class - 1) vertices; 0: none
+    std::array<std::uint8_t, D> coords_high{};
+    std::uint64_t coord(int i) const {
+      return std::uint64_t(coords_low[std::size_t(i)]) | std::uint64_t(coords_high[std::size_t(i)]) << 32;
+    }
+    Coords coords() const {
+      Coords c;
+      for (int i = 0; i < D; ++i) c[std::size_t(i)] = coord(i);
+      return c;
+    }
+    void set_coords(const Coords& c) {
+      for (int i = 0; i < D; ++i) {
+        coords_low[std::size_t(i)] = std::uint32_t(c[std::size_t(i)]);
+        coords_high[std::size_t(i)] = std::uint8_t(c[std::size_t(i)] >> 32);
+      }
+    }
+  };
+  // What the neighbour search reads of each node, 16 bytes apiece beside nodes_ (same ids). Blocks of
+  // 2^D siblings start at multiples of 2^D in a 64-byte aligned array, so a 2D block is one cache line
+  // and a 3D block two: a descent reads one block per node it expands, and a leaf's vertex array
+  // without reading the leaf's Record.
+  struct SearchEntry {
+    NodeId first_child = kNoNode;  // kNoNode: a leaf
+    // Internal: bit k set when child k's subtree holds a vertex (searches skip empty subtrees unread:
+    // about half the leaves in 2D, two thirds in 3D, hold none). Leaf: its number of vertices.
+    std::uint32_t occupied_or_size = 0;
+    std::uint32_t vertices = 0;    // leaf: where its array starts in pool_
+    NodeId parent = kNoNode;
+  };
+  template <class T>
+  struct LineAligned {
+    using value_type = T;
+    static constexpr std::align_val_t kAlign{64};
+    LineAligned() = default;
+    template <class U>
+    LineAligned(const LineAligned<U>&) {}
+    T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlign)); }
+    void deallocate(T* p, std::size_t) { ::operator delete(p, kAlign); }
+    template <class U>
+    bool operator==(const LineAligned<U>&) const { return true; }
+  };
+
+  std::span<const LeafVertex<D>> leaf_vertices(const SearchEntry& e) const {
+    return {pool_.data() + e.vertices, e.occupied_or_size};
+  }
+  std::span<LeafVertex<D>> leaf_vertices(NodeId n) {
+    return {pool_.data() + search_[n].vertices, search_[n].occupied_or_size};
+  }
+  bool is_leaf(NodeId n) const { return search_[n].first_child == kNoNode; }
+  // The pool of leaf arrays: a leaf's array is a block of 2^(c-1) slots (size class c), blocks freed by
+  // a leaf that grew, shrank or went away are kept per class for the next leaf that needs one.
+  std::uint32_t pool_allocate(int size_class);
+  void pool_free(std::uint32_t offset, int size_class);
+  // Gives leaf n a block of `size_class` (0: none), moving its vertices there.
+  void resize_leaf_block(NodeId n, int size_class);
+  void leaf_push(NodeId n, const LeafVertex<D>& e);
+  // Removes the vertex at index i of leaf n's array (the last one takes its place).
+  void leaf_erase(NodeId n, std::size_t i);
+  void leaf_clear(NodeId n);
+
+  void make_root();
   NodeId allocate_children();
   void split(NodeId n, std::vector<NodeId>* created);
   void merge(NodeId n, std::vector<NodeId>* removed);
@@ -227,19 +312,12 @@ class Quadtree {
   template <class F>
   void for_each_node_near(const Point<D>& p, F&& f) const;
 
-  std::vector<Node> nodes_;
-  // What the neighbour search reads of each node, 16 bytes apiece beside nodes_ (same ids, so 2^D
-  // siblings share one or two cache lines): a descent then reads one line per node it expands instead
-  // of 2^D full nodes, and a leaf's vertex array without reading the leaf.
-  struct SearchEntry {
-    NodeId first_child = kNoNode;             // kNoNode: a leaf
-    // Internal: bit k set when child k's subtree holds a vertex (searches skip empty subtrees unread:
-    // about half the leaves in 2D, two thirds in 3D, hold none). Leaf: its number of vertices.
-    std::uint32_t occupied_or_size = 0;
-    const LeafVertex<D>* vertices = nullptr;  // leaf: its vertex array
-  };
-  std::vector<SearchEntry> search_;
+  std::vector<Record> nodes_;
+  std::vector<SearchEntry, LineAligned<SearchEntry>> search_;
   std::vector<NodeId> free_blocks_;      // first ids of freed blocks of 2^D children
+  std::vector<LeafVertex<D>> pool_;
+  static constexpr int kSizeClasses = 33;
+  std::array<std::vector<std::uint32_t>, kSizeClasses> free_arrays_;  // free pool blocks by size class
   CellMap map_;
   std::size_t leaf_count_ = 0;
 };
@@ -294,7 +372,7 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
   auto report = [&](NodeId n) {
     if (count == found.size()) found.resize(2 * count + 16);
     found[count++] = n;
-    __builtin_prefetch(search_[n].vertices);
+    __builtin_prefetch(pool_.data() + search_[n].vertices);
   };
   Item stack[kMaxLevel * kChildren + 8];
   // From the first cell whose closed box meets the box: when lo lies exactly on a cell boundary, the
@@ -351,8 +429,7 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
     }
   });
   for (std::size_t k = 0; k < count; ++k) {
-    const SearchEntry& e = search_[found[k]];
-    f(found[k], std::span<const LeafVertex<D>>(e.vertices, e.occupied_or_size));
+    f(found[k], leaf_vertices(search_[found[k]]));
   }
   return count;
 }
