@@ -432,9 +432,15 @@ void Quadtree<D>::balance_around(std::vector<NodeId>& worklist, std::vector<Node
       const NodeId s = by_level[level][idx];
       if (nodes_[s].level != level || !is_leaf(s)) continue;
       const Coords sc = nodes_[s].coords();
+      // The 3^D neighbour cells lie in at most 2^D parent cells: each is looked up once (splits only
+      // deepen the tree, so a parent cell made deep enough stays so).
+      Coords done[1 << D];
+      int done_count = 0;
       for_each_neighbour_cell(level, sc, 1, [&](const Coords& q) {
         Coords pc;
         for (int i = 0; i < D; ++i) pc[i] = q[i] >> 1;
+        if (std::find(done, done + done_count, pc) != done + done_count) return;
+        done[done_count++] = pc;
         NodeId n = deepest_containing(level - 1, pc);
         while (nodes_[n].level < level - 1) {
           created.clear();
