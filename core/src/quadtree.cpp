@@ -126,7 +126,6 @@ void Quadtree<D>::make_root() {
   nodes_.assign(kChildren, Record{});
   search_.assign(kChildren, SearchEntry{});
   nodes_[0].level = 0;
-  map_.insert<D>(0, Coords{}, 0);
 }
 
 template <int D>
@@ -159,7 +158,6 @@ void Quadtree<D>::split(NodeId n, std::vector<NodeId>* created) {
     ch.set_coords(cc);
     search_[first + NodeId(k)] = SearchEntry{};
     search_[first + NodeId(k)].parent = n;
-    map_.insert<D>(level, cc, first + NodeId(k));
     if (created) created->push_back(first + NodeId(k));
   }
   const VertexId input = nodes_[n].input_vertex;
@@ -178,6 +176,7 @@ void Quadtree<D>::split(NodeId n, std::vector<NodeId>* created) {
   leaf_clear(n);
   nodes_[n].input_vertex = kNoVertex;
   search_[n].first_child = first;
+  map_.insert<D>(level - 1, pc, first);
   leaf_count_ += kChildren - 1;
   sync_search(n);
 }
@@ -204,11 +203,11 @@ void Quadtree<D>::merge(NodeId n, std::vector<NodeId>* removed) {
     leaf_clear(c);
     Record& ch = nodes_[c];
     if (ch.input_vertex != kNoVertex) nodes_[n].input_vertex = ch.input_vertex;
-    map_.erase<D>(ch.level, ch.coords());
     ch = Record{};  // level -1: a free slot
     search_[c] = SearchEntry{};
     if (removed) removed->push_back(c);
   }
+  map_.erase<D>(nodes_[n].level, nodes_[n].coords());
   free_blocks_.push_back(first);
   leaf_count_ -= kChildren - 1;
 }
@@ -527,6 +526,7 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
     search_[t.node].first_child = first;
     const int level = nodes_[t.node].level + 1;
     const Coords pc = nodes_[t.node].coords();
+    map_.insert<D>(level - 1, pc, first);
     leaf_count_ += kChildren - 1;
     for (int k = 0; k < kChildren; ++k) {
       Coords cc;
@@ -537,7 +537,6 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
       ch.set_coords(cc);
       search_[first + NodeId(k)] = SearchEntry{};
       search_[first + NodeId(k)].parent = t.node;
-      map_.insert<D>(level, cc, first + NodeId(k));
       auto [b, e] = range_of(level, cc);
       tasks.push_back({first + NodeId(k), b, e});
     }
@@ -785,6 +784,7 @@ void Quadtree<D>::check_valid(std::span<const Point<D>> positions) const {
     }
   }
   if (leaves != leaf_count_) fail("leaf count");
+  if (map_.size() != (leaves - 1) / (kChildren - 1)) fail("cell map holds other cells than the internal nodes'");
   std::sort(blocks.begin(), blocks.end());
   std::size_t covered = 0;
   for (const auto& [offset, capacity] : blocks) {

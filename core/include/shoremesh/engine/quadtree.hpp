@@ -290,7 +290,19 @@ class Quadtree {
   // Keep the occupied masks of the ancestors of a leaf that just gained its first vertex / lost its last.
   void mark_occupied(NodeId leaf);
   void mark_vacated(NodeId leaf);
-  NodeId find(int level, const Coords& c) const { return map_.template find<D>(level, c); }
+  // The node of cell c at `level`, if it exists: the cell map holds each internal node's cell with its
+  // children's block (a node exists iff its parent is internal), 2^D times fewer entries than nodes.
+  NodeId find(int level, const Coords& c) const {
+    if (level == 0) return root();
+    Coords pc;
+    int k = 0;
+    for (int i = 0; i < D; ++i) {
+      pc[i] = c[i] >> 1;
+      k |= int(c[i] & 1u) << i;
+    }
+    const NodeId block = map_.template find<D>(level - 1, pc);
+    return block == kNoNode ? kNoNode : block + NodeId(k);
+  }
   NodeId deepest_containing(int level, Coords c) const;
   // The same, with the node's level (read from the cell map, not from the node).
   NodeId deepest_containing(int level, Coords c, int& found_level) const;
