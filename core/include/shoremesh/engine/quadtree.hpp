@@ -17,8 +17,8 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <span>
 #include <new>
+#include <span>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -441,50 +441,46 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
     if (const NodeId children = search_[starts[t].node].first_child; children != kNoNode) __builtin_prefetch(&search_[children]);
   int top = 0;
   for (int t = start_count; t-- > 0;) stack[top++] = starts[t];
-  {
-    while (top > 0) {
-      const Item it = stack[--top];
-      if (!keep(it.level, it.c)) continue;
-      const SearchEntry& e = search_[it.node];
-      const Ranges& r = ranges_at(it.level);
-      if (e.first_child == kNoNode) {
-        if (e.occupied_or_size != 0 && !meets_seen(r, it.c)) report(it.node);
-        continue;
-      }
-      if (inside_seen(r, it.c)) continue;
-      // Children meeting the box, from index ranges one level down: a child is read only if it meets
-      // the box and its subtree holds a vertex. Child k is the upper half along axis i when bit i of k
-      // is set; kHalf[i][h] is the set of children in half h along axis i.
-      const Ranges& rc = ranges_at(it.level + 1);
-      std::uint32_t wanted = e.occupied_or_size;
-      for (int i = 0; i < D; ++i) {
-        const std::int64_t low = 2 * it.c[i];
-        std::uint32_t along = 0;
-        if (low >= rc.meet_lo[i] && low <= rc.meet_hi[i]) along |= kHalf[i][0];
-        if (low + 1 >= rc.meet_lo[i] && low + 1 <= rc.meet_hi[i]) along |= kHalf[i][1];
-        wanted &= along;
-      }
-      // Occupied leaf children are reported here, internal ones go on the stack.
-      for (; wanted != 0; wanted &= wanted - 1) {
-        const int k = std::countr_zero(wanted);
-        const NodeId child_node = e.first_child + NodeId(k);
-        std::array<std::int64_t, D> cc;
-        for (int i = 0; i < D; ++i) cc[i] = 2 * it.c[i] + ((k >> i) & 1);
-        const NodeId grandchildren = search_[child_node].first_child;
-        if (grandchildren == kNoNode) {
-          if (!meets_seen(rc, cc) && keep(it.level + 1, cc)) report(child_node);
-        } else {
-          // Its children's block is read when it leaves the stack: fetched meanwhile, and for its
-          // siblings in parallel (the descent's time goes mostly to these misses).
-          __builtin_prefetch(&search_[grandchildren]);
-          stack[top++] = Item{child_node, it.level + 1, cc};
-        }
+  while (top > 0) {
+    const Item it = stack[--top];
+    if (!keep(it.level, it.c)) continue;
+    const SearchEntry& e = search_[it.node];
+    const Ranges& r = ranges_at(it.level);
+    if (e.first_child == kNoNode) {
+      if (e.occupied_or_size != 0 && !meets_seen(r, it.c)) report(it.node);
+      continue;
+    }
+    if (inside_seen(r, it.c)) continue;
+    // Children meeting the box, from index ranges one level down: a child is read only if it meets
+    // the box and its subtree holds a vertex. Child k is the upper half along axis i when bit i of k
+    // is set; kHalf[i][h] is the set of children in half h along axis i.
+    const Ranges& rc = ranges_at(it.level + 1);
+    std::uint32_t wanted = e.occupied_or_size;
+    for (int i = 0; i < D; ++i) {
+      const std::int64_t low = 2 * it.c[i];
+      std::uint32_t along = 0;
+      if (low >= rc.meet_lo[i] && low <= rc.meet_hi[i]) along |= kHalf[i][0];
+      if (low + 1 >= rc.meet_lo[i] && low + 1 <= rc.meet_hi[i]) along |= kHalf[i][1];
+      wanted &= along;
+    }
+    // Occupied leaf children are reported here, internal ones go on the stack.
+    for (; wanted != 0; wanted &= wanted - 1) {
+      const int k = std::countr_zero(wanted);
+      const NodeId child_node = e.first_child + NodeId(k);
+      std::array<std::int64_t, D> cc;
+      for (int i = 0; i < D; ++i) cc[i] = 2 * it.c[i] + ((k >> i) & 1);
+      const NodeId grandchildren = search_[child_node].first_child;
+      if (grandchildren == kNoNode) {
+        if (!meets_seen(rc, cc) && keep(it.level + 1, cc)) report(child_node);
+      } else {
+        // Its children's block is read when it leaves the stack: fetched meanwhile, and for its
+        // siblings in parallel (the descent's time goes mostly to these misses).
+        __builtin_prefetch(&search_[grandchildren]);
+        stack[top++] = Item{child_node, it.level + 1, cc};
       }
     }
   }
-  for (std::size_t k = 0; k < count; ++k) {
-    f(found[k], leaf_vertices(search_[found[k]]));
-  }
+  for (std::size_t k = 0; k < count; ++k) f(found[k], leaf_vertices(search_[found[k]]));
   return count;
 }
 
