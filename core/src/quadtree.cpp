@@ -1,6 +1,7 @@
 #include "shoremesh/engine/quadtree.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -40,21 +41,91 @@ template <int D>
 Point<D> Quadtree<D>::lower_corner(NodeId n) const {
   Point<D> p;
   const double s = side(n);
-  for (int i = 0; i < D; ++i) p[i] = double(nodes_[n].coords[i]) * s;
+  for (int i = 0; i < D; ++i) p[i] = double(nodes_[n].coord(i)) * s;
   return p;
 }
 
 template <int D>
-NodeId Quadtree<D>::new_node(NodeId parent, int level, const Coords& coords) {
-  NodeId id = NodeId(nodes_.size());
-  nodes_.emplace_back();
-  search_.emplace_back();
-  Node& nd = nodes_.back();
-  nd.parent = parent;
-  nd.level = level;
-  nd.coords = coords;
-  map_.insert<D>(level, coords, id);
-  return id;
+std::uint32_t Quadtree<D>::pool_allocate(int size_class) {
+  auto& free = free_arrays_[std::size_t(size_class)];
+  if (!free.empty()) {
+    const std::uint32_t offset = free.back();
+    free.pop_back();
+    return offset;
+  }
+  const std::size_t slots = std::size_t(1) << (size_class - 1);
+  const std::size_t offset = pool_.size();
+  if (offset + slots > std::numeric_limits<std::uint32_t>::max()) throw std::length_error("quadtree leaf pool full");
+  // Grows by half, not double: the pool is one of the engine's largest arrays.
+  if (offset + slots > pool_.capacity()) pool_.reserve(std::max(offset + slots, pool_.capacity() + pool_.capacity() / 2));
+  pool_.resize(offset + slots);
+  return std::uint32_t(offset);
+}
+
+template <int D>
+void Quadtree<D>::pool_free(std::uint32_t offset, int size_class) {
+  if (size_class != 0) free_arrays_[std::size_t(size_class)].push_back(offset);
+}
+
+namespace {
+
+// The smallest size class whose block holds `size` vertices: 0 for none, else 1 + ceil(log2 size).
+int size_class_for(std::size_t size) { return size == 0 ? 0 : 1 + int(std::bit_width(size - 1)); }
+std::size_t class_capacity(int size_class) { return size_class == 0 ? 0 : std::size_t(1) << (size_class - 1); }
+
+}  // namespace
+
+template <int D>
+void Quadtree<D>::resize_leaf_block(NodeId n, int size_class) {
+  Record& r = nodes_[n];
+  if (size_class == r.size_class) return;
+  const std::uint32_t offset = size_class == 0 ? 0 : pool_allocate(size_class);
+  SearchEntry& e = search_[n];
+  std::copy_n(pool_.begin() + e.vertices, e.occupied_or_size, pool_.begin() + offset);
+  pool_free(e.vertices, r.size_class);
+  e.vertices = offset;
+  r.size_class = std::uint8_t(size_class);
+}
+
+template <int D>
+void Quadtree<D>::leaf_push(NodeId n, const LeafVertex<D>& v) {
+  const std::uint32_t size = search_[n].occupied_or_size;
+  if (size == class_capacity(nodes_[n].size_class)) resize_leaf_block(n, nodes_[n].size_class + 1);
+  pool_[search_[n].vertices + size] = v;
+  search_[n].occupied_or_size = size + 1;
+}
+
+template <int D>
+void Quadtree<D>::leaf_erase(NodeId n, std::size_t i) {
+  SearchEntry& e = search_[n];
+  const std::uint32_t size = e.occupied_or_size - 1;
+  pool_[e.vertices + i] = pool_[e.vertices + size];
+  e.occupied_or_size = size;
+  // A block four times too large shrinks (hysteresis: a leaf going back and forth by one vertex does
+  // not move each time); an empty leaf holds none.
+  if (4 * std::size_t(size) <= class_capacity(nodes_[n].size_class)) resize_leaf_block(n, size_class_for(size));
+}
+
+template <int D>
+void Quadtree<D>::leaf_clear(NodeId n) {
+  search_[n].occupied_or_size = 0;
+  resize_leaf_block(n, 0);
+}
+
+template <int D>
+std::size_t Quadtree<D>::pool_slots_used() const {
+  std::size_t slots = 0;
+  for (NodeId n = 0; n < nodes_.size(); ++n)
+    if (nodes_[n].level >= 0 && is_leaf(n)) slots += class_capacity(nodes_[n].size_class);
+  return slots;
+}
+
+// The root, alone in the first block of 2^D slots (every later block then starts at a multiple of 2^D).
+template <int D>
+void Quadtree<D>::make_root() {
+  nodes_.assign(kChildren, Record{});
+  search_.assign(kChildren, SearchEntry{});
+  nodes_[0].level = 0;
 }
 
 template <int D>
@@ -76,71 +147,78 @@ void Quadtree<D>::split(NodeId n, std::vector<NodeId>* created) {
   if (nodes_[n].level >= kMaxLevel)
     throw PointInputError("input points closer than the engine's resolution (2^-40 of the box side)", {});
   const NodeId first = allocate_children();
-  Node& parent = nodes_[n];
+  const int level = nodes_[n].level + 1;
+  const Coords pc = nodes_[n].coords();
   for (int k = 0; k < kChildren; ++k) {
-    Node& ch = nodes_[first + NodeId(k)];
-    ch = Node{};
-    ch.parent = n;
-    ch.level = parent.level + 1;
-    for (int i = 0; i < D; ++i) ch.coords[i] = 2 * parent.coords[i] + ((k >> i) & 1);
-    map_.insert<D>(ch.level, ch.coords, first + NodeId(k));
+    Record& ch = nodes_[first + NodeId(k)];
+    ch = Record{};
+    ch.level = std::int8_t(level);
+    Coords cc;
+    for (int i = 0; i < D; ++i) cc[i] = 2 * pc[i] + ((k >> i) & 1);
+    ch.set_coords(cc);
+    search_[first + NodeId(k)] = SearchEntry{};
+    search_[first + NodeId(k)].parent = n;
     if (created) created->push_back(first + NodeId(k));
   }
-  for (const LeafVertex<D>& e : parent.vertices) {
-    const Coords c = cell_of(e.position, parent.level + 1);
+  const VertexId input = nodes_[n].input_vertex;
+  // By index: a child's block may move the pool, the parent's block stays where it is until cleared.
+  for (std::uint32_t j = 0; j < search_[n].occupied_or_size; ++j) {
+    const LeafVertex<D> e = pool_[search_[n].vertices + j];
+    const Coords c = cell_of(e.position, level);
     int k = 0;
     for (int i = 0; i < D; ++i) k |= int(c[i] & 1u) << i;
-    Node& ch = nodes_[first + NodeId(k)];
-    ch.vertices.push_back(e);
-    if (e.id == parent.input_vertex) {
-      ch.input_vertex = e.id;
-      ch.input_count = 1;
+    leaf_push(first + NodeId(k), e);
+    if (e.id == input) {
+      nodes_[first + NodeId(k)].input_vertex = e.id;
+      nodes_[first + NodeId(k)].input_count = 1;
     }
   }
-  parent.vertices.clear();
-  parent.vertices.shrink_to_fit();
-  parent.input_vertex = kNoVertex;
-  parent.first_child = first;
+  leaf_clear(n);
+  nodes_[n].input_vertex = kNoVertex;
+  search_[n].first_child = first;
+  map_.insert<D>(level - 1, pc, first);
   leaf_count_ += kChildren - 1;
-  for (int k = 0; k < kChildren; ++k) sync_search(first + NodeId(k));
   sync_search(n);
 }
 
 // Turns internal node n, whose children are all leaves, back into a leaf holding their vertices.
 template <int D>
 void Quadtree<D>::merge(NodeId n, std::vector<NodeId>* removed) {
-  Node& parent = nodes_[n];
-  const NodeId first = parent.first_child;
+  const NodeId first = search_[n].first_child;
+  std::size_t total = 0;
   for (int k = 0; k < kChildren; ++k) {
-    Node& ch = nodes_[first + NodeId(k)];
-    if (!ch.is_leaf()) throw std::logic_error("quadtree merge of a node with an internal child");
-    parent.vertices.insert(parent.vertices.end(), ch.vertices.begin(), ch.vertices.end());
-    if (ch.input_vertex != kNoVertex) parent.input_vertex = ch.input_vertex;
-    map_.erase<D>(ch.level, ch.coords);
-    ch = Node{};
-    ch.level = -1;  // marks a free slot
-    if (removed) removed->push_back(first + NodeId(k));
+    if (!is_leaf(first + NodeId(k))) throw std::logic_error("quadtree merge of a node with an internal child");
+    total += search_[first + NodeId(k)].occupied_or_size;
   }
-  parent.first_child = kNoNode;
+  search_[n].first_child = kNoNode;
+  search_[n].occupied_or_size = 0;
+  search_[n].vertices = 0;
+  nodes_[n].size_class = 0;
+  resize_leaf_block(n, size_class_for(total));
+  for (int k = 0; k < kChildren; ++k) {
+    const NodeId c = first + NodeId(k);
+    SearchEntry& e = search_[n];
+    std::copy_n(pool_.begin() + search_[c].vertices, search_[c].occupied_or_size, pool_.begin() + e.vertices + e.occupied_or_size);
+    e.occupied_or_size += search_[c].occupied_or_size;
+    leaf_clear(c);
+    Record& ch = nodes_[c];
+    if (ch.input_vertex != kNoVertex) nodes_[n].input_vertex = ch.input_vertex;
+    ch = Record{};  // level -1: a free slot
+    search_[c] = SearchEntry{};
+    if (removed) removed->push_back(c);
+  }
+  map_.erase<D>(nodes_[n].level, nodes_[n].coords());
   free_blocks_.push_back(first);
   leaf_count_ -= kChildren - 1;
-  sync_search(n);
-  for (int k = 0; k < kChildren; ++k) sync_search(first + NodeId(k));
 }
 
 template <int D>
 void Quadtree<D>::sync_search(NodeId n) {
-  const Node& nd = nodes_[n];
   SearchEntry& e = search_[n];
-  e.first_child = nd.first_child;
-  e.vertices = nd.is_leaf() ? nd.vertices.data() : nullptr;
-  if (nd.is_leaf()) {
-    e.occupied_or_size = std::uint32_t(nd.vertices.size());
-    return;
-  }
+  if (e.first_child == kNoNode) return;  // a leaf's entry is its array's place and size, kept by leaf_push/erase
   e.occupied_or_size = 0;
   for (int k = 0; k < kChildren; ++k)
-    if (search_[nd.first_child + NodeId(k)].occupied_or_size != 0) e.occupied_or_size |= 1u << k;
+    if (search_[e.first_child + NodeId(k)].occupied_or_size != 0) e.occupied_or_size |= 1u << k;
 }
 
 template <int D>
@@ -176,19 +254,19 @@ int Quadtree<D>::box_level(const Point<D>& lo_in, const Point<D>& hi_in, Point<D
 
 template <int D>
 void Quadtree<D>::mark_occupied(NodeId leaf) {
-  for (NodeId n = leaf, p = nodes_[n].parent; p != kNoNode; n = p, p = nodes_[p].parent) {
+  for (NodeId n = leaf, p = search_[n].parent; p != kNoNode; n = p, p = search_[p].parent) {
     std::uint32_t& mask = search_[p].occupied_or_size;
     const bool was_occupied = mask != 0;
-    mask |= 1u << (n - nodes_[p].first_child);
+    mask |= 1u << (n - search_[p].first_child);
     if (was_occupied) return;  // its ancestors already know
   }
 }
 
 template <int D>
 void Quadtree<D>::mark_vacated(NodeId leaf) {
-  for (NodeId n = leaf, p = nodes_[n].parent; p != kNoNode; n = p, p = nodes_[p].parent) {
+  for (NodeId n = leaf, p = search_[n].parent; p != kNoNode; n = p, p = search_[p].parent) {
     std::uint32_t& mask = search_[p].occupied_or_size;
-    mask &= ~(1u << (n - nodes_[p].first_child));
+    mask &= ~(1u << (n - search_[p].first_child));
     if (mask != 0) return;  // still holds a vertex elsewhere
   }
 }
@@ -207,13 +285,13 @@ void Quadtree<D>::covering_nodes(const Point<D>& lo_in, const Point<D>& hi_in, s
 
 template <int D>
 NodeId Quadtree<D>::locate(const Point<D>& p, NodeId hint) const {
-  int level = hint == kNoNode ? 0 : nodes_[hint].level;
-  NodeId n = deepest_containing(level, cell_of(p, level));
-  while (!nodes_[n].is_leaf()) {
-    const Coords c = cell_of(p, nodes_[n].level + 1);
+  int level = hint == kNoNode ? 0 : std::max(0, int(nodes_[hint].level));
+  NodeId n = deepest_containing(level, cell_of(p, level), level);
+  while (!is_leaf(n)) {
+    const Coords c = cell_of(p, ++level);
     int k = 0;
     for (int i = 0; i < D; ++i) k |= int(c[i] & 1u) << i;
-    n = nodes_[n].first_child + NodeId(k);
+    n = search_[n].first_child + NodeId(k);
   }
   return n;
 }
@@ -247,7 +325,7 @@ template <int D>
 std::uint32_t Quadtree<D>::inputs_in_cell(int level, const Coords& c, std::span<const Point<D>> positions) const {
   if (level > kMaxLevel) throw PointInputError("input points closer than the engine's resolution (2^-40 of the box side)", {});
   const NodeId n = deepest_containing(level, c);
-  const Node& nd = nodes_[n];
+  const Record& nd = nodes_[n];
   if (nd.level == level) return nd.input_count;
   // A leaf above the cell: its (single) input point may or may not lie in the cell.
   if (nd.input_vertex == kNoVertex) return 0;
@@ -285,8 +363,8 @@ bool Quadtree<D>::crowded_by(int level, const Coords& c, std::uint32_t own, Coun
 
 template <int D>
 bool Quadtree<D>::crowded(NodeId n, std::span<const Point<D>> positions) const {
-  const Node& nd = nodes_[n];
-  return crowded_by(nd.level, nd.coords, nd.input_count,
+  const Record& nd = nodes_[n];
+  return crowded_by(nd.level, nd.coords(), nd.input_count,
                     [&](int level, const Coords& q) { return inputs_in_cell(level, q, positions); });
 }
 
@@ -313,16 +391,16 @@ void Quadtree<D>::for_each_node_near(const Point<D>& p, F&& f) const {
 // level+1 touches n from outside.
 template <int D>
 bool Quadtree<D>::required_split(NodeId n, std::span<const Point<D>> positions) const {
-  const Node& nd = nodes_[n];
+  const Record& nd = nodes_[n];
   if (crowded(n, positions)) return true;
   for (int k = 0; k < kChildren; ++k)
-    if (!nodes_[nd.first_child + NodeId(k)].is_leaf()) return true;
+    if (!is_leaf(search_[n].first_child + NodeId(k))) return true;
   // Level+1 cells touching n from outside: within one cell of n's children's block.
   const int level = nd.level + 1;
   std::array<std::int64_t, D> first, last;
   for (int i = 0; i < D; ++i) {
-    first[i] = 2 * std::int64_t(nd.coords[i]) - 1;
-    last[i] = 2 * std::int64_t(nd.coords[i]) + 2;
+    first[i] = 2 * std::int64_t(nd.coord(i)) - 1;
+    last[i] = 2 * std::int64_t(nd.coord(i)) + 2;
   }
   bool touched = false;
   for_each_index_in_box<D>(first, last, [&](const std::array<std::int64_t, D>& q) {
@@ -333,7 +411,7 @@ bool Quadtree<D>::required_split(NodeId n, std::span<const Point<D>> positions) 
     Coords qc;
     for (int i = 0; i < D; ++i) qc[i] = std::uint64_t(q[i]);
     const NodeId m = find(level, qc);
-    touched = m != kNoNode && !nodes_[m].is_leaf();
+    touched = m != kNoNode && !is_leaf(m);
   });
   return touched;
 }
@@ -351,11 +429,17 @@ void Quadtree<D>::balance_around(std::vector<NodeId>& worklist, std::vector<Node
   for (int level = kMaxLevel; level >= 2; --level) {
     for (std::size_t idx = 0; idx < by_level[level].size(); ++idx) {
       const NodeId s = by_level[level][idx];
-      if (nodes_[s].level != level || !nodes_[s].is_leaf()) continue;
-      const Coords sc = nodes_[s].coords;
+      if (nodes_[s].level != level || !is_leaf(s)) continue;
+      const Coords sc = nodes_[s].coords();
+      // The 3^D neighbour cells lie in at most 2^D parent cells: each is looked up once (splits only
+      // deepen the tree, so a parent cell made deep enough stays so).
+      Coords done[1 << D];
+      int done_count = 0;
       for_each_neighbour_cell(level, sc, 1, [&](const Coords& q) {
         Coords pc;
         for (int i = 0; i < D; ++i) pc[i] = q[i] >> 1;
+        if (std::find(done, done + done_count, pc) != done + done_count) return;
+        done[done_count++] = pc;
         NodeId n = deepest_containing(level - 1, pc);
         while (nodes_[n].level < level - 1) {
           created.clear();
@@ -377,10 +461,14 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
   nodes_.clear();
   search_.clear();
   free_blocks_.clear();
+  pool_.clear();
+  pool_.shrink_to_fit();
+  for (auto& free : free_arrays_) free.clear();
   map_.clear();
   leaf_count_ = 1;
-  new_node(kNoNode, 0, Coords{});
+  make_root();
   if (inputs.empty()) return;
+  pool_.reserve(inputs.size());
 
   // Sort the inputs by Morton code at the finest level: every cell is then a contiguous range.
   struct Keyed {
@@ -417,9 +505,9 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
   while (!tasks.empty()) {
     const Task t = tasks.back();
     tasks.pop_back();
-    Node& nd = nodes_[t.node];
+    Record& nd = nodes_[t.node];
     nd.input_count = std::uint32_t(t.end - t.begin);
-    const bool is_crowded = crowded_by(nd.level, nd.coords, nd.input_count, [&](int level, const Coords& q) {
+    const bool is_crowded = crowded_by(nd.level, nd.coords(), nd.input_count, [&](int level, const Coords& q) {
       auto [b, e] = range_of(level, q);
       return std::uint32_t(e - b);
     });
@@ -427,7 +515,7 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
       if (nd.input_count == 1) {
         const VertexId v = ids[keyed[t.begin].index];
         nd.input_vertex = v;
-        nd.vertices.push_back({inputs[keyed[t.begin].index], 0, v});
+        leaf_push(t.node, {inputs[keyed[t.begin].index], 0, v});
       }
       leaves.push_back(t.node);
       continue;
@@ -435,26 +523,26 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
     if (nd.level >= kMaxLevel)
       throw PointInputError("input points are closer than the engine's resolution (2^-40 of the box side)", {});
     const NodeId first = allocate_children();
-    Node& parent = nodes_[t.node];
-    parent.first_child = first;
-    const int level = parent.level + 1;
-    const Coords pc = parent.coords;
+    search_[t.node].first_child = first;
+    const int level = nodes_[t.node].level + 1;
+    const Coords pc = nodes_[t.node].coords();
+    map_.insert<D>(level - 1, pc, first);
     leaf_count_ += kChildren - 1;
     for (int k = 0; k < kChildren; ++k) {
       Coords cc;
       for (int i = 0; i < D; ++i) cc[i] = 2 * pc[i] + ((k >> i) & 1);
-      Node& ch = nodes_[first + NodeId(k)];
-      ch = Node{};
-      ch.parent = t.node;
-      ch.level = level;
-      ch.coords = cc;
-      map_.insert<D>(level, cc, first + NodeId(k));
+      Record& ch = nodes_[first + NodeId(k)];
+      ch = Record{};
+      ch.level = std::int8_t(level);
+      ch.set_coords(cc);
+      search_[first + NodeId(k)] = SearchEntry{};
+      search_[first + NodeId(k)].parent = t.node;
       auto [b, e] = range_of(level, cc);
       tasks.push_back({first + NodeId(k), b, e});
     }
   }
   balance_around(leaves, nullptr, nullptr);
-  // The search entries bottom-up: a fresh build appends children after their parent.
+  // The occupied masks bottom-up: a fresh build appends children after their parent.
   for (NodeId n = NodeId(nodes_.size()); n-- > 0;) sync_search(n);
 }
 
@@ -463,10 +551,9 @@ typename Quadtree<D>::Change Quadtree<D>::add_input(VertexId id, std::span<const
   Change change;
   const Point<D>& p = positions[id];
   NodeId leaf = locate(p);
-  for (NodeId a = leaf; a != kNoNode; a = nodes_[a].parent) ++nodes_[a].input_count;
-  nodes_[leaf].vertices.push_back({p, 0, id});
-  sync_search(leaf);
-  if (nodes_[leaf].vertices.size() == 1) mark_occupied(leaf);
+  for (NodeId a = leaf; a != kNoNode; a = search_[a].parent) ++nodes_[a].input_count;
+  leaf_push(leaf, {p, 0, id});
+  if (search_[leaf].occupied_or_size == 1) mark_occupied(leaf);
   // The one input that may now share a leaf with `id`; every other leaf keeps at most one input.
   const VertexId neighbour = nodes_[leaf].input_vertex;
   if (neighbour == kNoVertex) nodes_[leaf].input_vertex = id;
@@ -474,7 +561,7 @@ typename Quadtree<D>::Change Quadtree<D>::add_input(VertexId id, std::span<const
   // Leaves whose 3^D block contains p may have become crowded: at every level, the cells around p's.
   std::vector<NodeId> work;
   for_each_node_near(p, [&](NodeId n) {
-    if (n != leaf && nodes_[n].is_leaf() && nodes_[n].input_count > 0) work.push_back(n);
+    if (n != leaf && is_leaf(n) && nodes_[n].input_count > 0) work.push_back(n);
   });
   // p's own leaf first (the stack is LIFO): until it is split down, it may hold two inputs, and counts
   // in the crowding test of its neighbours see only one of them.
@@ -483,7 +570,7 @@ typename Quadtree<D>::Change Quadtree<D>::add_input(VertexId id, std::span<const
   while (!work.empty()) {
     const NodeId n = work.back();
     work.pop_back();
-    if (!nodes_[n].is_leaf() || !crowded(n, positions)) continue;
+    if (!is_leaf(n) || !crowded(n, positions)) continue;
     change.removed_leaves.push_back(n);
     created.clear();
     // The leaf of `id` may hold two inputs: hand both down (split itself knows only input_vertex).
@@ -491,10 +578,10 @@ typename Quadtree<D>::Change Quadtree<D>::add_input(VertexId id, std::span<const
     auto is_input = [&](VertexId v) { return v == id || v == neighbour || v == own; };
     split(n, &created);
     for (NodeId ch : created) {
-      Node& c = nodes_[ch];
+      Record& c = nodes_[ch];
       c.input_count = 0;
       c.input_vertex = kNoVertex;
-      for (const LeafVertex<D>& e : c.vertices)
+      for (const LeafVertex<D>& e : leaf_vertices(ch))
         if (is_input(e.id)) {
           ++c.input_count;
           c.input_vertex = e.id;
@@ -511,7 +598,7 @@ typename Quadtree<D>::Change Quadtree<D>::add_input(VertexId id, std::span<const
   // A leaf created and split within this call is neither new nor removed for the caller.
   std::vector<NodeId> transient;
   for (NodeId n : change.new_leaves)
-    if (!nodes_[n].is_leaf()) transient.push_back(n);
+    if (!is_leaf(n)) transient.push_back(n);
   std::sort(transient.begin(), transient.end());
   auto is_transient = [&](NodeId n) { return std::binary_search(transient.begin(), transient.end(), n); };
   std::erase_if(change.new_leaves, is_transient);
@@ -524,21 +611,22 @@ typename Quadtree<D>::Change Quadtree<D>::remove_input(VertexId id, std::span<co
   Change change;
   const Point<D>& p = positions[id];
   const NodeId leaf = locate(p);
-  Node& lf = nodes_[leaf];
-  auto it = std::find_if(lf.vertices.begin(), lf.vertices.end(), [&](const LeafVertex<D>& e) { return e.id == id; });
-  if (it == lf.vertices.end() || lf.input_vertex != id)
+  const auto vs = leaf_vertices(leaf);
+  auto it = std::find_if(vs.begin(), vs.end(), [&](const LeafVertex<D>& e) { return e.id == id; });
+  if (it == vs.end() || nodes_[leaf].input_vertex != id)
     throw std::logic_error("quadtree remove_input: vertex is not an input of its leaf");
-  lf.vertices.erase(it);
-  lf.input_vertex = kNoVertex;
-  sync_search(leaf);
-  if (lf.vertices.empty()) mark_vacated(leaf);
-  for (NodeId a = leaf; a != kNoNode; a = nodes_[a].parent) --nodes_[a].input_count;
+  // The others keep their order (a fresh array would list them in the same order).
+  std::copy(it + 1, vs.end(), it);
+  leaf_erase(leaf, vs.size() - 1);
+  nodes_[leaf].input_vertex = kNoVertex;
+  if (search_[leaf].occupied_or_size == 0) mark_vacated(leaf);
+  for (NodeId a = leaf; a != kNoNode; a = search_[a].parent) --nodes_[a].input_count;
 
   // Internal nodes whose block contained p may no longer be crowded; merging one can release its
   // level-1 neighbours (they were kept split by its children). Finest level first.
   std::vector<std::vector<NodeId>> candidates(kMaxLevel + 1);
   for_each_node_near(p, [&](NodeId n) {
-    if (!nodes_[n].is_leaf()) candidates[nodes_[n].level].push_back(n);
+    if (!is_leaf(n)) candidates[std::size_t(nodes_[n].level)].push_back(n);
   });
   std::vector<NodeId> merged;
   for (int level = kMaxLevel; level >= 0; --level) {
@@ -546,21 +634,21 @@ typename Quadtree<D>::Change Quadtree<D>::remove_input(VertexId id, std::span<co
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
     for (NodeId n : list) {
-      if (nodes_[n].level != level || nodes_[n].is_leaf() || required_split(n, positions)) continue;
+      if (nodes_[n].level != level || is_leaf(n) || required_split(n, positions)) continue;
       merge(n, &change.removed_leaves);
       merged.push_back(n);
       if (level == 0) continue;
       Coords pc;
-      for (int i = 0; i < D; ++i) pc[i] = nodes_[n].coords[i] >> 1;
+      for (int i = 0; i < D; ++i) pc[i] = nodes_[n].coord(i) >> 1;
       for_each_neighbour_cell(level - 1, pc, 1, [&](const Coords& q) {
         const NodeId m = find(level - 1, q);
-        if (m != kNoNode && !nodes_[m].is_leaf()) candidates[level - 1].push_back(m);
+        if (m != kNoNode && !is_leaf(m)) candidates[level - 1].push_back(m);
       });
     }
   }
   // Removed leaves include children of merged nodes; merged nodes that merged again upward are gone.
   for (NodeId n : merged)
-    if (nodes_[n].level >= 0 && nodes_[n].is_leaf()) change.new_leaves.push_back(n);
+    if (nodes_[n].level >= 0 && is_leaf(n)) change.new_leaves.push_back(n);
   std::vector<NodeId> gone = change.removed_leaves;
   std::sort(gone.begin(), gone.end());
   std::erase_if(change.new_leaves, [&](NodeId n) { return std::binary_search(gone.begin(), gone.end(), n); });
@@ -570,108 +658,140 @@ typename Quadtree<D>::Change Quadtree<D>::remove_input(VertexId id, std::span<co
 template <int D>
 NodeId Quadtree<D>::insert_vertex(VertexId id, const Point<D>& p, std::uint64_t tag, NodeId hint) {
   const NodeId leaf = locate(p, hint);
-  nodes_[leaf].vertices.push_back({p, tag, id});
-  sync_search(leaf);
-  if (nodes_[leaf].vertices.size() == 1) mark_occupied(leaf);
+  leaf_push(leaf, {p, tag, id});
+  if (search_[leaf].occupied_or_size == 1) mark_occupied(leaf);
   return leaf;
 }
 
 template <int D>
 void Quadtree<D>::rename_vertices(std::span<const VertexId> new_id) {
-  // Each leaf's array is allocated afresh, in node order (nodes are numbered along the curve), all
-  // before the old ones are freed (which the new ones would fill, scattered): Steiner vertices grew
-  // the arrays at the times they arrived, so neighbouring leaves lay far apart on the heap.
-  std::vector<std::vector<LeafVertex<D>>> old_arrays;
+  // The pool is packed afresh, the leaves' arrays in node order (nodes are numbered along the curve)
+  // with no free block between them: Steiner vertices grew the arrays at the times they arrived, so
+  // neighbouring leaves' arrays lay far apart.
+  std::size_t slots = 0;
+  for (NodeId n = 0; n < nodes_.size(); ++n)
+    if (nodes_[n].level >= 0 && is_leaf(n)) slots += class_capacity(size_class_for(search_[n].occupied_or_size));
+  std::vector<LeafVertex<D>> packed(slots);
+  std::size_t next = 0;
   for (NodeId n = 0; n < nodes_.size(); ++n) {
-    Node& nd = nodes_[n];
+    Record& nd = nodes_[n];
     if (nd.level < 0) continue;  // a free slot
     if (nd.input_vertex != kNoVertex) nd.input_vertex = new_id[nd.input_vertex];
-    for (LeafVertex<D>& e : nd.vertices) e.id = new_id[e.id];
-    if (nd.is_leaf() && !nd.vertices.empty()) {
-      std::vector<LeafVertex<D>> repacked(nd.vertices.begin(), nd.vertices.end());
-      old_arrays.push_back(std::move(nd.vertices));
-      nd.vertices = std::move(repacked);
-      search_[n].vertices = nd.vertices.data();
+    if (!is_leaf(n)) continue;
+    SearchEntry& e = search_[n];
+    for (std::uint32_t j = 0; j < e.occupied_or_size; ++j) {
+      packed[next + j] = pool_[e.vertices + j];
+      packed[next + j].id = new_id[packed[next + j].id];
     }
+    nd.size_class = std::uint8_t(size_class_for(e.occupied_or_size));
+    e.vertices = std::uint32_t(nd.size_class == 0 ? 0 : next);
+    next += class_capacity(nd.size_class);
+  }
+  pool_ = std::move(packed);
+  for (auto& free : free_arrays_) {
+    free.clear();
+    free.shrink_to_fit();
   }
 }
 
 template <int D>
 void Quadtree<D>::erase_vertex(VertexId id, NodeId leaf) {
-  auto& vs = nodes_[leaf].vertices;
+  const auto vs = leaf_vertices(leaf);
   auto it = std::find_if(vs.begin(), vs.end(), [&](const LeafVertex<D>& e) { return e.id == id; });
   if (it == vs.end()) throw std::logic_error("quadtree erase_vertex: vertex not in leaf");
-  *it = vs.back();
-  vs.pop_back();
-  sync_search(leaf);
-  if (vs.empty()) mark_vacated(leaf);
+  leaf_erase(leaf, std::size_t(it - vs.begin()));
+  if (search_[leaf].occupied_or_size == 0) mark_vacated(leaf);
 }
 
 template <int D>
 std::vector<std::pair<int, typename Quadtree<D>::Coords>> Quadtree<D>::leaf_cells() const {
   std::vector<std::pair<int, Coords>> cells;
-  for (const Node& n : nodes_)
-    if (n.level >= 0 && n.is_leaf() && (n.parent != kNoNode || &n == &nodes_[0])) cells.emplace_back(n.level, n.coords);
+  for (NodeId n = 0; n < nodes_.size(); ++n)
+    if (nodes_[n].level >= 0 && is_leaf(n) && (search_[n].parent != kNoNode || n == root()))
+      cells.emplace_back(nodes_[n].level, nodes_[n].coords());
   std::sort(cells.begin(), cells.end());
   return cells;
 }
 
 template <int D>
 std::size_t Quadtree<D>::memory_bytes() const {
-  std::size_t bytes = nodes_.capacity() * sizeof(Node) + search_.capacity() * sizeof(SearchEntry) + map_.memory_bytes() +
-                      free_blocks_.capacity() * sizeof(NodeId);
-  for (const Node& n : nodes_) bytes += n.vertices.capacity() * sizeof(LeafVertex<D>);
+  std::size_t bytes = nodes_.capacity() * sizeof(Record) + search_.capacity() * sizeof(SearchEntry) + map_.memory_bytes() +
+                      free_blocks_.capacity() * sizeof(NodeId) + pool_.capacity() * sizeof(LeafVertex<D>);
+  for (const auto& free : free_arrays_) bytes += free.capacity() * sizeof(std::uint32_t);
   return bytes;
 }
 
 template <int D>
 void Quadtree<D>::check_valid(std::span<const Point<D>> positions) const {
   auto fail = [](const std::string& what) { throw std::logic_error("quadtree invalid: " + what); };
+  if (nodes_.size() != search_.size() || nodes_.size() % kChildren != 0) fail("node arrays");
   std::size_t leaves = 0;
+  // Every pool slot lies in exactly one block: a leaf's or a free one.
+  std::vector<std::pair<std::size_t, std::size_t>> blocks;  // (offset, capacity)
+  for (int c = 1; c < kSizeClasses; ++c)
+    for (std::uint32_t offset : free_arrays_[std::size_t(c)]) blocks.emplace_back(offset, class_capacity(c));
   for (NodeId n = 0; n < nodes_.size(); ++n) {
-    const Node& nd = nodes_[n];
-    if (nd.level < 0) continue;
-    if (n != 0 && (nd.parent == kNoNode || nodes_[nd.parent].is_leaf())) continue;  // unreachable slot
-    if (find(nd.level, nd.coords) != n) fail("cell map does not point to node " + std::to_string(n));
-    if (nd.is_leaf()) {
+    const Record& nd = nodes_[n];
+    const SearchEntry& se = search_[n];
+    if (nd.level < 0) {
+      if (nd.size_class != 0 || se.first_child != kNoNode || se.occupied_or_size != 0) fail("free slot " + std::to_string(n) + " in use");
+      continue;
+    }
+    if (n != 0 && (se.parent == kNoNode || is_leaf(se.parent))) continue;  // unreachable slot
+    if (n != 0 && (n - search_[se.parent].first_child) >= NodeId(kChildren))
+      fail("parent link of node " + std::to_string(n));
+    if (find(nd.level, nd.coords()) != n) fail("cell map does not point to node " + std::to_string(n));
+    if (is_leaf(n)) {
       ++leaves;
+      const std::size_t capacity = class_capacity(nd.size_class);
+      // Blocks grow by doubling when full and shrink to fit at a quarter full: an empty leaf holds none.
+      if (se.occupied_or_size > capacity || (capacity > 0 && 4 * std::size_t(se.occupied_or_size) <= capacity))
+        fail("leaf " + std::to_string(n) + "'s array: " + std::to_string(se.occupied_or_size) + " vertices in a block of " + std::to_string(capacity));
+      if (capacity > 0) {
+        if (se.vertices + capacity > pool_.size()) fail("leaf " + std::to_string(n) + "'s array outside the pool");
+        blocks.emplace_back(se.vertices, capacity);
+      }
       std::uint32_t inputs = 0;
-      for (const LeafVertex<D>& e : nd.vertices) {
+      for (const LeafVertex<D>& e : leaf_vertices(se)) {
         if (e.position != positions[e.id]) fail("leaf's copy of a vertex position");
-        if (cell_of(e.position, nd.level) != nd.coords) fail("vertex outside its leaf");
+        if (cell_of(e.position, nd.level) != nd.coords()) fail("vertex outside its leaf");
         if (e.id == nd.input_vertex) ++inputs;
       }
       if (inputs != nd.input_count || nd.input_count > 1) fail("leaf input count");
-      if (search_[n].first_child != kNoNode || search_[n].occupied_or_size != nd.vertices.size() ||
-          search_[n].vertices != nd.vertices.data())
-        fail("search entry of leaf " + std::to_string(n));
       if (crowded(n, positions)) fail("crowded leaf at level " + std::to_string(nd.level));
       // Balance: touching leaves differ by at most one level.
       if (nd.level >= 2)
-        for_each_neighbour_cell(nd.level, nd.coords, 1, [&](const Coords& q) {
+        for_each_neighbour_cell(nd.level, nd.coords(), 1, [&](const Coords& q) {
           Coords pc;
           for (int i = 0; i < D; ++i) pc[i] = q[i] >> 1;
           if (nodes_[deepest_containing(nd.level - 1, pc)].level < nd.level - 1) fail("unbalanced leaves");
         });
     } else {
+      if (se.first_child % kChildren != 0) fail("children block of node " + std::to_string(n) + " not aligned");
+      if (nd.size_class != 0) fail("internal node holds vertices");
       std::uint32_t sum = 0;
       std::uint32_t occupied = 0;
       for (int k = 0; k < kChildren; ++k) {
-        const NodeId c = nd.first_child + NodeId(k);
-        const Node& ch = nodes_[c];
-        if (ch.parent != n || ch.level != nd.level + 1) fail("child links");
-        sum += ch.input_count;
+        const NodeId c = se.first_child + NodeId(k);
+        if (search_[c].parent != n || nodes_[c].level != nd.level + 1) fail("child links");
+        sum += nodes_[c].input_count;
         if (search_[c].occupied_or_size != 0) occupied |= 1u << k;
       }
-      // Leaves' entries are checked against their vertices, so this checks every mask by induction.
-      if (search_[n].first_child != nd.first_child || search_[n].occupied_or_size != occupied)
-        fail("search entry of internal node " + std::to_string(n));
+      // Leaves' sizes are their arrays', so this checks every mask by induction.
+      if (se.occupied_or_size != occupied) fail("occupied mask of internal node " + std::to_string(n));
       if (sum != nd.input_count) fail("subtree input count node " + std::to_string(n) + " level " + std::to_string(nd.level) + " count " + std::to_string(nd.input_count) + " sum " + std::to_string(sum));
-      if (!nd.vertices.empty()) fail("internal node holds vertices");
       if (!required_split(n, positions)) fail("split not required (tree not minimal) at level " + std::to_string(nd.level));
     }
   }
   if (leaves != leaf_count_) fail("leaf count");
+  if (map_.size() != (leaves - 1) / (kChildren - 1)) fail("cell map holds other cells than the internal nodes'");
+  std::sort(blocks.begin(), blocks.end());
+  std::size_t covered = 0;
+  for (const auto& [offset, capacity] : blocks) {
+    if (offset != covered) fail("leaf pool: slot " + std::to_string(std::min(offset, covered)) + " in no block or in two");
+    covered += capacity;
+  }
+  if (covered != pool_.size()) fail("leaf pool: slots past the last block");
 }
 
 template class Quadtree<2>;

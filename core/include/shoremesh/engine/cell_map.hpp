@@ -1,7 +1,9 @@
 #pragma once
-// Open-addressing hash map from a quadtree cell (level + integer coordinates) to its node. It lets a
-// query jump straight to the cells around a point at any level, which keeps every neighbour search O(1)
-// under the algorithm's invariants instead of O(depth) from the root.
+// Open-addressing hash map from a quadtree cell (level + integer coordinates) to a node id: the quadtree
+// keeps each internal node's cell with its children's block (so a node is found from its parent's
+// entry, 2^D times fewer entries than nodes). It lets a query jump straight to the cells around a point
+// at any level, which keeps every neighbour search O(1) under the algorithm's invariants instead of
+// O(depth) from the root.
 //
 // Two tables: cells of the levels whose D coordinates fit one 64-bit word with a marker bit (2D: levels
 // <= 31, 3D: <= 21; every cell of a uniform input of up to ~10^9 points) are keyed by that word in

@@ -17,6 +17,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <new>
 #include <span>
 #include <tuple>
 #include <utility>
@@ -85,14 +86,16 @@ class Quadtree {
   }();
   using Coords = std::array<std::uint64_t, D>;
 
+  // A node as the owner reads it: assembled from the tree's arrays on each call (a view: `vertices`
+  // stays valid until the tree changes). Free slots have level -1.
   struct Node {
     NodeId parent = kNoNode;
     NodeId first_child = kNoNode;        // the 2^D children are contiguous; kNoNode for a leaf
-    std::int32_t level = 0;
+    int level = -1;
     Coords coords{};                     // cell index at its level
     std::uint32_t input_count = 0;       // input points in the subtree
     VertexId input_vertex = kNoVertex;   // leaves: the input vertex inside, if any
-    std::vector<LeafVertex<D>> vertices; // leaves: every vertex inside (input and Steiner)
+    std::span<const LeafVertex<D>> vertices;  // leaves: every vertex inside (input and Steiner)
     bool is_leaf() const { return first_child == kNoNode; }
   };
 
@@ -131,11 +134,26 @@ class Quadtree {
   void rename_vertices(std::span<const VertexId> new_id);
 
   NodeId root() const { return 0; }
-  const Node& node(NodeId n) const { return nodes_[n]; }
+  Node node(NodeId n) const {
+    const Record& r = nodes_[n];
+    const SearchEntry& e = search_[n];
+    Node out;
+    out.parent = e.parent;
+    out.first_child = e.first_child;
+    out.level = r.level;
+    out.coords = r.coords();
+    out.input_count = r.input_count;
+    out.input_vertex = r.input_vertex;
+    if (e.first_child == kNoNode) out.vertices = leaf_vertices(e);
+    return out;
+  }
   std::size_t node_capacity() const { return nodes_.size(); }
   double side(NodeId n) const { return power_of_two(-nodes_[n].level); }
   // QTApxNN of the input vertex in leaf n: a lower bound on its nearest-neighbour distance.
   double approximate_nn(NodeId n) const { return power_of_two(-nodes_[n].level - kCrowdingMargin); }
+  // The leaves' arrays share one pool: slots in use by leaves, and the pool's size (free blocks included).
+  std::size_t pool_slots_used() const;
+  std::size_t pool_size() const { return pool_.size(); }
   Point<D> lower_corner(NodeId n) const;
 
   // The leaf containing p (hint: a leaf near p, to start from; optional).
@@ -155,11 +173,11 @@ class Quadtree {
   // Whether a search of the box [center - half, center + half] that already searched it counts `leaf`
   // as seen (the test for_each_occupied_leaf applies to its `seen` box).
   bool leaf_meets_box(NodeId leaf, const Point<D>& center, double half) const {
-    const Node& nd = nodes_[leaf];
+    const Record& nd = nodes_[leaf];
     const double scale = power_of_two(nd.level);
     for (int i = 0; i < D; ++i) {
       const auto [first, last] = meeting_cells(center[i] - half, center[i] + half, scale);
-      const auto c = std::int64_t(nd.coords[i]);
+      const auto c = std::int64_t(nd.coord(i));
       if (c < first || c > last) return false;
     }
     return true;
@@ -198,14 +216,93 @@ class Quadtree {
   }
 
  private:
-  NodeId new_node(NodeId parent, int level, const Coords& coords);
+  // What only edits read of a node (the search reads SearchEntry): 20 bytes in 2D, 28 in 3D. The cell
+  // index is at most 40 bits per axis, kept as a low 32-bit word and a high byte.
+  struct Record {
+    std::uint32_t input_count = 0;      // input points in the subtree
+    VertexId input_vertex = kNoVertex;  // leaves: the input vertex inside, if any
+    std::array<std::uint32_t, D> coords_low{};
+    std::int8_t level = -1;             // -1: a free slot
+    std::uint8_t size_class = 0;        // leaf: its pool block holds 2^(size_class - 1) vertices; 0: none
+    std::array<std::uint8_t, D> coords_high{};
+    std::uint64_t coord(int i) const {
+      return std::uint64_t(coords_low[std::size_t(i)]) | std::uint64_t(coords_high[std::size_t(i)]) << 32;
+    }
+    Coords coords() const {
+      Coords c;
+      for (int i = 0; i < D; ++i) c[std::size_t(i)] = coord(i);
+      return c;
+    }
+    void set_coords(const Coords& c) {
+      for (int i = 0; i < D; ++i) {
+        coords_low[std::size_t(i)] = std::uint32_t(c[std::size_t(i)]);
+        coords_high[std::size_t(i)] = std::uint8_t(c[std::size_t(i)] >> 32);
+      }
+    }
+  };
+  // What the neighbour search reads of each node, 16 bytes apiece beside nodes_ (same ids). Blocks of
+  // 2^D siblings start at multiples of 2^D in a 64-byte aligned array, so a 2D block is one cache line
+  // and a 3D block two: a descent reads one block per node it expands, and a leaf's vertex array
+  // without reading the leaf's Record.
+  struct SearchEntry {
+    NodeId first_child = kNoNode;  // kNoNode: a leaf
+    // Internal: bit k set when child k's subtree holds a vertex (searches skip empty subtrees unread:
+    // about half the leaves in 2D, two thirds in 3D, hold none). Leaf: its number of vertices.
+    std::uint32_t occupied_or_size = 0;
+    std::uint32_t vertices = 0;    // leaf: where its array starts in pool_
+    NodeId parent = kNoNode;
+  };
+  template <class T>
+  struct LineAligned {
+    using value_type = T;
+    static constexpr std::align_val_t kAlign{64};
+    LineAligned() = default;
+    template <class U>
+    LineAligned(const LineAligned<U>&) {}
+    T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlign)); }
+    void deallocate(T* p, std::size_t) { ::operator delete(p, kAlign); }
+    template <class U>
+    bool operator==(const LineAligned<U>&) const { return true; }
+  };
+
+  std::span<const LeafVertex<D>> leaf_vertices(const SearchEntry& e) const {
+    return {pool_.data() + e.vertices, e.occupied_or_size};
+  }
+  std::span<LeafVertex<D>> leaf_vertices(NodeId n) {
+    return {pool_.data() + search_[n].vertices, search_[n].occupied_or_size};
+  }
+  bool is_leaf(NodeId n) const { return search_[n].first_child == kNoNode; }
+  // The pool of leaf arrays: a leaf's array is a block of 2^(c-1) slots (size class c), blocks freed by
+  // a leaf that grew, shrank or went away are kept per class for the next leaf that needs one.
+  std::uint32_t pool_allocate(int size_class);
+  void pool_free(std::uint32_t offset, int size_class);
+  // Gives leaf n a block of `size_class` (0: none), moving its vertices there.
+  void resize_leaf_block(NodeId n, int size_class);
+  void leaf_push(NodeId n, const LeafVertex<D>& e);
+  // Removes the vertex at index i of leaf n's array (the last one takes its place).
+  void leaf_erase(NodeId n, std::size_t i);
+  void leaf_clear(NodeId n);
+
+  void make_root();
   NodeId allocate_children();
   void split(NodeId n, std::vector<NodeId>* created);
   void merge(NodeId n, std::vector<NodeId>* removed);
   // Keep the occupied masks of the ancestors of a leaf that just gained its first vertex / lost its last.
   void mark_occupied(NodeId leaf);
   void mark_vacated(NodeId leaf);
-  NodeId find(int level, const Coords& c) const { return map_.template find<D>(level, c); }
+  // The node of cell c at `level`, if it exists: the cell map holds each internal node's cell with its
+  // children's block (a node exists iff its parent is internal), 2^D times fewer entries than nodes.
+  NodeId find(int level, const Coords& c) const {
+    if (level == 0) return root();
+    Coords pc;
+    int k = 0;
+    for (int i = 0; i < D; ++i) {
+      pc[i] = c[i] >> 1;
+      k |= int(c[i] & 1u) << i;
+    }
+    const NodeId block = map_.template find<D>(level - 1, pc);
+    return block == kNoNode ? kNoNode : block + NodeId(k);
+  }
   NodeId deepest_containing(int level, Coords c) const;
   // The same, with the node's level (read from the cell map, not from the node).
   NodeId deepest_containing(int level, Coords c, int& found_level) const;
@@ -227,19 +324,12 @@ class Quadtree {
   template <class F>
   void for_each_node_near(const Point<D>& p, F&& f) const;
 
-  std::vector<Node> nodes_;
-  // What the neighbour search reads of each node, 16 bytes apiece beside nodes_ (same ids, so 2^D
-  // siblings share one or two cache lines): a descent then reads one line per node it expands instead
-  // of 2^D full nodes, and a leaf's vertex array without reading the leaf.
-  struct SearchEntry {
-    NodeId first_child = kNoNode;             // kNoNode: a leaf
-    // Internal: bit k set when child k's subtree holds a vertex (searches skip empty subtrees unread:
-    // about half the leaves in 2D, two thirds in 3D, hold none). Leaf: its number of vertices.
-    std::uint32_t occupied_or_size = 0;
-    const LeafVertex<D>* vertices = nullptr;  // leaf: its vertex array
-  };
-  std::vector<SearchEntry> search_;
+  std::vector<Record> nodes_;
+  std::vector<SearchEntry, LineAligned<SearchEntry>> search_;
   std::vector<NodeId> free_blocks_;      // first ids of freed blocks of 2^D children
+  std::vector<LeafVertex<D>> pool_;
+  static constexpr int kSizeClasses = 33;
+  std::array<std::vector<std::uint32_t>, kSizeClasses> free_arrays_;  // free pool blocks by size class
   CellMap map_;
   std::size_t leaf_count_ = 0;
 };
@@ -294,66 +384,103 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
   auto report = [&](NodeId n) {
     if (count == found.size()) found.resize(2 * count + 16);
     found[count++] = n;
-    __builtin_prefetch(search_[n].vertices);
+    __builtin_prefetch(pool_.data() + search_[n].vertices);
   };
-  Item stack[kMaxLevel * kChildren + 8];
+  Item stack[kMaxLevel * kChildren + 32];
   // From the first cell whose closed box meets the box: when lo lies exactly on a cell boundary, the
   // cell below it touches the box too, and its leaves count as seen in the next, larger search.
   Coords first;
   for (int i = 0; i < D; ++i) first[i] = std::uint64_t(std::max<std::int64_t>(0, ranges_at(level).meet_lo[i]));
   const Coords last = cell_of(hi, level);
+  // The box's cells found so far (at most 3 per axis, when it ends on cell boundaries): a cell beside
+  // one of them in the same parent is that one's sibling, and a cell inside the same coarser leaf is
+  // that leaf; neither needs the cell map.
+  struct Top {
+    Coords cell;
+    NodeId node;
+    int level;
+  };
+  Top tops[27];
+  int top_count = 0;
+  auto top_of = [&](const Coords& cell, int& top_level) -> NodeId {
+    for (int t = 0; t < top_count; ++t) {
+      const Top& o = tops[t];
+      const int shift = o.level == level ? 1 : level - o.level;
+      bool same = level > 0;
+      for (int i = 0; i < D; ++i) same = same && (cell[i] >> shift) == (o.cell[i] >> shift);
+      if (!same) continue;
+      top_level = o.level;
+      if (o.level < level) return o.node;
+      int k = 0;
+      for (int i = 0; i < D; ++i) k |= int(cell[i] & 1u) << i;
+      return search_[search_[o.node].parent].first_child + NodeId(k);
+    }
+    const NodeId n = deepest_containing(level, cell, top_level);
+    tops[top_count++] = Top{cell, n, top_level};
+    return n;
+  };
+  // The nodes over the box's cells first, their entries and children's blocks fetched together, then
+  // one descent from each in turn (the stack takes them in reverse).
+  Item starts[27];
+  int start_count = 0;
   for_each_index_in_box<D>(first, last, [&](const Coords& cell) {
     std::array<std::int64_t, D> ci;
     for (int i = 0; i < D; ++i) ci[i] = std::int64_t(cell[i]);
     if (inside_seen(ranges_at(level), ci)) return;  // searched already, without a look-up
     int top_level = 0;
-    const NodeId top_node = deepest_containing(level, cell, top_level);
+    const NodeId top_node = top_of(cell, top_level);
     for (int i = 0; i < D; ++i) ci[i] >>= (level - top_level);
-    // A coarse leaf can contain several of the box's cells: report it once.
-    if (top_level < level && std::find(found.begin(), found.begin() + long(count), top_node) != found.begin() + long(count))
-      return;
-    int top = 0;
-    stack[top++] = Item{top_node, top_level, ci};
-    while (top > 0) {
-      const Item it = stack[--top];
-      if (!keep(it.level, it.c)) continue;
-      const SearchEntry& e = search_[it.node];
-      const Ranges& r = ranges_at(it.level);
-      if (e.first_child == kNoNode) {
-        if (e.occupied_or_size != 0 && !meets_seen(r, it.c)) report(it.node);
-        continue;
-      }
-      if (inside_seen(r, it.c)) continue;
-      // Children meeting the box, from index ranges one level down: a child is read only if it meets
-      // the box and its subtree holds a vertex. Child k is the upper half along axis i when bit i of k
-      // is set; kHalf[i][h] is the set of children in half h along axis i.
-      const Ranges& rc = ranges_at(it.level + 1);
-      std::uint32_t wanted = e.occupied_or_size;
-      for (int i = 0; i < D; ++i) {
-        const std::int64_t low = 2 * it.c[i];
-        std::uint32_t along = 0;
-        if (low >= rc.meet_lo[i] && low <= rc.meet_hi[i]) along |= kHalf[i][0];
-        if (low + 1 >= rc.meet_lo[i] && low + 1 <= rc.meet_hi[i]) along |= kHalf[i][1];
-        wanted &= along;
-      }
-      // Occupied leaf children are reported here, internal ones go on the stack.
-      for (; wanted != 0; wanted &= wanted - 1) {
-        const int k = std::countr_zero(wanted);
-        const NodeId child_node = e.first_child + NodeId(k);
-        std::array<std::int64_t, D> cc;
-        for (int i = 0; i < D; ++i) cc[i] = 2 * it.c[i] + ((k >> i) & 1);
-        if (search_[child_node].first_child == kNoNode) {
-          if (!meets_seen(rc, cc) && keep(it.level + 1, cc)) report(child_node);
-        } else {
-          stack[top++] = Item{child_node, it.level + 1, cc};
-        }
+    // A coarse leaf can contain several of the box's cells: search it once.
+    if (top_level < level)
+      for (int t = 0; t < start_count; ++t)
+        if (starts[t].node == top_node) return;
+    __builtin_prefetch(&search_[top_node]);
+    starts[start_count++] = Item{top_node, top_level, ci};
+  });
+  for (int t = 0; t < start_count; ++t)
+    if (const NodeId children = search_[starts[t].node].first_child; children != kNoNode) __builtin_prefetch(&search_[children]);
+  int top = 0;
+  for (int t = start_count; t-- > 0;) stack[top++] = starts[t];
+  while (top > 0) {
+    const Item it = stack[--top];
+    if (!keep(it.level, it.c)) continue;
+    const SearchEntry& e = search_[it.node];
+    const Ranges& r = ranges_at(it.level);
+    if (e.first_child == kNoNode) {
+      if (e.occupied_or_size != 0 && !meets_seen(r, it.c)) report(it.node);
+      continue;
+    }
+    if (inside_seen(r, it.c)) continue;
+    // Children meeting the box, from index ranges one level down: a child is read only if it meets
+    // the box and its subtree holds a vertex. Child k is the upper half along axis i when bit i of k
+    // is set; kHalf[i][h] is the set of children in half h along axis i.
+    const Ranges& rc = ranges_at(it.level + 1);
+    std::uint32_t wanted = e.occupied_or_size;
+    for (int i = 0; i < D; ++i) {
+      const std::int64_t low = 2 * it.c[i];
+      std::uint32_t along = 0;
+      if (low >= rc.meet_lo[i] && low <= rc.meet_hi[i]) along |= kHalf[i][0];
+      if (low + 1 >= rc.meet_lo[i] && low + 1 <= rc.meet_hi[i]) along |= kHalf[i][1];
+      wanted &= along;
+    }
+    // Occupied leaf children are reported here, internal ones go on the stack.
+    for (; wanted != 0; wanted &= wanted - 1) {
+      const int k = std::countr_zero(wanted);
+      const NodeId child_node = e.first_child + NodeId(k);
+      std::array<std::int64_t, D> cc;
+      for (int i = 0; i < D; ++i) cc[i] = 2 * it.c[i] + ((k >> i) & 1);
+      const NodeId grandchildren = search_[child_node].first_child;
+      if (grandchildren == kNoNode) {
+        if (!meets_seen(rc, cc) && keep(it.level + 1, cc)) report(child_node);
+      } else {
+        // Its children's block is read when it leaves the stack: fetched meanwhile, and for its
+        // siblings in parallel (the descent's time goes mostly to these misses).
+        __builtin_prefetch(&search_[grandchildren]);
+        stack[top++] = Item{child_node, it.level + 1, cc};
       }
     }
-  });
-  for (std::size_t k = 0; k < count; ++k) {
-    const SearchEntry& e = search_[found[k]];
-    f(found[k], std::span<const LeafVertex<D>>(e.vertices, e.occupied_or_size));
   }
+  for (std::size_t k = 0; k < count; ++k) f(found[k], leaf_vertices(search_[found[k]]));
   return count;
 }
 
