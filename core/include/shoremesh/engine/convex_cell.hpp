@@ -116,15 +116,18 @@ class ConvexCell {
     std::uint16_t a, b;
   };
   std::uint16_t add_constraint(const Constraint<D>& c);
+  void set_magnitudes(Constraint<D>& c);
   bool before_in_distance_order(std::uint16_t a, std::uint16_t b) const;
-  Vertex make_vertex(const std::array<std::uint16_t, D>& planes);
+  // Solves the vertex of these planes into vtx (a slot of a vertex list: no copy of the vertex after).
+  void make_vertex(const std::array<std::uint16_t, D>& planes, Vertex& vtx);
   const std::array<Exact, D>& exact_position(Vertex& vtx);
   int side(Vertex& vtx, std::uint16_t plane);  // sign of n.y - b: > 0 outside
   // Whether vertices i and j are the same point (exact).
   bool same_point(std::size_t i, std::size_t j);
-  bool clip_by(std::uint16_t plane);
+  bool mark_sides(std::uint16_t plane);
   void clip_polygon(std::uint16_t plane);
   void clip_polyhedron(std::uint16_t plane);
+  void find_rim();
 
   Point<D> v_{};
   std::vector<Constraint<D>> constraints_;
@@ -141,6 +144,11 @@ class ConvexCell {
   std::vector<PlanePair> cut_edges_, rim_;
   static constexpr std::uint32_t kNoEdge = ~std::uint32_t(0);  // planes are 16-bit: no edge's code
   std::vector<std::uint32_t> edge_table_;                     // cut_edges_ by code, to find reverses
+  // find_rim's numbering of the planes of a cut, and each one's outgoing cut edges as bits.
+  std::vector<std::uint32_t> plane_stamp_;
+  std::vector<std::uint8_t> plane_local_;
+  std::uint32_t stamp_ = 0;
+  std::vector<std::uint64_t> out_bits_;  // 64 rows once used (a cached cell's copy never clips)
   std::uint32_t next_serial_ = 0;
   mutable std::vector<std::uint8_t> plane_seen_;
   mutable std::vector<std::uint64_t> plane_places_;
