@@ -287,12 +287,12 @@ void ConvexCell<D>::reset(const Point<D>& v, const Point<D>& lo, const Point<D>&
   for (int a = 0; a < D; ++a) {
     Constraint<D> mn;
     mn.kind = Kind::AxisMin;
-    mn.axis = a;
+    mn.axis = std::uint8_t(a);
     mn.value = lo[a];
     add_constraint(mn);
     Constraint<D> mx;
     mx.kind = Kind::AxisMax;
-    mx.axis = a;
+    mx.axis = std::uint8_t(a);
     mx.value = hi[a];
     add_constraint(mx);
   }
@@ -323,11 +323,15 @@ void ConvexCell<D>::end_out_of_order_cuts() {
   out_of_order_ = false;
   if constexpr (D == 3) {
     const std::size_t m = constraints_.size();
-    std::vector<std::uint16_t> order(m);
+    // Scratch kept between calls (the cache updates cells this way all through a propagation).
+    auto& order = order_scratch_;
+    auto& renamed = renamed_scratch_;
+    auto& sorted = sorted_scratch_;
+    order.resize(m);
     for (std::size_t k = 0; k < m; ++k) order[k] = std::uint16_t(k);
     std::sort(order.begin(), order.end(), [&](std::uint16_t a, std::uint16_t b) { return before_in_distance_order(a, b); });
-    std::vector<std::uint16_t> renamed(m);
-    std::vector<Constraint<D>> sorted(m);
+    renamed.resize(m);
+    sorted.resize(m);
     for (std::size_t k = 0; k < m; ++k) {
       renamed[order[k]] = std::uint16_t(k);
       sorted[k] = constraints_[order[k]];
@@ -690,8 +694,11 @@ std::size_t ConvexCell<D>::memory_bytes() const {
          (edges_.capacity() + next_edges_.capacity()) * sizeof(std::uint16_t) +
          (cut_edges_.capacity() + rim_.capacity()) * sizeof(PlanePair) + plane_places_.capacity() * sizeof(std::uint64_t) +
          plane_seen_.capacity() + edge_table_.capacity() * sizeof(std::uint32_t) +
-         plane_stamp_.capacity() * sizeof(std::uint32_t) + plane_local_.capacity() + out_bits_.capacity() * sizeof(std::uint64_t);
+         (order_scratch_.capacity() + renamed_scratch_.capacity()) * sizeof(std::uint16_t) +
+         sorted_scratch_.capacity() * sizeof(Constraint<D>) + plane_stamp_.capacity() * sizeof(std::uint32_t) + plane_local_.capacity() + out_bits_.capacity() * sizeof(std::uint64_t);
 }
+
+static_assert(sizeof(Constraint<2>) == 112 && sizeof(Constraint<3>) == 144);
 
 template class ConvexCell<2>;
 template class ConvexCell<3>;
