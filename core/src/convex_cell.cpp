@@ -179,7 +179,6 @@ bool ConvexCell<D>::before_in_distance_order(std::uint16_t a, std::uint16_t b) c
 
 template <int D>
 void ConvexCell<D>::make_vertex(const std::array<std::uint16_t, D>& planes, Vertex& vtx) {
-  vtx = Vertex{};
   vtx.planes = planes;
   // A 3D vertex is solved from its planes in distance order, whatever their orientation: the order in
   // which a from-scratch run numbers them (plane order), also between the out-of-order cuts.
@@ -381,10 +380,18 @@ bool ConvexCell<D>::mark_sides(std::uint16_t plane) {
   // planes of the initial box are never offered again.
   const Constraint<D>& c = constraints_[plane];
   const double inside_below = c.kind == Constraint<D>::Kind::Bisector ? 0.25 * c.b.inf() : 0.0;
+  // The largest corner of n_k y_k lies at y_k's upper end where n_k >= 0 (both ends of n_k's interval),
+  // at its lower end where n_k <= 0: two products per coordinate instead of four, the same maximum (the
+  // products are rounded upward, which keeps their order). An n_k whose interval holds zero inside (none:
+  // it is twice a difference of doubles, rounded outward) would take all four.
   std::array<double, D> n0, n1;
+  std::array<bool, D> upper_end;
+  bool by_sign = true;
   for (int i = 0; i < D; ++i) {
     n0[i] = c.n[i].inf();
     n1[i] = c.n[i].sup();
+    upper_end[i] = n0[i] >= 0;
+    by_sign = by_sign && (n0[i] >= 0 || n1[i] <= 0);
   }
   const double minus_b = -c.b.inf();
   std::uint64_t bounded = 0;  // decided by the upper bound: counted as the interval filter's calls
@@ -398,9 +405,16 @@ bool ConvexCell<D>::mark_sides(std::uint16_t plane) {
     // the sum are rounded upward): when it is negative, the vertex is strictly inside, which is what most
     // vertices are. The bound is the upper end of the interval side() computes, at a quarter of the cost.
     double s = minus_b;
-    for (int k = 0; k < D; ++k) {
-      const double y0 = vtx.y[k].inf(), y1 = vtx.y[k].sup();
-      s += std::max(std::max(n0[k] * y0, n0[k] * y1), std::max(n1[k] * y0, n1[k] * y1));
+    if (by_sign) {
+      for (int k = 0; k < D; ++k) {
+        const double yk = upper_end[k] ? vtx.y[k].sup() : vtx.y[k].inf();
+        s += std::max(n0[k] * yk, n1[k] * yk);
+      }
+    } else {
+      for (int k = 0; k < D; ++k) {
+        const double y0 = vtx.y[k].inf(), y1 = vtx.y[k].sup();
+        s += std::max(std::max(n0[k] * y0, n0[k] * y1), std::max(n1[k] * y0, n1[k] * y1));
+      }
     }
     if (s < 0) {
       ++bounded;
@@ -455,7 +469,7 @@ void ConvexCell<D>::clip_polygon(std::uint16_t plane) {
 template <int D>
 void ConvexCell<D>::find_rim() {
   rim_.clear();
-  out_bits_.resize(64);
+  if (out_bits_.empty()) out_bits_.resize(64);
   if (plane_stamp_.size() < constraints_.size()) {
     plane_stamp_.resize(constraints_.size(), 0);
     plane_local_.resize(constraints_.size(), 0);

@@ -121,7 +121,7 @@ class ConvexCell {
   std::uint16_t add_constraint(const Constraint<D>& c);
   void set_magnitudes(Constraint<D>& c);
   bool before_in_distance_order(std::uint16_t a, std::uint16_t b) const;
-  // Solves the vertex of these planes into vtx (a slot of a vertex list: no copy of the vertex after).
+  // Solves the vertex of these planes into vtx, a fresh Vertex{} in a vertex list (no copy after).
   void make_vertex(const std::array<std::uint16_t, D>& planes, Vertex& vtx);
   const std::array<Exact, D>& exact_position(Vertex& vtx);
   int side(Vertex& vtx, std::uint16_t plane);  // sign of n.y - b: > 0 outside
