@@ -146,6 +146,13 @@ std::uint16_t ConvexCell<D>::add_constraint(const Constraint<D>& c) {
   constraints_.push_back(c);
   Constraint<D>& k = constraints_.back();
   plane_of<Interval, D>(k, v_, k.n, k.b);
+  set_magnitudes(k);
+  return std::uint16_t(constraints_.size() - 1);
+}
+
+// Only the vertex solve reads them: a bisector that cuts nothing (two in three in 3D) never needs them.
+template <int D>
+void ConvexCell<D>::set_magnitudes(Constraint<D>& k) {
   // Magnitudes rounded upward (the caller holds a RoundingGuard): each bounds the exact coefficient.
   k.narrow = true;
   auto magnitude = [&](const Interval& x) {
@@ -155,7 +162,6 @@ std::uint16_t ConvexCell<D>::add_constraint(const Constraint<D>& c) {
   };
   for (int i = 0; i < D; ++i) k.n_magnitude[i] = magnitude(k.n[i]);
   k.b_magnitude = magnitude(k.b);
-  return std::uint16_t(constraints_.size() - 1);
 }
 
 // The order clipping from scratch numbers planes in: the box's planes first, then bisectors by
@@ -172,8 +178,7 @@ bool ConvexCell<D>::before_in_distance_order(std::uint16_t a, std::uint16_t b) c
 }
 
 template <int D>
-typename ConvexCell<D>::Vertex ConvexCell<D>::make_vertex(const std::array<std::uint16_t, D>& planes) {
-  Vertex vtx;
+void ConvexCell<D>::make_vertex(const std::array<std::uint16_t, D>& planes, Vertex& vtx) {
   vtx.planes = planes;
   // A 3D vertex is solved from its planes in distance order, whatever their orientation: the order in
   // which a from-scratch run numbers them (plane order), also between the out-of-order cuts.
@@ -225,7 +230,6 @@ typename ConvexCell<D>::Vertex ConvexCell<D>::make_vertex(const std::array<std::
     const double m = std::max(std::abs(vtx.y[i].inf()), std::abs(vtx.y[i].sup()));
     vtx.r2 += m * m;
   }
-  return vtx;
 }
 
 template <int D>
@@ -282,12 +286,12 @@ void ConvexCell<D>::reset(const Point<D>& v, const Point<D>& lo, const Point<D>&
   for (int a = 0; a < D; ++a) {
     Constraint<D> mn;
     mn.kind = Kind::AxisMin;
-    mn.axis = a;
+    mn.axis = std::uint8_t(a);
     mn.value = lo[a];
     add_constraint(mn);
     Constraint<D> mx;
     mx.kind = Kind::AxisMax;
-    mx.axis = a;
+    mx.axis = std::uint8_t(a);
     mx.value = hi[a];
     add_constraint(mx);
   }
@@ -297,14 +301,14 @@ void ConvexCell<D>::reset(const Point<D>& v, const Point<D>& lo, const Point<D>&
     // 3D: (x, y, z) is counter-clockwise seen from outside when the outward normals (+-e_x, +-e_y,
     // +-e_z) have a positive determinant, that is when an even number of them point down; else (x, z, y).
     if (D == 3 && std::popcount(unsigned(bits)) % 2 == 0) std::swap(planes[1], planes[2]);
-    return make_vertex(planes);
+    make_vertex(planes, verts_.emplace_back());
   };
   if constexpr (D == 2) {
     // Counter-clockwise; edge i runs from vertex i to vertex i+1.
-    for (int bits : {0, 1, 3, 2}) verts_.push_back(corner(bits));
+    for (int bits : {0, 1, 3, 2}) corner(bits);
     edges_ = {2, 1, 3, 0};  // y >= lo, x <= hi, y <= hi, x >= lo
   } else {
-    for (int bits = 0; bits < 8; ++bits) verts_.push_back(corner(bits));
+    for (int bits = 0; bits < 8; ++bits) corner(bits);
   }
 }
 
@@ -318,11 +322,15 @@ void ConvexCell<D>::end_out_of_order_cuts() {
   out_of_order_ = false;
   if constexpr (D == 3) {
     const std::size_t m = constraints_.size();
-    std::vector<std::uint16_t> order(m);
+    // Scratch kept between calls (the cache updates cells this way all through a propagation).
+    auto& order = order_scratch_;
+    auto& renamed = renamed_scratch_;
+    auto& sorted = sorted_scratch_;
+    order.resize(m);
     for (std::size_t k = 0; k < m; ++k) order[k] = std::uint16_t(k);
     std::sort(order.begin(), order.end(), [&](std::uint16_t a, std::uint16_t b) { return before_in_distance_order(a, b); });
-    std::vector<std::uint16_t> renamed(m);
-    std::vector<Constraint<D>> sorted(m);
+    renamed.resize(m);
+    sorted.resize(m);
     for (std::size_t k = 0; k < m; ++k) {
       renamed[order[k]] = std::uint16_t(k);
       sorted[k] = constraints_[order[k]];
@@ -336,65 +344,91 @@ void ConvexCell<D>::end_out_of_order_cuts() {
 
 template <int D>
 bool ConvexCell<D>::clip(VertexId w, const Point<D>& wp, double d2) {
-  Constraint<D> c;
+  if (constraints_.size() >= 0xFFFF) throw std::logic_error("convex cell: too many constraints");
+  // Built in place, and forgotten again when it cuts nothing (it bounds nothing then).
+  Constraint<D>& c = constraints_.emplace_back();
   c.kind = Constraint<D>::Kind::Bisector;
   c.other = w;
   c.other_point = wp;
   c.order_d2 = d2;
-  const std::uint16_t plane = add_constraint(c);
-  if (clip_by(plane)) return true;
-  constraints_.pop_back();  // did not cut: forget it (it bounds nothing)
-  return false;
-}
-
-// An upper bound on n.y - b (the caller holds a RoundingGuard, so each product's largest corner and the
-// sum are rounded upward): when it is negative, the vertex is strictly inside, which is what most vertices
-// are. The bound is the upper end of the interval side() computes, at a quarter of the cost.
-namespace {
-
-template <int D>
-double upper_side_bound(const Constraint<D>& c, const std::array<Interval, D>& y) {
-  double s = -c.b.inf();
-  for (int i = 0; i < D; ++i) {
-    const double n0 = c.n[i].inf(), n1 = c.n[i].sup(), y0 = y[i].inf(), y1 = y[i].sup();
-    s += std::max(std::max(n0 * y0, n0 * y1), std::max(n1 * y0, n1 * y1));
+  plane_of<Interval, D>(c, v_, c.n, c.b);
+  const std::uint16_t plane = std::uint16_t(constraints_.size() - 1);
+  if (!mark_sides(plane)) {
+    constraints_.pop_back();
+    return false;
   }
-  return s;
-}
-
-}  // namespace
-
-template <int D>
-bool ConvexCell<D>::clip_by(std::uint16_t plane) {
-  const std::size_t m = verts_.size();
-  signs_.resize(m);
-  bool any_outside = false;
-  // A vertex nearer to v than half of |w - v| lies strictly inside the bisector's half-space
-  // (2 d.y <= 2 |d| |y| < |d|^2): no predicate needed. b encloses |d|^2 for a bisector; the axis
-  // planes of the initial box are never offered again.
-  const Constraint<D>& c = constraints_[plane];
-  const double inside_below = c.kind == Constraint<D>::Kind::Bisector ? 0.25 * c.b.inf() : 0.0;
-  for (std::size_t i = 0; i < m; ++i) {
-    Vertex& vtx = verts_[i];
-    if (vtx.r2 < inside_below) {
-      signs_[i] = -1;
-      continue;
-    }
-    if (upper_side_bound<D>(c, vtx.y) < 0) {
-      ++counters_.calls;  // the same decision side() would take from its interval
-      signs_[i] = -1;
-      continue;
-    }
-    signs_[i] = std::int8_t(side(vtx, plane));
-    vertex_on_plane_ = vertex_on_plane_ || signs_[i] == 0;
-    any_outside = any_outside || signs_[i] > 0;
-  }
-  if (!any_outside) return false;
+  set_magnitudes(constraints_[plane]);
   if constexpr (D == 2)
     clip_polygon(plane);
   else
     clip_polyhedron(plane);
   return true;
+}
+
+
+// signs_[i]: the side of vertex i; whether any lies strictly outside. The plane's coefficients and the
+// counters are read into locals first: a store to signs_ (bytes) may alias anything, and would make the
+// compiler read them again for every vertex.
+template <int D>
+bool ConvexCell<D>::mark_sides(std::uint16_t plane) {
+  const std::size_t m = verts_.size();
+  signs_.resize(m);
+  std::int8_t* const signs = signs_.data();
+  bool any_outside = false, on_plane = false;
+  // A vertex nearer to v than half of |w - v| lies strictly inside the bisector's half-space
+  // (2 d.y <= 2 |d| |y| < |d|^2): no predicate needed. b encloses |d|^2 for a bisector; the axis
+  // planes of the initial box are never offered again.
+  const Constraint<D>& c = constraints_[plane];
+  const double inside_below = c.kind == Constraint<D>::Kind::Bisector ? 0.25 * c.b.inf() : 0.0;
+  // The largest corner of n_k y_k lies at y_k's upper end where n_k >= 0 (both ends of n_k's interval),
+  // at its lower end where n_k <= 0: two products per coordinate instead of four, the same maximum (the
+  // products are rounded upward, which keeps their order). An n_k whose interval holds zero inside (none:
+  // it is twice a difference of doubles, rounded outward) would take all four.
+  std::array<double, D> n0, n1;
+  std::array<bool, D> upper_end;
+  bool by_sign = true;
+  for (int i = 0; i < D; ++i) {
+    n0[i] = c.n[i].inf();
+    n1[i] = c.n[i].sup();
+    upper_end[i] = n0[i] >= 0;
+    by_sign = by_sign && (n0[i] >= 0 || n1[i] <= 0);
+  }
+  const double minus_b = -c.b.inf();
+  std::uint64_t bounded = 0;  // decided by the upper bound: counted as the interval filter's calls
+  for (std::size_t i = 0; i < m; ++i) {
+    Vertex& vtx = verts_[i];
+    if (vtx.r2 < inside_below) {
+      signs[i] = -1;
+      continue;
+    }
+    // An upper bound on n.y - b (the caller holds a RoundingGuard, so each product's largest corner and
+    // the sum are rounded upward): when it is negative, the vertex is strictly inside, which is what most
+    // vertices are. The bound is the upper end of the interval side() computes, at a quarter of the cost.
+    double s = minus_b;
+    if (by_sign) {
+      for (int k = 0; k < D; ++k) {
+        const double yk = upper_end[k] ? vtx.y[k].sup() : vtx.y[k].inf();
+        s += std::max(n0[k] * yk, n1[k] * yk);
+      }
+    } else {
+      for (int k = 0; k < D; ++k) {
+        const double y0 = vtx.y[k].inf(), y1 = vtx.y[k].sup();
+        s += std::max(std::max(n0[k] * y0, n0[k] * y1), std::max(n1[k] * y0, n1[k] * y1));
+      }
+    }
+    if (s < 0) {
+      ++bounded;
+      signs[i] = -1;
+      continue;
+    }
+    const int sign = side(vtx, plane);
+    signs[i] = std::int8_t(sign);
+    on_plane = on_plane || sign == 0;
+    any_outside = any_outside || sign > 0;
+  }
+  counters_.calls += bounded;
+  vertex_on_plane_ = vertex_on_plane_ || on_plane;
+  return any_outside;
 }
 
 template <int D>
@@ -404,7 +438,7 @@ void ConvexCell<D>::clip_polygon(std::uint16_t plane) {
     next_verts_.clear();
     next_edges_.clear();
     for (std::size_t i = 0; i < m; ++i) {
-      const std::size_t j = (i + 1) % m;
+      const std::size_t j = i + 1 == m ? 0 : i + 1;
       const int si = signs_[i], sj = signs_[j];
       const std::uint16_t e = edges_[i];
       if (si <= 0) {
@@ -413,19 +447,87 @@ void ConvexCell<D>::clip_polygon(std::uint16_t plane) {
           next_edges_.push_back(e);
         } else if (si < 0) {  // leaves the half-plane inside edge e
           next_edges_.push_back(e);
-          next_verts_.push_back(make_vertex({e, plane}));
+          make_vertex({e, plane}, next_verts_.emplace_back());
           next_edges_.push_back(plane);
         } else {  // vertex i lies on the new line: the boundary continues along it
           next_edges_.push_back(plane);
         }
       } else if (sj < 0) {  // re-enters inside edge e
-        next_verts_.push_back(make_vertex({plane, e}));
+        make_vertex({plane, e}, next_verts_.emplace_back());
         next_edges_.push_back(e);
       }
     }
     verts_.swap(next_verts_);
     edges_.swap(next_edges_);
   }
+}
+
+// rim_: the edges of cut_edges_ whose reverse is not among them. The planes met are numbered 0, 1, ... in
+// the order they come (plane_local_, valid where plane_stamp_ holds this cut's stamp), and with at most 64
+// of them (every cut seen in the tests) each one's outgoing edges are a bit row: a reverse is one bit
+// test, with no table to clear or probe. More planes: an open-addressing table of the edges.
+template <int D>
+void ConvexCell<D>::find_rim() {
+  rim_.clear();
+  if (out_bits_.empty()) out_bits_.resize(64);
+  if (plane_stamp_.size() < constraints_.size()) {
+    plane_stamp_.resize(constraints_.size(), 0);
+    plane_local_.resize(constraints_.size(), 0);
+  }
+  if (++stamp_ == 0) {  // wrapped: no stale stamp may equal a new one
+    std::fill(plane_stamp_.begin(), plane_stamp_.end(), 0);
+    stamp_ = 1;
+  }
+  std::uint32_t count = 0;
+  auto local = [&](std::uint16_t p) {
+    if (plane_stamp_[p] != stamp_) {
+      plane_stamp_[p] = stamp_;
+      plane_local_[p] = count < 64 ? std::uint8_t(count) : std::uint8_t(64);
+      if (count < 64) out_bits_[count] = 0;
+      ++count;
+    }
+    return plane_local_[p];
+  };
+  bool small = true;
+  for (const PlanePair& e : cut_edges_) {
+    const std::uint8_t a = local(e.a), b = local(e.b);
+    if (a == 64 || b == 64) {
+      small = false;
+      break;
+    }
+    out_bits_[a] |= std::uint64_t(1) << b;
+  }
+  if (small) {
+    std::uint64_t starts = 0;  // the rim's edges' first planes: a cycle has each once
+    for (const PlanePair& e : cut_edges_) {
+      const std::uint8_t a = plane_local_[e.a], b = plane_local_[e.b];
+      if (!(out_bits_[b] >> a & 1)) {
+        if (starts >> a & 1) throw std::logic_error("convex cell: the cut face is not one cycle");
+        starts |= std::uint64_t(1) << a;
+        rim_.push_back(e);
+      }
+    }
+  } else {
+    // The edges in a small open-addressing table (at most half full), so that finding each one's reverse
+    // is O(1): pairwise it was a quarter of the cut's time.
+    std::size_t slots = 32;
+    while (slots < 2 * cut_edges_.size()) slots *= 2;
+    edge_table_.assign(slots, kNoEdge);
+    auto code = [](std::uint16_t a, std::uint16_t b) { return std::uint32_t(a) << 16 | b; };
+    auto slot_of = [&](std::uint32_t c) {
+      std::size_t k = std::size_t((c * 0x9E3779B1u) >> 16) & (slots - 1);
+      while (edge_table_[k] != kNoEdge && edge_table_[k] != c) k = (k + 1) & (slots - 1);
+      return k;
+    };
+    for (const PlanePair& e : cut_edges_) edge_table_[slot_of(code(e.a, e.b))] = code(e.a, e.b);
+    for (const PlanePair& e : cut_edges_)
+      if (edge_table_[slot_of(code(e.b, e.a))] == kNoEdge) rim_.push_back(e);
+    for (const PlanePair& e : rim_)
+      if (std::count_if(rim_.begin(), rim_.end(), [&](const PlanePair& f) { return f.a == e.a; }) != 1)
+        throw std::logic_error("convex cell: the cut face is not one cycle");
+  }
+  // A cut of a convex cell removes a disc of triangles: its rim is one simple cycle.
+  if (rim_.size() < 3) throw std::logic_error("convex cell: the cut face has fewer than three edges");
 }
 
 // The triangles of the vertices beyond the plane go; the directed edges among them whose reverse
@@ -452,27 +554,8 @@ void ConvexCell<D>::clip_polyhedron(std::uint16_t plane) {
       verts_.pop_back();
     }
     const std::size_t kept = verts_.size();
-    // The edges in a small open-addressing table (at most half full), so that finding each one's reverse
-    // is O(1): pairwise it was a quarter of the cut's time.
-    std::size_t slots = 32;
-    while (slots < 2 * cut_edges_.size()) slots *= 2;
-    edge_table_.assign(slots, kNoEdge);
-    auto code = [](std::uint16_t a, std::uint16_t b) { return std::uint32_t(a) << 16 | b; };
-    auto slot_of = [&](std::uint32_t c) {
-      std::size_t k = std::size_t((c * 0x9E3779B1u) >> 16) & (slots - 1);
-      while (edge_table_[k] != kNoEdge && edge_table_[k] != c) k = (k + 1) & (slots - 1);
-      return k;
-    };
-    for (const PlanePair& e : cut_edges_) edge_table_[slot_of(code(e.a, e.b))] = code(e.a, e.b);
-    rim_.clear();
-    for (const PlanePair& e : cut_edges_)
-      if (edge_table_[slot_of(code(e.b, e.a))] == kNoEdge) rim_.push_back(e);
-    // A cut of a convex cell removes a disc of triangles: its rim is one simple cycle.
-    if (rim_.size() < 3) throw std::logic_error("convex cell: the cut face has fewer than three edges");
-    for (const PlanePair& e : rim_)
-      if (std::count_if(rim_.begin(), rim_.end(), [&](const PlanePair& f) { return f.a == e.a; }) != 1)
-        throw std::logic_error("convex cell: the cut face is not one cycle");
-    for (const PlanePair& e : rim_) verts_.push_back(make_vertex({e.a, e.b, plane}));
+    find_rim();
+    for (const PlanePair& e : rim_) make_vertex({e.a, e.b, plane}, verts_.emplace_back());
     // Treating a vertex on the plane as inside is the plane moved outward by an infinitesimal larger
     // than every earlier plane's: the triangles stay those of a simple polytope, and the rim one cycle.
     // Geometrically a new vertex may then be a kept vertex on the plane, or, once a cut met a vertex
@@ -624,8 +707,12 @@ std::size_t ConvexCell<D>::memory_bytes() const {
          (verts_.capacity() + next_verts_.capacity()) * sizeof(Vertex) + signs_.capacity() +
          (edges_.capacity() + next_edges_.capacity()) * sizeof(std::uint16_t) +
          (cut_edges_.capacity() + rim_.capacity()) * sizeof(PlanePair) + plane_places_.capacity() * sizeof(std::uint64_t) +
-         plane_seen_.capacity() + edge_table_.capacity() * sizeof(std::uint32_t);
+         plane_seen_.capacity() + edge_table_.capacity() * sizeof(std::uint32_t) +
+         (order_scratch_.capacity() + renamed_scratch_.capacity()) * sizeof(std::uint16_t) +
+         sorted_scratch_.capacity() * sizeof(Constraint<D>) + plane_stamp_.capacity() * sizeof(std::uint32_t) + plane_local_.capacity() + out_bits_.capacity() * sizeof(std::uint64_t);
 }
+
+static_assert(sizeof(Constraint<2>) == 112 && sizeof(Constraint<3>) == 144);
 
 template class ConvexCell<2>;
 template class ConvexCell<3>;

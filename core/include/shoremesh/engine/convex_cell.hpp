@@ -23,19 +23,22 @@ namespace shoremesh::engine {
 template <int D>
 struct Constraint {
   enum class Kind : std::uint8_t { Bisector, AxisMin, AxisMax };
+  // The small fields first, in one word, and the intervals (16-byte aligned) where they need no padding:
+  // a cell copies its constraints whenever the cache stores or hands out a cell (112 bytes in 2D and 144
+  // in 3D, 16 less than in declaration order with an int axis).
   Kind kind = Kind::Bisector;
-  int axis = 0;         // AxisMin: x[axis] >= value; AxisMax: x[axis] <= value
-  double value = 0;
+  // For the vertex solve in doubles (convex_cell.cpp): whether every width below is within 2^-50 of |inf|.
+  bool narrow = false;
+  std::uint8_t axis = 0;       // AxisMin: x[axis] >= value; AxisMax: x[axis] <= value
   VertexId other = kNoVertex;  // Bisector: the vertex whose bisector with v this is
-  Point<D> other_point{};
-  double order_d2 = 0;         // Bisector: |other - v|^2 as the engine orders its candidates
+  double value = 0;
   std::array<Interval, D> n{};
   Interval b{};
-  // For the vertex solve in doubles (convex_cell.cpp): |inf| + width of each coefficient, and whether
-  // every width is within 2^-50 of |inf|.
+  Point<D> other_point{};
+  double order_d2 = 0;         // Bisector: |other - v|^2 as the engine orders its candidates
+  // For the vertex solve in doubles: |inf| + width of each coefficient.
   std::array<double, D> n_magnitude{};
   double b_magnitude = 0;
-  bool narrow = false;
 };
 
 template <int D>
@@ -116,15 +119,18 @@ class ConvexCell {
     std::uint16_t a, b;
   };
   std::uint16_t add_constraint(const Constraint<D>& c);
+  void set_magnitudes(Constraint<D>& c);
   bool before_in_distance_order(std::uint16_t a, std::uint16_t b) const;
-  Vertex make_vertex(const std::array<std::uint16_t, D>& planes);
+  // Solves the vertex of these planes into vtx, a fresh Vertex{} in a vertex list (no copy after).
+  void make_vertex(const std::array<std::uint16_t, D>& planes, Vertex& vtx);
   const std::array<Exact, D>& exact_position(Vertex& vtx);
   int side(Vertex& vtx, std::uint16_t plane);  // sign of n.y - b: > 0 outside
   // Whether vertices i and j are the same point (exact).
   bool same_point(std::size_t i, std::size_t j);
-  bool clip_by(std::uint16_t plane);
+  bool mark_sides(std::uint16_t plane);
   void clip_polygon(std::uint16_t plane);
   void clip_polyhedron(std::uint16_t plane);
+  void find_rim();
 
   Point<D> v_{};
   std::vector<Constraint<D>> constraints_;
@@ -141,6 +147,13 @@ class ConvexCell {
   std::vector<PlanePair> cut_edges_, rim_;
   static constexpr std::uint32_t kNoEdge = ~std::uint32_t(0);  // planes are 16-bit: no edge's code
   std::vector<std::uint32_t> edge_table_;                     // cut_edges_ by code, to find reverses
+  // find_rim's numbering of the planes of a cut, and each one's outgoing cut edges as bits.
+  std::vector<std::uint32_t> plane_stamp_;
+  std::vector<std::uint8_t> plane_local_;
+  std::uint32_t stamp_ = 0;
+  std::vector<std::uint16_t> order_scratch_, renamed_scratch_;  // end_out_of_order_cuts
+  std::vector<Constraint<D>> sorted_scratch_;
+  std::vector<std::uint64_t> out_bits_;  // 64 rows once used (a cached cell's copy never clips)
   std::uint32_t next_serial_ = 0;
   mutable std::vector<std::uint8_t> plane_seen_;
   mutable std::vector<std::uint64_t> plane_places_;
