@@ -38,8 +38,9 @@ SAN="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-fram
 # Coordinate systems go through GDAL/OGR (PROJ): its headers and library (Debian: libgdal-dev).
 CXXFLAGS="-std=c++20 -g -O1 $SAN -frounding-math -I$ROOT/core/include -I$ROOT/io/include -I$ROOT/io/src/input $(gdal-config --cflags)"
 # The text parsers and what they call (paths under io/src); no OpenCV (images are not fuzzed here).
+# Coordinate systems: raster/crs (GDAL), linked directly as in the tests (docs/raster_module.md).
 SOURCES=(input/point_file input/ring_file input/gps_track input/geojson_input input/poly_file input/georeference
-         input/projection input/input_set input/ring_check output/atomic_file point_set_csv)
+         raster/crs input/projection input/input_set input/ring_check output/atomic_file point_set_csv)
 LIBS="-lGeographicLib -lpugixml -lOpenImageIO -lOpenImageIO_Util $(gdal-config --libs)"
 
 mkdir -p "$OUT/obj" "$OUT/corpus" "$OUT/crashes"
@@ -47,7 +48,7 @@ echo "fuzz: compiling the io parsers into $OUT/obj"
 pids=()
 for s in "${SOURCES[@]}"; do
   src="$ROOT/io/src/$s.cpp" obj="$OUT/obj/${s//\//_}.o"
-  if [ ! -f "$obj" ] || [ "$src" -nt "$obj" ] || [ -n "$(find "$ROOT/io/include" "$ROOT/io/src/input" "$ROOT/core/include" -name '*.hpp' -newer "$obj" 2>/dev/null | head -1)" ]; then
+  if [ ! -f "$obj" ] || [ "$src" -nt "$obj" ] || [ -n "$(find "$ROOT/io/include" "$ROOT/io/src/input" "$ROOT/io/src/raster" "$ROOT/core/include" -name '*.hpp' -newer "$obj" 2>/dev/null | head -1)" ]; then
     $CXX $CXXFLAGS -fsanitize=fuzzer-no-link -c "$src" -o "$obj" &
     pids+=($!)
     if [ ${#pids[@]} -ge "$JOBS" ]; then wait "${pids[0]}"; pids=("${pids[@]:1}"); fi

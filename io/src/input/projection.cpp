@@ -6,7 +6,6 @@
 #include <GeographicLib/TransverseMercator.hpp>
 #include <GeographicLib/UTMUPS.hpp>
 
-#include <ogr_spatialref.h>
 #include <proj.h>
 
 #include <algorithm>
@@ -15,7 +14,7 @@
 #include <mutex>
 #include <stdexcept>
 
-#include "gdal_setup.hpp"
+#include "../raster/raster_module.hpp"
 #include "shoremesh/error.hpp"
 
 namespace shoremesh::io {
@@ -46,11 +45,11 @@ const char* kGeogcs =
 
 namespace detail {
 
-// PROJ's transformations between WGS 84 lon/lat and a projected system. OGRCoordinateTransformation is not
-// safe to share between threads: one lock.
+// PROJ's transformations between WGS 84 lon/lat and a projected system (through OGR, in the raster module).
+// They are not safe to share between threads: one lock.
 struct CrsProjection {
-  std::string wkt, name, proj4;
-  std::unique_ptr<OGRCoordinateTransformation> forward, reverse;
+  std::string wkt, name;
+  CrsTransforms transforms;
   mutable std::mutex mutex;
 };
 
@@ -62,21 +61,10 @@ const std::string& Projection::crs_wkt() const {
 }
 
 Projection Projection::crs(const std::string& wkt, const std::string& name, const std::string& file) {
-  detail::register_gdal();
-  OGRSpatialReference srs, ll;
-  if (srs.importFromWkt(wkt.c_str()) != OGRERR_NONE || !srs.IsProjected())
-    throw InputError("not a projected coordinate system: " + name, file);
-  ll.SetWellKnownGeogCS("WGS84");
-  for (auto* s : {&srs, &ll}) s->SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   auto c = std::make_shared<detail::CrsProjection>();
   c->wkt = wkt;
   c->name = name;
-  c->forward.reset(OGRCreateCoordinateTransformation(&ll, &srs));
-  c->reverse.reset(OGRCreateCoordinateTransformation(&srs, &ll));
-  if (!c->forward || !c->reverse) throw InputError("PROJ cannot transform " + name + " to WGS 84 lon/lat", file);
-  char* p4 = nullptr;
-  if (srs.exportToProj4(&p4) == OGRERR_NONE && p4) c->proj4 = p4;
-  CPLFree(p4);
+  c->transforms = detail::crs_transforms(wkt, name, file);
   Projection p;
   p.kind_ = Kind::Crs;
   p.crs_ = std::move(c);
@@ -115,7 +103,7 @@ Point2 Projection::forward(const LonLat& ll) const {
   if (kind_ == Kind::Crs) {
     x = ll.lon, y = ll.lat;
     std::lock_guard lock(crs_->mutex);
-    if (!crs_->forward->Transform(1, &x, &y) || !std::isfinite(x) || !std::isfinite(y))
+    if (!crs_->transforms.forward->transform(x, y) || !std::isfinite(x) || !std::isfinite(y))
       throw std::domain_error("PROJ cannot take lon/lat " + fmt("%.6f", ll.lon) + ", " + fmt("%.6f", ll.lat) + " to " +
                               crs_->name);
     return {x, y};
@@ -144,7 +132,7 @@ LonLat Projection::reverse(const Point2& xy) const {
   if (kind_ == Kind::Crs) {
     double x = xy[0], y = xy[1];
     std::lock_guard lock(crs_->mutex);
-    if (!crs_->reverse->Transform(1, &x, &y)) x = y = std::nan("");  // as GeographicLib: no answer is NaN
+    if (!crs_->transforms.reverse->transform(x, y)) x = y = std::nan("");  // as GeographicLib: no answer is NaN
     return {x, y};
   }
   if (kind_ == Kind::UtmUps && zone_ == 0) {
@@ -196,7 +184,7 @@ std::string Projection::proj4() const {
     case Kind::LocalTransverseMercator:
       return "+proj=tmerc +lat_0=" + fmt("%.12g", lat0_) + " +lon_0=" + fmt("%.12g", lon0_) +
              " +k=1 +x_0=0 +y_0=0 +datum=WGS84 +units=m +no_defs";
-    case Kind::Crs: return crs_->proj4;
+    case Kind::Crs: return crs_->transforms.proj4;
   }
   return {};
 }
@@ -206,17 +194,7 @@ std::string Projection::wkt() const {
   std::string name, proj, params, authority;
   switch (kind_) {
     case Kind::None: return {};
-    case Kind::Crs: {
-      // WKT 1 (ESRI's .prj readers know no WKT 2).
-      OGRSpatialReference srs;
-      std::string out;
-      if (srs.importFromWkt(crs_->wkt.c_str()) == OGRERR_NONE) {
-        char* w = nullptr;
-        if (srs.exportToWkt(&w) == OGRERR_NONE && w) out = w;
-        CPLFree(w);
-      }
-      return out;
-    }
+    case Kind::Crs: return detail::crs_wkt1(crs_->wkt);  // WKT 1: ESRI's .prj readers know no WKT 2
     case Kind::UtmUps:
       if (zone_ == 0) {
         name = std::string("WGS 84 / UPS ") + (north_ ? "North (E,N)" : "South (E,N)");

@@ -1,6 +1,7 @@
 #pragma once
 // Internal helpers shared by the text readers of io/src/input (not installed, not part of the API).
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstddef>
@@ -119,6 +120,12 @@ inline std::optional<long long> parse_integer(std::string_view s) {
 
 // Reads a whole file; throws InputError naming the file when it cannot be opened.
 std::string read_text_file(const std::string& path);
+
+inline std::string upper(std::string_view s) {
+  std::string out(s);
+  for (auto& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return out;
+}
 
 // Quotes a field for an error message, shortened to 40 characters.
 inline std::string quoted(std::string_view s) {
