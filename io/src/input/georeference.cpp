@@ -1,3 +1,5 @@
+// Georeferences of images (georeference.hpp): world files, user boxes, and the order they are looked for in.
+// What needs GDAL (coordinate systems, GeoTIFF keys) is io/src/raster/crs.cpp.
 #include "shoremesh/io/georeference.hpp"
 
 #include <algorithm>
