@@ -216,8 +216,15 @@ void WellSpacedEngine<D>::mark_readers_at(VertexId w, const Point<D>& p, NodeId 
                                           std::uint32_t color) {
   const bool inserted = change == VertexChange::Inserted;
   const auto bits = facet_bits(w);
-  for (NodeId n = leaf; n != kNoNode; n = tree_.node(n).parent)
-    for (OpId o : readers_.list(n)) {
+  // The lists of the coarse nodes hold hundreds of readers each, scattered over ops_ (an array too large
+  // for the caches at 10^6 inputs): each one's Op is fetched a few entries ahead.
+  constexpr std::size_t kAhead = 8;
+  for (NodeId n = leaf; n != kNoNode; n = tree_.parent(n)) {
+    const std::span<const OpId> list = readers_.list(n);
+    for (std::size_t k = 0; k < std::min(kAhead, list.size()); ++k) __builtin_prefetch(&ops_[list[k]]);
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      if (k + kAhead < list.size()) __builtin_prefetch(&ops_[list[k + kAhead]]);
+      const OpId o = list[k];
       const Op& op = ops_[o];
       if (op.rank < rank || (op.rank == rank && op.color <= color)) continue;
       if (!inserted && !op.facets.may_hold(bits)) continue;
@@ -232,6 +239,7 @@ void WellSpacedEngine<D>::mark_readers_at(VertexId w, const Point<D>& p, NodeId 
       if (inserted && !op.reach.may_be_cut_by(d)) continue;
       mark_redo(o);
     }
+  }
 }
 
 template <int D>

@@ -71,26 +71,29 @@ class WellSpacedEngine {
   // [RankScale::min_rank, max_rank] (a few hundred at most) and colours within kappa^D + 1 (checked at
   // construction); runs and requesters are counted in 16 bits (checked where they are written).
   struct Op {
+    // What marking readers reads of each reader it scans (rank to kind) comes first, together: a 2D Op
+    // starts at any of eight offsets in a cache line, and these 36 bytes straddle two lines at three
+    // of them (spread over the whole Op: at seven).
+    std::int16_t rank = 0;
+    std::uint16_t color = 0;           // 0 for dispatches
+    VertexId vertex = engine::kNoVertex;
     // Removing a vertex matters only if it bounds the cell (facet_filter.hpp); everything: any vertex.
     engine::FacetFilter<D> facets = engine::FacetFilter<D>::everything();
-    VertexId vertex = engine::kNoVertex;
-    OpId next_fill = engine::kNoOp;    // next fill acting on the same vertex
-    std::uint32_t children_begin = 0;  // into children_, children_count of them
-    std::uint32_t reads_begin = 0;     // into reads_, reads_count of them
     // Its result depends only on the vertices within these squared distances: removing one within
     // depends2, or inserting one within inserted_depends2 (smaller for a fill that found its vertex
     // well-spaced: a new vertex farther than NN only shrinks the cell, and it stays well-spaced).
     // Floats rounded up (see at_least): a radius only ever errs on the side of a rerun.
     float depends2 = 0;
     float inserted_depends2 = 0;
-    std::int16_t rank = 0;
-    std::uint16_t color = 0;           // 0 for dispatches
-    std::uint16_t children_count = 0, reads_count = 0;
-    std::uint16_t requesters = 0;      // fills: how many dispatches currently ask for it
-    OpKind kind = OpKind::Dispatch;
-    std::uint8_t flags = 0;
     // Inserting a vertex within inserted_depends2 matters only if it can cut the cell (cell_reach.hpp).
     engine::CellReach<D> reach = engine::CellReach<D>::unbounded();
+    std::uint8_t flags = 0;
+    OpKind kind = OpKind::Dispatch;
+    OpId next_fill = engine::kNoOp;    // next fill acting on the same vertex
+    std::uint32_t children_begin = 0;  // into children_, children_count of them
+    std::uint32_t reads_begin = 0;     // into reads_, reads_count of them
+    std::uint16_t children_count = 0, reads_count = 0;
+    std::uint16_t requesters = 0;      // fills: how many dispatches currently ask for it
     // A hint for its searches, kept for its life: one of its cells had many candidates, or it was made
     // by an operation that was crowded (a fill asked for by a crowded dispatch, the dispatch of a
     // Steiner vertex a crowded fill inserted: they lie near). Its searches then skip what cannot cut

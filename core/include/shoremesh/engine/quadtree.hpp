@@ -148,6 +148,8 @@ class Quadtree {
     return out;
   }
   std::size_t node_capacity() const { return nodes_.size(); }
+  // The parent alone, from the search entry (node() also reads the node's record).
+  NodeId parent(NodeId n) const { return search_[n].parent; }
   double side(NodeId n) const { return power_of_two(-nodes_[n].level); }
   // QTApxNN of the input vertex in leaf n: a lower bound on its nearest-neighbour distance.
   double approximate_nn(NodeId n) const { return power_of_two(-nodes_[n].level - kCrowdingMargin); }
