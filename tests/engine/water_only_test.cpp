@@ -63,7 +63,10 @@ std::vector<Point2> polygon(const Point2& c, double radius, int n, double wave, 
 }
 
 // `splits`: the shore's ring 0 also has input points inside its edges (as the shore's refinement makes
-// them: a point of the edge, rounded), at a third and at two thirds of every other edge.
+// them: a point of the edge, rounded), at k/8 of every other edge (k = 1..7: the middle ones are no
+// neighbours of the edge's ends, so an edit that moves an end changes their wedge and nothing else near).
+constexpr int kSplitsPerEdge = 7;
+
 Lake make_lake(bool splits = false) {
   Lake lake;
   lake.add_ring(polygon({50, 50}, 38, 48, 0.12, 0.3), RingRole::Shore);
@@ -76,7 +79,10 @@ Lake make_lake(bool splits = false) {
     const auto& ring = lake.domain.rings[0].points;
     for (std::size_t k = 0; k < ring.size(); k += 2) {
       const Point2 a = ring[k], b = ring[(k + 1) % ring.size()];
-      for (double t : {1.0 / 3, 2.0 / 3}) lake.add_point({a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])});
+      for (int j = 1; j < kSplitsPerEdge + 1; ++j) {
+        const double t = j / (kSplitsPerEdge + 1.0);
+        lake.add_point({a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])});
+      }
     }
   }
   return lake;
@@ -372,9 +378,9 @@ TEST(ShoreCells, WaterVerticesAreWellSpacedInTheirWaterWedges) {
   // The splits: the points after the loose ones, made as make_lake makes them.
   {
     const auto& ring = lake.domain.rings[0].points;
-    std::size_t id = lake.points.size() - 2 * ((ring.size() + 1) / 2);
+    std::size_t id = lake.points.size() - kSplitsPerEdge * ((ring.size() + 1) / 2);
     for (std::size_t k = 0; k < ring.size(); k += 2)
-      for (int j = 0; j < 2; ++j, ++id)
+      for (int j = 0; j < kSplitsPerEdge; ++j, ++id)
         wedges[kBox.to_unit(lake.points[id])] = {kBox.to_unit(ring[k]), kBox.to_unit(ring[(k + 1) % ring.size()]), 1};
   }
   const auto& engine = set.set().engine();
