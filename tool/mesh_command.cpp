@@ -73,7 +73,7 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
   StableResult<D> result;
   try {
     Parameters<D> parameters = session_parameters<D>(opt.engine.rho);
-    parameters.shore_cells = opt.engine.shore_cells;
+    parameters.shore_cells = !opt.engine.whole_shore_cells;
     result = stable_well_spaced<D>(points, parameters, in.box, &set.domain);
   } catch (const PointInputError& e) {
     rethrow_with_origin(e, set);

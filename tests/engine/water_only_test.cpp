@@ -88,6 +88,14 @@ Lake make_lake(bool splits = false) {
   return lake;
 }
 
+// Whole cells: the skip on land alone (shore cells, the 2D default, leave the land without points, so
+// that fewer fills are on land to skip).
+Parameters<2> whole_cells() {
+  Parameters<2> p;
+  p.shore_cells = false;
+  return p;
+}
+
 // Land all around the lake: the box reaches well beyond it.
 const BoxTransform<2> kBox{{-60, -60}, 220};
 
@@ -141,11 +149,13 @@ std::size_t water_vertices_not_well_spaced(const std::vector<Point2>& points, co
 
 }  // namespace
 
+// Whole cells (shore_cells off): the skip alone keeps every water vertex well-spaced in its whole cell.
 TEST(WaterOnly, FillsOnLandAreSkippedAndNoneInTheWater) {
   const Lake lake = make_lake();
   const auto points = lake.live_points();
-  const DynamicWellSpaced<2> everywhere(points, {}, kBox);
-  const DynamicWellSpaced<2> water(points, {}, kBox, BuildFor::Updates, [&] { return &lake.domain; });
+  const Parameters<2> whole = whole_cells();
+  const DynamicWellSpaced<2> everywhere(points, whole, kBox);
+  const DynamicWellSpaced<2> water(points, whole, kBox, BuildFor::Updates, [&] { return &lake.domain; });
   const auto& engine = water.set().engine();
   ASSERT_NE(engine.water(), nullptr);
   EXPECT_GT(engine.counters().fills_on_land, 0u);
@@ -165,7 +175,7 @@ TEST(WaterOnly, FillsOnLandAreSkippedAndNoneInTheWater) {
   EXPECT_EQ(water_vertices_not_well_spaced(unit, *engine.water(), checked), 0u);
   EXPECT_GT(checked, 100u);
   // A one-shot build makes the same points.
-  const StableResult<2> once = stable_well_spaced<2>(points, {}, kBox, &lake.domain);
+  const StableResult<2> once = stable_well_spaced<2>(points, whole, kBox, &lake.domain);
   std::vector<Point2> once_steiner(once.points.begin() + static_cast<std::ptrdiff_t>(once.input_count), once.points.end());
   std::sort(once_steiner.begin(), once_steiner.end());
   EXPECT_EQ(once_steiner, steiner_of(water));
@@ -175,7 +185,7 @@ TEST(WaterOnly, FillsOnLandAreSkippedAndNoneInTheWater) {
 // Random edits of the rings and the loose points; after each, the output and the operations equal a fresh
 // run's on the edited input with the edited rings. `stretches`: two edits in three give the engine the
 // edit of the rings as a stretch (as the edit session does), the third none (it compares the rings).
-void ring_edits_equal_a_fresh_run(bool stretches, const Parameters<2>& parameters = {}, bool splits = false) {
+void ring_edits_equal_a_fresh_run(bool stretches, const Parameters<2>& parameters = whole_cells(), bool splits = false) {
   Lake lake = make_lake(splits);
   DynamicWellSpaced<2> set(lake.points, parameters, kBox, BuildFor::Updates, [&] { return &lake.domain; });
   std::mt19937 rng(2026);
@@ -365,7 +375,7 @@ TEST(ShoreCells, WaterVerticesAreWellSpacedInTheirWaterWedges) {
   const auto points = lake.live_points();
   Parameters<2> parameters;
   parameters.shore_cells = true;
-  const DynamicWellSpaced<2> whole(points, {}, kBox, BuildFor::Updates, [&] { return &lake.domain; });
+  const DynamicWellSpaced<2> whole(points, whole_cells(), kBox, BuildFor::Updates, [&] { return &lake.domain; });
   const DynamicWellSpaced<2> set(points, parameters, kBox, BuildFor::Updates, [&] { return &lake.domain; });
   EXPECT_LT(set.steiner_count(), whole.steiner_count());
   std::map<Point2, Wedge> wedges;

@@ -30,8 +30,9 @@ struct Parameters {
   double steiner_aim = D == 2 ? 1.15 : std::numeric_limits<double>::infinity();
   // 2D with water (docs/water_only.md, "Cells that stop at the shore"): the fill of an input vertex on
   // the shore tests well-spacedness on its cell restricted to its water wedge, and picks its Steiner
-  // points there. Off by default until measured.
-  bool shore_cells = false;
+  // points there (no points on land; the water triangles keep their bound where the shore is not
+  // encroached). False: whole cells, the land side too.
+  bool shore_cells = D == 2;
 };
 
 // The derived constants every part of the engine agrees on. Construct through `derive`, which refuses
