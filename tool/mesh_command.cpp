@@ -72,7 +72,9 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
   progress.stage("StableWS on " + std::to_string(points.size()) + " points");
   StableResult<D> result;
   try {
-    result = stable_well_spaced<D>(points, session_parameters<D>(opt.engine.rho), in.box, &set.domain);
+    Parameters<D> parameters = session_parameters<D>(opt.engine.rho);
+    parameters.shore_cells = !opt.engine.whole_shore_cells;
+    result = stable_well_spaced<D>(points, parameters, in.box, &set.domain);
   } catch (const PointInputError& e) {
     rethrow_with_origin(e, set);
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace shoremesh::engine {
@@ -32,6 +33,16 @@ void plane_of(const Constraint<D>& c, const Point<D>& v, std::array<NT, D>& n, N
     case Kind::AxisMin:
       n[c.axis] = NT(-1);
       b = NT(v[c.axis]) - NT(c.value);
+      break;
+    case Kind::Through:
+      // s orient2d(v, x, v + y) = s (d0 y1 - d1 y0) >= 0, d = x - v  <=>  (s d1, -s d0).y <= 0.
+      if constexpr (D == 2) {
+        const NT s(c.value);
+        const NT d0 = NT(c.other_point[0]) - NT(v[0]), d1 = NT(c.other_point[1]) - NT(v[1]);
+        n[0] = s * d1;
+        n[1] = -(s * d0);
+        b = NT(0);
+      }
       break;
   }
 }
@@ -365,6 +376,29 @@ bool ConvexCell<D>::clip(VertexId w, const Point<D>& wp, double d2) {
   return true;
 }
 
+template <int D>
+bool ConvexCell<D>::clip_through_site(const Point<D>& x, int side) {
+  if constexpr (D != 2) {
+    (void)x, (void)side;
+    throw std::logic_error("convex cell: a half-plane through the site is for 2D cells");
+  } else {
+    if (constraints_.size() >= 0xFFFF) throw std::logic_error("convex cell: too many constraints");
+    Constraint<D>& c = constraints_.emplace_back();
+    c.kind = Constraint<D>::Kind::Through;
+    c.other_point = x;
+    c.value = side > 0 ? 1.0 : -1.0;
+    c.order_d2 = std::numeric_limits<double>::infinity();
+    plane_of<Interval, D>(c, v_, c.n, c.b);
+    const std::uint16_t plane = std::uint16_t(constraints_.size() - 1);
+    if (!mark_sides(plane)) {
+      constraints_.pop_back();
+      return false;
+    }
+    set_magnitudes(constraints_[plane]);
+    clip_polygon(plane);
+    return true;
+  }
+}
 
 // signs_[i]: the side of vertex i; whether any lies strictly outside. The plane's coefficients and the
 // counters are read into locals first: a store to signs_ (bytes) may alias anything, and would make the

@@ -525,7 +525,8 @@ void WellSpacedEngine<D>::mark_water_readers(const Point<D>& lo, const Point<D>&
         // Only a fill that tested the water read it: one skipped on land, or one that inserted (a fill
         // that found its vertex well-spaced, or idle by rank, decided without it). Its box lies within
         // sqrt(depends2) of its vertex (docs/water_only.md): farther from the changed box, nothing it read changed.
-        if (op.kind != OpKind::Fill || (!op.on_land && op.children_count == 0)) continue;
+        // A fill that looked for the shore at its vertex (shore_read) read it too, whatever it inserted.
+        if (op.kind != OpKind::Fill || (!op.on_land && !op.shore_read && op.children_count == 0)) continue;
         const Point<D>& q = positions_[op.vertex];
         double d2 = 0;
         for (int i = 0; i < D; ++i) {

@@ -265,16 +265,30 @@ void WellSpacedEngine<D>::compute_fill(OpId o, Worker& w, Outcome& out) {
   PredicateCounters& pc = w.cell.counters();
   // A fill that would insert, on a vertex whose cell cannot meet the water, inserts nothing (on land).
   ops_[o].on_land = false;
-  if (water_ && has_cell && w.hood.nearest != kNoVertex &&
-      !w.cell.within_scaled_distance(params_.fill_rho_squared, positions_[w.hood.nearest]) && fill_on_land(v, w)) {
+  ops_[o].shore_read = false;
+  const bool due = water_ && has_cell && w.hood.nearest != kNoVertex &&
+                   !w.cell.within_scaled_distance(params_.fill_rho_squared, positions_[w.hood.nearest]);
+  if (due && fill_on_land(v, w)) {
     ops_[o].on_land = true;
     ++w.counters.fills_on_land;
   }
+  // A shore vertex's cell stops at the shore: well-spacedness and the picking region on its water wedge.
+  ShoreWedge wedge;
+  bool wedged = false;
+  if (due && !ops_[o].on_land && params_.shore_cells) {
+    ops_[o].shore_read = true;
+    wedged = shore_wedge(v, w, wedge);
+  }
   for (int inserted = 0; has_cell && !ops_[o].on_land && w.hood.nearest != kNoVertex &&
-                         !w.cell.within_scaled_distance(params_.fill_rho_squared, positions_[w.hood.nearest]);
+                         (wedged ? !well_spaced_in_wedge(v, w, wedge)
+                                 : !w.cell.within_scaled_distance(params_.fill_rho_squared, positions_[w.hood.nearest]));
        ++inserted) {
     if (inserted > 1000) throw std::logic_error("fill inserted over 1000 Steiner points around one vertex");
-    const Point<D> q = pick_steiner(v, w);
+    // In the wedge's part that is not well-spaced, aimed at one of its vertices off the shore's lines (a
+    // point on them would lie on the shore); when none is, as without the wedge (any aim keeps Fact 1).
+    Point<D> aim;
+    const bool in_wedge = wedged && aim_in_wedge(w, wedge, aim);
+    const Point<D> q = pick_steiner(v, w, in_wedge ? &aim : nullptr);
     // Fact 1 puts q's rank above op's; the max only guards the table's rounding for a rho other than
     // sqrt(2) (for sqrt(2) the table is exact and it never applies).
     out.steiner.push_back({q, std::max(ranks_.rank_of(q, p, pc), op_rank + 1)});
@@ -408,13 +422,13 @@ Point<D> aim_vertex(const ConvexCell<D>& cell, double beyond2) {
 // Delaunay triangle at v, the point Delaunay refinement inserts. Every condition of the picking region is
 // then checked exactly, so any choice of c keeps Fact 1 and with it every guarantee.
 template <int D>
-Point<D> WellSpacedEngine<D>::pick_steiner(VertexId v, Worker& wk) const {
+Point<D> WellSpacedEngine<D>::pick_steiner(VertexId v, Worker& wk, const Point<D>* aim) const {
   constexpr double kInside = 0x1p-10;  // the step's shrink, and the least margin above rho NN
   PredicateCounters& pc = wk.cell.counters();
   const Point<D> p = positions_[v];
   const Point<D> u = positions_[wk.hood.nearest];
   const double nn2 = squared_distance(v, wk.hood.nearest);
-  const Point<D> y = aim_vertex(wk.cell, params_.steiner_aim_squared * nn2);
+  const Point<D> y = aim ? *aim : aim_vertex(wk.cell, params_.steiner_aim_squared * nn2);
   double len2 = 0;
   for (int i = 0; i < D; ++i) len2 += y[i] * y[i];
   const double len = std::sqrt(len2);
@@ -455,7 +469,7 @@ Point<D> WellSpacedEngine<D>::pick_steiner(VertexId v, Worker& wk) const {
   template bool WellSpacedEngine<D>::already_below_rank(const Worker&, VertexId, int, PredicateCounters&) const; \
   template void WellSpacedEngine<D>::compute_fill(OpId, Worker&, Outcome&);                            \
   template void WellSpacedEngine<D>::commit_fill(OpId, Outcome&);                                      \
-  template Point<D> WellSpacedEngine<D>::pick_steiner(VertexId, Worker&) const;                        \
+  template Point<D> WellSpacedEngine<D>::pick_steiner(VertexId, Worker&, const Point<D>*) const;                        \
   template bool WellSpacedEngine<D>::fill_on_land(VertexId, Worker&) const;
 SHOREMESH_ENGINE_OPERATIONS(2)
 SHOREMESH_ENGINE_OPERATIONS(3)

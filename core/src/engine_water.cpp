@@ -127,6 +127,16 @@ bool WaterRings::may_meet_water(const Point2& inside, const Point2& lo, const Po
   return odd_crossings(inside, pc);
 }
 
+void WaterRings::edges_meeting(const Point2& lo, const Point2& hi, PredicateCounters& pc,
+                               std::vector<std::array<Point2, 2>>& out) const {
+  const BBox box(Corner(lo[0], lo[1]), Corner(hi[0], hi[1]));
+  for (auto it = tree_->tree.qbegin(bgi::intersects(box)); it != tree_->tree.qend(); ++it)
+    if (segment_meets_box(it->second, lo, hi, pc)) {
+      const Edge& e = it->second;
+      out.push_back({Point2{e[0], e[1]}, Point2{e[2], e[3]}});
+    }
+}
+
 bool WaterRings::in_closed_water(const Point2& p, PredicateCounters& pc) const {
   return may_meet_water(p, p, p, pc);
 }

@@ -663,10 +663,18 @@ class MeshTriangulation {
   }
 
   // The water side of a triangle is the side of its centroid: with the ring segments as constraints no
-  // element crosses a ring (shoreline_crossings reports a ring vertex that is not a mesh point).
+  // element crosses a ring (shoreline_crossings reports a ring vertex that is not a mesh point). A triangle
+  // thinner than the rounding of its corners has no double strictly inside it, and its rounded centroid
+  // may fall on either side of the shore: such a sliver (a split and the two ends of its ring edge, the
+  // split off the edge by one rounding; docs/water_only.md, "Why it stays off") is no element.
   std::uint8_t water_side(Face f) const {
     if constexpr (D == 2) {
-      const auto c = CGAL::centroid(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
+      const auto &a = f->vertex(0)->point(), &b = f->vertex(1)->point(), &d = f->vertex(2)->point();
+      const auto c = CGAL::centroid(a, b, d);
+      const CGAL::Orientation o = CGAL::orientation(a, b, d);
+      if (o == CGAL::COLLINEAR || CGAL::orientation(a, b, c) != o || CGAL::orientation(b, d, c) != o ||
+          CGAL::orientation(d, a, c) != o)
+        return 0;
       return water_.in_water({c.x(), c.y()}) ? kInWater : 0;
     } else {
       return kInWater;

@@ -48,6 +48,7 @@ DerivedParameters<D> DerivedParameters<D>::derive(const Parameters<D>& p) {
   d.kappa = kappa;
   d.literal_stable_ws = p.literal_stable_ws;
   d.steiner_aim_squared = p.steiner_aim * p.steiner_aim * d.rho_squared;
+  d.shore_cells = p.shore_cells;
   return d;
 }
 

@@ -3,10 +3,12 @@
 // equals a fresh run on the edited input after every edit.
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/intersections.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <random>
 #include <vector>
@@ -60,7 +62,12 @@ std::vector<Point2> polygon(const Point2& c, double radius, int n, double wave, 
   return out;
 }
 
-Lake make_lake() {
+// `splits`: the shore's ring 0 also has input points inside its edges (as the shore's refinement makes
+// them: a point of the edge, rounded), at k/8 of every other edge (k = 1..7: the middle ones are no
+// neighbours of the edge's ends, so an edit that moves an end changes their wedge and nothing else near).
+constexpr int kSplitsPerEdge = 7;
+
+Lake make_lake(bool splits = false) {
   Lake lake;
   lake.add_ring(polygon({50, 50}, 38, 48, 0.12, 0.3), RingRole::Shore);
   lake.add_ring(polygon({40, 45}, 5, 7, 0.1, 1.0), RingRole::Island);
@@ -68,7 +75,25 @@ Lake make_lake() {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(20, 80);
   for (int i = 0; i < 12; ++i) lake.add_point({u(rng), u(rng)});
+  if (splits) {
+    const auto& ring = lake.domain.rings[0].points;
+    for (std::size_t k = 0; k < ring.size(); k += 2) {
+      const Point2 a = ring[k], b = ring[(k + 1) % ring.size()];
+      for (int j = 1; j < kSplitsPerEdge + 1; ++j) {
+        const double t = j / (kSplitsPerEdge + 1.0);
+        lake.add_point({a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])});
+      }
+    }
+  }
   return lake;
+}
+
+// Whole cells: the skip on land alone (shore cells, the 2D default, leave the land without points, so
+// that fewer fills are on land to skip).
+Parameters<2> whole_cells() {
+  Parameters<2> p;
+  p.shore_cells = false;
+  return p;
 }
 
 // Land all around the lake: the box reaches well beyond it.
@@ -124,11 +149,13 @@ std::size_t water_vertices_not_well_spaced(const std::vector<Point2>& points, co
 
 }  // namespace
 
+// Whole cells (shore_cells off): the skip alone keeps every water vertex well-spaced in its whole cell.
 TEST(WaterOnly, FillsOnLandAreSkippedAndNoneInTheWater) {
   const Lake lake = make_lake();
   const auto points = lake.live_points();
-  const DynamicWellSpaced<2> everywhere(points, {}, kBox);
-  const DynamicWellSpaced<2> water(points, {}, kBox, BuildFor::Updates, [&] { return &lake.domain; });
+  const Parameters<2> whole = whole_cells();
+  const DynamicWellSpaced<2> everywhere(points, whole, kBox);
+  const DynamicWellSpaced<2> water(points, whole, kBox, BuildFor::Updates, [&] { return &lake.domain; });
   const auto& engine = water.set().engine();
   ASSERT_NE(engine.water(), nullptr);
   EXPECT_GT(engine.counters().fills_on_land, 0u);
@@ -148,7 +175,7 @@ TEST(WaterOnly, FillsOnLandAreSkippedAndNoneInTheWater) {
   EXPECT_EQ(water_vertices_not_well_spaced(unit, *engine.water(), checked), 0u);
   EXPECT_GT(checked, 100u);
   // A one-shot build makes the same points.
-  const StableResult<2> once = stable_well_spaced<2>(points, {}, kBox, &lake.domain);
+  const StableResult<2> once = stable_well_spaced<2>(points, whole, kBox, &lake.domain);
   std::vector<Point2> once_steiner(once.points.begin() + static_cast<std::ptrdiff_t>(once.input_count), once.points.end());
   std::sort(once_steiner.begin(), once_steiner.end());
   EXPECT_EQ(once_steiner, steiner_of(water));
@@ -158,9 +185,9 @@ TEST(WaterOnly, FillsOnLandAreSkippedAndNoneInTheWater) {
 // Random edits of the rings and the loose points; after each, the output and the operations equal a fresh
 // run's on the edited input with the edited rings. `stretches`: two edits in three give the engine the
 // edit of the rings as a stretch (as the edit session does), the third none (it compares the rings).
-void ring_edits_equal_a_fresh_run(bool stretches) {
-  Lake lake = make_lake();
-  DynamicWellSpaced<2> set(lake.points, {}, kBox, BuildFor::Updates, [&] { return &lake.domain; });
+void ring_edits_equal_a_fresh_run(bool stretches, const Parameters<2>& parameters = whole_cells(), bool splits = false) {
+  Lake lake = make_lake(splits);
+  DynamicWellSpaced<2> set(lake.points, parameters, kBox, BuildFor::Updates, [&] { return &lake.domain; });
   std::mt19937 rng(2026);
   std::uniform_real_distribution<double> u(0, 1);
   int made = 0, island_adds = 0, island_removals = 0, skipped_runs = 0;
@@ -237,7 +264,7 @@ void ring_edits_equal_a_fresh_run(bool stretches) {
       FAIL() << "edit " << made + 1 << " refused: " << e.what();
     }
     ++made;
-    const DynamicWellSpaced<2> fresh(lake.live_points(), {}, kBox, BuildFor::Updates, [&] { return &lake.domain; });
+    const DynamicWellSpaced<2> fresh(lake.live_points(), parameters, kBox, BuildFor::Updates, [&] { return &lake.domain; });
     ASSERT_EQ(steiner_of(set), steiner_of(fresh)) << "after edit " << made;
     ASSERT_EQ(set.set().engine().operation_signature(), fresh.set().engine().operation_signature())
         << "after edit " << made;
@@ -255,3 +282,126 @@ TEST(WaterOnly, RingEditsEqualAFreshRun) { ring_edits_equal_a_fresh_run(false); 
 // The session's way (the edit's stretch, no ring compared), mixed with edits that compare the rings after
 // catching the engine's copy up with the stretches given before.
 TEST(WaterOnly, RingEditsGivenAsStretchesEqualAFreshRun) { ring_edits_equal_a_fresh_run(true); }
+
+// Cells that stop at the shore (docs/water_only.md): the same identity with shore_cells on, on a lake whose
+// shore has splits inside its edges too.
+TEST(ShoreCells, RingEditsWithShoreCellsEqualAFreshRun) {
+  Parameters<2> parameters;
+  parameters.shore_cells = true;
+  ring_edits_equal_a_fresh_run(true, parameters, true);
+}
+
+namespace {
+
+// A shore vertex's water wedge as the test knows it from the lake: the lines through v and prev, v and
+// next, water on side `side` of prev -> v -> next (ring 0 counter-clockwise with the water inside, the
+// islands counter-clockwise with it outside).
+struct Wedge {
+  Point2 prev, next;
+  int side;
+};
+
+// The vertices in the closed water whose cell, restricted to their wedge when they have one, reaches
+// beyond rho NN, rho^2 = 2 (1 + 2^-32) (what a fill enforces). Exact: CGAL's Delaunay triangulation with
+// exact constructions; the restricted cell's vertices are the circumcentres in the wedge and the points
+// where its Voronoi edges cross the wedge's lines inside it. Hull vertices are left out.
+std::size_t water_vertices_not_well_spaced_in_wedges(const std::vector<Point2>& points, const engine::WaterRings& water,
+                                                     const std::map<Point2, Wedge>& wedges, std::size_t& checked,
+                                                     std::size_t& wedged) {
+  using K = CGAL::Exact_predicates_exact_constructions_kernel;
+  using DT = CGAL::Delaunay_triangulation_2<K>;
+  DT dt;
+  for (const Point2& p : points) dt.insert(K::Point_2(p[0], p[1]));
+  engine::PredicateCounters pc;
+  std::size_t bad = 0;
+  checked = wedged = 0;
+  const K::FT bound = K::FT(2) * (K::FT(1) + K::FT(std::ldexp(1.0, -32)));
+  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
+    const Point2 p{CGAL::to_double(v->point().x()), CGAL::to_double(v->point().y())};
+    if (!water.in_closed_water(p, pc)) continue;
+    const auto it = wedges.find(p);
+    const Wedge* w = it == wedges.end() ? nullptr : &it->second;
+    K::Point_2 prev, next;
+    bool convex = true;
+    if (w) {
+      prev = K::Point_2(w->prev[0], w->prev[1]);
+      next = K::Point_2(w->next[0], w->next[1]);
+      convex = w->side * int(CGAL::orientation(prev, v->point(), next)) >= 0;
+    }
+    auto inside = [&](const K::Point_2& y) {
+      if (!w) return true;
+      const bool a = w->side * int(CGAL::orientation(prev, v->point(), y)) >= 0;
+      const bool b = w->side * int(CGAL::orientation(v->point(), next, y)) >= 0;
+      return convex ? a && b : a || b;
+    };
+    bool hull = false;
+    K::FT nn2 = -1, far2 = 0;
+    auto u = dt.incident_vertices(v), uend = u;
+    do {
+      if (dt.is_infinite(u)) hull = true;
+      else if (const K::FT d2 = CGAL::squared_distance(v->point(), u->point()); nn2 < 0 || d2 < nn2) nn2 = d2;
+    } while (++u != uend);
+    if (hull) continue;
+    std::vector<K::Point_2> centres;
+    auto f = dt.incident_faces(v), fend = f;
+    do centres.push_back(dt.circumcenter(f));
+    while (++f != fend);
+    auto reach = [&](const K::Point_2& y) {
+      if (inside(y)) far2 = std::max(far2, CGAL::squared_distance(v->point(), y));
+    };
+    for (std::size_t k = 0; k < centres.size(); ++k) {
+      reach(centres[k]);
+      if (!w) continue;
+      const K::Segment_2 edge(centres[k], centres[(k + 1) % centres.size()]);
+      if (edge.is_degenerate()) continue;
+      for (const K::Point_2& x : {prev, next})
+        if (const auto hit = CGAL::intersection(edge, K::Line_2(v->point(), x)))
+          if (const K::Point_2* y = boost::get<K::Point_2>(&*hit)) reach(*y);
+    }
+    ++checked;
+    wedged += w != nullptr;
+    bad += far2 > bound * nn2;
+  }
+  return bad;
+}
+
+}  // namespace
+
+// What a fill with shore_cells enforces, checked from the output alone: every vertex in the water is
+// rho-well-spaced in its Voronoi cell restricted to its water wedge (the whole cell off the shore), and
+// the rule inserted fewer points than the whole cells do.
+TEST(ShoreCells, WaterVerticesAreWellSpacedInTheirWaterWedges) {
+  const Lake lake = make_lake(true);
+  const auto points = lake.live_points();
+  Parameters<2> parameters;
+  parameters.shore_cells = true;
+  const DynamicWellSpaced<2> whole(points, whole_cells(), kBox, BuildFor::Updates, [&] { return &lake.domain; });
+  const DynamicWellSpaced<2> set(points, parameters, kBox, BuildFor::Updates, [&] { return &lake.domain; });
+  EXPECT_LT(set.steiner_count(), whole.steiner_count());
+  std::map<Point2, Wedge> wedges;
+  for (std::size_t r = 0; r < lake.domain.rings.size(); ++r) {
+    const auto& ring = lake.domain.rings[r].points;
+    const std::size_t n = ring.size();
+    for (std::size_t k = 0; k < n; ++k)
+      wedges[kBox.to_unit(ring[k])] = {kBox.to_unit(ring[(k + n - 1) % n]), kBox.to_unit(ring[(k + 1) % n]), r == 0 ? 1 : -1};
+  }
+  // The splits: the points after the loose ones, made as make_lake makes them.
+  {
+    const auto& ring = lake.domain.rings[0].points;
+    std::size_t id = lake.points.size() - kSplitsPerEdge * ((ring.size() + 1) / 2);
+    for (std::size_t k = 0; k < ring.size(); k += 2)
+      for (int j = 0; j < kSplitsPerEdge; ++j, ++id)
+        wedges[kBox.to_unit(lake.points[id])] = {kBox.to_unit(ring[k]), kBox.to_unit(ring[(k + 1) % ring.size()]), 1};
+  }
+  const auto& engine = set.set().engine();
+  std::vector<Point2> unit;
+  for (engine::VertexId v = 0; v < engine.vertex_count(); ++v)
+    if (engine.vertex(v).alive) unit.push_back(engine.positions()[v]);
+  std::size_t checked = 0, wedged = 0;
+  EXPECT_EQ(water_vertices_not_well_spaced_in_wedges(unit, *engine.water(), wedges, checked, wedged), 0u);
+  EXPECT_GT(checked, 100u);
+  EXPECT_GT(wedged, 50u);
+  // Not every shore vertex is well-spaced in its whole cell: the wedge made a difference.
+  std::size_t whole_checked = 0;
+  EXPECT_GT(water_vertices_not_well_spaced(unit, *engine.water(), whole_checked), 0u);
+}

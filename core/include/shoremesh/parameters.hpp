@@ -28,6 +28,11 @@ struct Parameters {
   // (docs/picking_region.md). Infinity aims at the farthest vertex always: the 3D default, where the
   // nearest vertex beyond 1.15 rho NN measured 1% more points. At least 1.
   double steiner_aim = D == 2 ? 1.15 : std::numeric_limits<double>::infinity();
+  // 2D with water (docs/water_only.md, "Cells that stop at the shore"): the fill of an input vertex on
+  // the shore tests well-spacedness on its cell restricted to its water wedge, and picks its Steiner
+  // points there (no points on land; the water triangles keep their bound where the shore is not
+  // encroached). False: whole cells, the land side too.
+  bool shore_cells = D == 2;
 };
 
 // The derived constants every part of the engine agrees on. Construct through `derive`, which refuses
@@ -47,6 +52,7 @@ struct DerivedParameters {
   int kappa = 0;          // colours per axis: kappa^D periodic tiles (Lemma 6.1)
   bool literal_stable_ws = false;  // as given
   double steiner_aim_squared = 0;  // steiner_aim^2 rho^2: the squared distance, in NN^2, beyond which a cell vertex is aimed at
+  bool shore_cells = false;        // as given
   static DerivedParameters derive(const Parameters<D>& p);
   // l(r) = rho^(r - 1/2) / sqrt(D): side of the rank-r colour tiles.
   double tile_side(int rank) const;

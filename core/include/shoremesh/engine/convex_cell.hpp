@@ -22,7 +22,9 @@ namespace shoremesh::engine {
 // A half-space n.y <= b in coordinates relative to v (y = x - v), so the filter works on small numbers.
 template <int D>
 struct Constraint {
-  enum class Kind : std::uint8_t { Bisector, AxisMin, AxisMax };
+  // Through (2D): the half-plane value * orient2d(v, other_point, x) >= 0, bounded by the line through v
+  // and other_point (a cell restricted to the water side of the shore at v, docs/water_only.md).
+  enum class Kind : std::uint8_t { Bisector, AxisMin, AxisMax, Through };
   // The small fields first, in one word, and the intervals (16-byte aligned) where they need no padding:
   // a cell copies its constraints whenever the cache stores or hands out a cell (112 bytes in 2D and 144
   // in 3D, 16 less than in declaration order with an int axis).
@@ -49,6 +51,9 @@ class ConvexCell {
   // Cuts by the bisector of v and w (d2: |w - v|^2 as the caller orders its candidates, ties by
   // position). Returns whether any part of the cell was cut away.
   bool clip(VertexId w, const Point<D>& wp, double d2);
+  // 2D: cuts by the half-plane side * orient2d(v, x, y) >= 0 (side +1 or -1; x != v), a line through v.
+  // Returns whether any part of the cell was cut away.
+  bool clip_through_site(const Point<D>& x, int side);
   // Cuts between these two calls may come out of distance order (a cached cell cut by vertices born
   // since). In 3D a vertex solves its three planes in plane order, and planes are numbered in the
   // order they cut, which from scratch is distance order: meanwhile new vertices order their planes

@@ -4,6 +4,7 @@
 // acting on one vertex at a time (rank, colour); operations run in time order. While it runs, the engine
 // records for every operation its children (the fills a dispatch asked for, the dispatches of the Steiner
 // vertices a fill inserted) and for every leaf the operations that read it: what PropagateWS replays.
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -101,6 +102,9 @@ class WellSpacedEngine {
     bool crowded : 1 = false;
     // A fill skipped because its vertex's cell could not meet the water (docs/water_only.md).
     bool on_land : 1 = false;
+    // A fill that looked for the shore at its vertex (its cell was not well-spaced, shore_cells on):
+    // it read the rings there, so a ring edit nearby reruns it (docs/water_only.md).
+    bool shore_read : 1 = false;
   };
   static_assert(sizeof(Op) == (D == 2 ? 56 : 88), "Op packs to 56 bytes in 2D and 88 in 3D");
 
@@ -213,6 +217,8 @@ class WellSpacedEngine {
     std::vector<VertexId> neighbours;
     std::vector<NodeId> covering;         // the nodes the operation read (when recording)
     Counters counters;
+    engine::ConvexCell<D> part;           // shore_cells: the cell restricted to a water half-plane
+    std::vector<std::array<Point2, 2>> shore_edges;  // shore_cells: ring edges near the vertex
   };
   // What computing an operation decided, for its commit: computing reads the engine only (and writes
   // its own Op's hints and dependency radii), so the operations of one time can be computed at once
@@ -275,6 +281,19 @@ class WellSpacedEngine {
   void mark_water_readers(const Point<D>& lo, const Point<D>& hi);
   // Whether the fill of v, whose cell w.cell is not well-spaced, is skipped: the cell cannot meet the water.
   bool fill_on_land(VertexId v, Worker& w) const;
+  // Cells that stop at the shore (engine_shore_cells.cpp, docs/water_only.md): the water wedge at input
+  // vertex v on the rings, if v is one and the wedge is found; then whether v is rho-well-spaced in its
+  // cell restricted to the wedge, leaving a part that is not in w.part.
+  struct ShoreWedge {
+    Point2 prev{}, next{};  // the wedge's sides: the lines through v and prev, v and next
+    int side = 1;           // water: side * orient2d(prev, v, x) >= 0 and side * orient2d(v, next, x) >= 0 ...
+    bool convex = true;     // ... both (convex), or either (a reflex water angle)
+  };
+  bool shore_wedge(VertexId v, Worker& w, ShoreWedge& wedge) const;
+  bool well_spaced_in_wedge(VertexId v, Worker& w, const ShoreWedge& wedge) const;
+  // Where in w.part (left by well_spaced_in_wedge) a Steiner point aims: among its vertices strictly off
+  // the wedge's lines, as pick_steiner aims in a cell; false when none of them lies beyond rho NN.
+  bool aim_in_wedge(const Worker& w, const ShoreWedge& wedge, Point<D>& aim) const;
   // Finds v's nearest neighbour and the vertices that can cut its cell, registers op o's reads, and
   // computes v's cell clipped to the box and to the cube of half-side beta NN(v). For a fill, returns
   // false without a cell when v's nearest neighbour makes the fill idle (record_idle_fill).
@@ -298,7 +317,8 @@ class WellSpacedEngine {
   // it entered list it.
   void vertex_arrived(VertexId w, const Point<D>& q, std::uint64_t birth);
   void clear_cell_cache();
-  Point<D> pick_steiner(VertexId v, Worker& w) const;
+  // A Steiner point in the picking region of w.cell, toward `aim` (relative to v) when given.
+  Point<D> pick_steiner(VertexId v, Worker& w, const Point<D>* aim = nullptr) const;
   VertexId new_vertex(const Point<D>& p);
   void kill_vertex(VertexId v);
   void lay_out_pools();

@@ -31,6 +31,9 @@ class WaterRings {
   // Whether the closed box [lo, hi] may meet the closed water: some edge meets it, or, when none does,
   // `inside` (a point of the box) lies in the water (then the whole box does: no edge separates them).
   bool may_meet_water(const Point2& inside, const Point2& lo, const Point2& hi, PredicateCounters& pc) const;
+  // The edges (a, b), in ring order, that meet the closed box [lo, hi] (exact), appended to `out`.
+  void edges_meeting(const Point2& lo, const Point2& hi, PredicateCounters& pc,
+                     std::vector<std::array<Point2, 2>>& out) const;
   // Whether p lies in the closed water (on an edge counts).
   bool in_closed_water(const Point2& p, PredicateCounters& pc) const;
   std::size_t edge_count() const;
