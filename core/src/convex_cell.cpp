@@ -363,6 +363,11 @@ bool ConvexCell<D>::clip(VertexId w, const Point<D>& wp, double d2) {
   c.other_point = wp;
   c.order_d2 = d2;
   plane_of<Interval, D>(c, v_, c.n, c.b);
+  return cut_by_last();
+}
+
+template <int D>
+bool ConvexCell<D>::cut_by_last() {
   const std::uint16_t plane = std::uint16_t(constraints_.size() - 1);
   if (!mark_sides(plane)) {
     constraints_.pop_back();
@@ -389,14 +394,7 @@ bool ConvexCell<D>::clip_through_site(const Point<D>& x, int side) {
     c.value = side > 0 ? 1.0 : -1.0;
     c.order_d2 = std::numeric_limits<double>::infinity();
     plane_of<Interval, D>(c, v_, c.n, c.b);
-    const std::uint16_t plane = std::uint16_t(constraints_.size() - 1);
-    if (!mark_sides(plane)) {
-      constraints_.pop_back();
-      return false;
-    }
-    set_magnitudes(constraints_[plane]);
-    clip_polygon(plane);
-    return true;
+    return cut_by_last();
   }
 }
 

@@ -23,6 +23,15 @@
 
 namespace shoremesh::mesh_test {
 
+// The angle bound of radius-edge sqrt 2, in degrees: arcsin(1 / (2 sqrt 2)).
+inline constexpr double kBoundDeg = 20.704811054635442;
+
+// The angle at p between the directions to u and w, in degrees (for the tests' own quality checks).
+inline double degrees_at(const Point2& p, const Point2& u, const Point2& w) {
+  const double ux = u[0] - p[0], uy = u[1] - p[1], wx = w[0] - p[0], wy = w[1] - p[1];
+  return std::atan2(std::abs(ux * wy - uy * wx), ux * wx + uy * wy) * 180 / std::numbers::pi;
+}
+
 // A wobbly lake of radius ~50 km (`n` vertices) with an island: shore edits keep it valid.
 inline Domain2 wobbly_lake(int n) {
   Domain2 d{{Ring{{}, RingRole::Shore}, Ring{{}, RingRole::Shore}}};

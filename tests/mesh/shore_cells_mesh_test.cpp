@@ -22,12 +22,8 @@
 namespace shoremesh {
 namespace {
 
-constexpr double kBoundDeg = 20.704811054635442;  // arcsin(1 / (2 sqrt 2))
-
-double degrees_at(const Point2& p, const Point2& u, const Point2& w) {
-  const double ux = u[0] - p[0], uy = u[1] - p[1], wx = w[0] - p[0], wy = w[1] - p[1];
-  return std::atan2(std::abs(ux * wy - uy * wx), ux * wx + uy * wy) * 180 / std::numbers::pi;
-}
+using mesh_test::degrees_at;
+using mesh_test::kBoundDeg;
 
 struct Run {
   std::size_t below = 0, steiner = 0, water_vertices = 0;

@@ -133,6 +133,8 @@ class ConvexCell {
   // Whether vertices i and j are the same point (exact).
   bool same_point(std::size_t i, std::size_t j);
   bool mark_sides(std::uint16_t plane);
+  // Cuts by the last constraint (its plane made), or forgets it when it cuts nothing: whether it cut.
+  bool cut_by_last();
   void clip_polygon(std::uint16_t plane);
   void clip_polyhedron(std::uint16_t plane);
   void find_rim();
