@@ -666,7 +666,7 @@ class MeshTriangulation {
   // element crosses a ring (shoreline_crossings reports a ring vertex that is not a mesh point). A triangle
   // thinner than the rounding of its corners has no double strictly inside it, and its rounded centroid
   // may fall on either side of the shore: such a sliver (a split and the two ends of its ring edge, the
-  // split off the edge by one rounding; docs/water_only.md, "Why it stays off") is no element.
+  // split off the edge by one rounding; docs/water_only.md, "A sliver the empty land let in") is no element.
   std::uint8_t water_side(Face f) const {
     if constexpr (D == 2) {
       const auto &a = f->vertex(0)->point(), &b = f->vertex(1)->point(), &d = f->vertex(2)->point();
