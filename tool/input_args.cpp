@@ -66,9 +66,6 @@ void add_engine_options(CLI::App* cmd, EngineArgs& args) {
       ->check(finite_number());
   cmd->add_option("--dim", args.dim, "Dimension: 2 or 3 (default: the input's; 2 drops z)")->check(CLI::IsMember({2, 3}));
   add_threads_option(cmd);
-  cmd->add_flag("--whole-shore-cells", args.whole_shore_cells,
-                "With rings: shore vertices' cells reach onto land as other cells do (by default they stop at the "
-                "shore: docs/water_only.md)");
   cmd->add_flag("--keep-hull", args.keep_hull,
                 "Keep the mesh elements whose circumcentre lies outside the box (slivers along its edge, which the "
                 "quality bound does not cover; dropped by default)");

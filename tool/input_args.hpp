@@ -50,7 +50,7 @@ struct EngineArgs {
   std::vector<double> box;
   int dim = 0;             // 0: the input's
   bool keep_hull = false;  // the mesh keeps the slivers along the box's edge (well_spaced_mesh)
-  bool whole_shore_cells = false;  // Parameters::shore_cells off (docs/water_only.md)
+  bool whole_shore_cells = false;  // mesh only: Parameters::shore_cells off (docs/water_only.md)
 };
 void add_engine_options(CLI::App* cmd, EngineArgs& args);  // --threads too
 // Registers --threads (the engine's thread count, process-wide).

@@ -138,6 +138,10 @@ Command add_mesh_command(CLI::App& app) {
   cmd->add_option("--preview", opt->preview, "Also draw the mesh to this PNG");
   add_preview_options(cmd, opt->preview_args);
   add_engine_options(cmd, opt->engine);
+  // mesh only: the edit sessions (edit, serve) and --land-up-to build with cells that stop at the shore.
+  cmd->add_flag("--whole-shore-cells", opt->engine.whole_shore_cells,
+                "With rings: shore vertices' cells reach onto land as other cells do (by default they stop at the "
+                "shore: docs/water_only.md; not with --land-up-to)");
   add_size_options(cmd, opt->size);
   cmd->add_option("--format", opt->format, "Output format (default: from the output's extension)")
       ->check(CLI::IsMember({"msh", "vtu", "node", "fort14", "geojson", "obj", "ply", "off"}));
@@ -160,6 +164,7 @@ Command add_mesh_command(CLI::App& app) {
       if (opt->size.any()) req.other_options = "size control (--max-size and the other size options)";
       else if (!opt->engine.box.empty()) req.other_options = "--box";
       else if (opt->engine.dim == 3) req.other_options = "--dim 3";
+      else if (opt->engine.whole_shore_cells) req.other_options = "--whole-shore-cells";
       else if (opt->engine.keep_hull) req.other_options = "--keep-hull";
       return run_land_water(req, progress);
     }
