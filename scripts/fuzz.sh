@@ -39,9 +39,11 @@ SAN="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-fram
 CXXFLAGS="-std=c++20 -g -O1 $SAN -frounding-math -I$ROOT/core/include -I$ROOT/io/include -I$ROOT/io/src/input $(gdal-config --cflags)"
 # The text parsers and what they call (paths under io/src); no OpenCV (images are not fuzzed here).
 # Coordinate systems: raster/crs (GDAL), linked directly as in the tests (docs/raster_module.md).
+# The ring checks and the PSLG's domain the parsers call are core's (core/src, by the same relative paths).
 SOURCES=(input/point_file input/ring_file input/gps_track input/geojson_input input/poly_file input/georeference
-         raster/crs input/projection input/input_set input/ring_check output/atomic_file point_set_csv)
-LIBS="-lGeographicLib -lpugixml -lOpenImageIO -lOpenImageIO_Util $(gdal-config --libs)"
+         raster/crs input/projection input/input_set output/atomic_file point_set_csv
+         ../../core/src/domain_check ../../core/src/ring_edge_index ../../core/src/pslg)
+LIBS="-lGeographicLib -lproj -lgmp -lmpfr -lpugixml -lOpenImageIO -lOpenImageIO_Util $(gdal-config --libs)"
 
 mkdir -p "$OUT/obj" "$OUT/corpus" "$OUT/crashes"
 echo "fuzz: compiling the io parsers into $OUT/obj"
