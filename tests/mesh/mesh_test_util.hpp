@@ -18,6 +18,7 @@
 #include "shoremesh/domain.hpp"
 #include "shoremesh/mesh.hpp"
 #include "shoremesh/mesh_quality.hpp"
+#include "shoremesh/shore_refinement.hpp"
 #include "shoremesh/shore_session.hpp"
 #include "../io/io_test_util.hpp"
 
@@ -25,6 +26,17 @@ namespace shoremesh::mesh_test {
 
 // The angle bound of radius-edge sqrt 2, in degrees: arcsin(1 / (2 sqrt 2)).
 inline constexpr double kBoundDeg = 20.704811054635442;
+
+// The engine's input for rings meshed by a fresh run: each ring point once, then the refinement's splits.
+inline std::vector<Point2> ring_input(const Domain2& rings, const ShoreRefinement& refinement) {
+  std::vector<Point2> input;
+  std::set<Point2> seen;
+  for (const Ring& r : rings.rings)
+    for (const Point2& p : r.points)
+      if (seen.insert(p).second) input.push_back(p);
+  for (const Point2& p : refinement.split_points()) input.push_back(p);
+  return input;
+}
 
 // The angle at p between the directions to u and w, in degrees (for the tests' own quality checks).
 inline double degrees_at(const Point2& p, const Point2& u, const Point2& w) {

@@ -62,12 +62,7 @@ struct Below {
 // With `all`, one away from every sharp corner is a failure.
 Below below_bound(const Domain2& rings, const std::string& what, bool all = true) {
   const ShoreRefinement refinement(rings);
-  std::vector<Point2> input;
-  std::set<Point2> seen;
-  for (const Ring& r : rings.rings)
-    for (const Point2& p : r.points)
-      if (seen.insert(p).second) input.push_back(p);
-  for (const Point2& p : refinement.split_points()) input.push_back(p);
+  const std::vector<Point2> input = mesh_test::ring_input(rings, refinement);
   const StableResult<2> ws = stable_well_spaced<2>(input, {}, std::nullopt, &rings);
   const Mesh2 mesh(ws.points, ws.input_count, refinement.refined());
   const std::vector<Corner> corners = corners_of(rings);

@@ -32,12 +32,7 @@ struct Run {
 
 Run run(const Domain2& rings, bool shore_cells) {
   const ShoreRefinement refinement(rings);
-  std::vector<Point2> input;
-  std::set<Point2> seen;
-  for (const Ring& r : rings.rings)
-    for (const Point2& p : r.points)
-      if (seen.insert(p).second) input.push_back(p);
-  for (const Point2& p : refinement.split_points()) input.push_back(p);
+  const std::vector<Point2> input = mesh_test::ring_input(rings, refinement);
   Parameters<2> parameters;
   parameters.shore_cells = shore_cells;
   const StableResult<2> ws = stable_well_spaced<2>(input, parameters, std::nullopt, &rings);
