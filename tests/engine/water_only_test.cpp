@@ -105,46 +105,84 @@ std::vector<Point2> steiner_of(const DynamicWellSpaced<2>& set) {
   return {all.begin() + static_cast<std::ptrdiff_t>(set.input_count()), all.end()};
 }
 
-// The vertices in the closed water whose Voronoi cell in `points` reaches beyond rho NN (exact: CGAL's
-// Delaunay triangulation with exact constructions, apart from the engine's cells); hull vertices (an
-// unbounded cell the box would clip) are left out.
-std::size_t water_vertices_not_well_spaced(const std::vector<Point2>& points, const engine::WaterRings& water,
-                                           std::size_t& checked) {
+// A shore vertex's water wedge as the test knows it from the lake: the lines through v and prev, v and
+// next, water on side `side` of prev -> v -> next (ring 0 counter-clockwise with the water inside, the
+// islands counter-clockwise with it outside).
+struct Wedge {
+  Point2 prev, next;
+  int side;
+};
+
+// The vertices in the closed water whose cell, restricted to their wedge when they have one, reaches
+// beyond rho NN, rho^2 = 2 (1 + slack) (a fill enforces slack 2^-32). Exact: CGAL's Delaunay triangulation with
+// exact constructions; the restricted cell's vertices are the circumcentres in the wedge and the points
+// where its Voronoi edges cross the wedge's lines inside it. Hull vertices are left out.
+std::size_t water_vertices_not_well_spaced_in_wedges(const std::vector<Point2>& points, const engine::WaterRings& water,
+                                                     const std::map<Point2, Wedge>& wedges, std::size_t& checked,
+                                                     std::size_t& wedged, double slack = 0x1p-32) {
   using K = CGAL::Exact_predicates_exact_constructions_kernel;
   using DT = CGAL::Delaunay_triangulation_2<K>;
   DT dt;
   for (const Point2& p : points) dt.insert(K::Point_2(p[0], p[1]));
   engine::PredicateCounters pc;
   std::size_t bad = 0;
-  checked = 0;
+  checked = wedged = 0;
+  const K::FT bound = K::FT(2) * (K::FT(1) + K::FT(slack));
   for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
     const Point2 p{CGAL::to_double(v->point().x()), CGAL::to_double(v->point().y())};
     if (!water.in_closed_water(p, pc)) continue;
+    const auto it = wedges.find(p);
+    const Wedge* w = it == wedges.end() ? nullptr : &it->second;
+    K::Point_2 prev, next;
+    bool convex = true;
+    if (w) {
+      prev = K::Point_2(w->prev[0], w->prev[1]);
+      next = K::Point_2(w->next[0], w->next[1]);
+      convex = w->side * int(CGAL::orientation(prev, v->point(), next)) >= 0;
+    }
+    auto inside = [&](const K::Point_2& y) {
+      if (!w) return true;
+      const bool a = w->side * int(CGAL::orientation(prev, v->point(), y)) >= 0;
+      const bool b = w->side * int(CGAL::orientation(v->point(), next, y)) >= 0;
+      return convex ? a && b : a || b;
+    };
     bool hull = false;
     K::FT nn2 = -1, far2 = 0;
-    auto w = dt.incident_vertices(v), wend = w;
+    auto u = dt.incident_vertices(v), uend = u;
     do {
-      if (dt.is_infinite(w)) {
-        hull = true;
-        break;
-      }
-      const K::FT d2 = CGAL::squared_distance(v->point(), w->point());
-      if (nn2 < 0 || d2 < nn2) nn2 = d2;
-    } while (++w != wend);
+      if (dt.is_infinite(u)) hull = true;
+      else if (const K::FT d2 = CGAL::squared_distance(v->point(), u->point()); nn2 < 0 || d2 < nn2) nn2 = d2;
+    } while (++u != uend);
     if (hull) continue;
+    std::vector<K::Point_2> centres;
     auto f = dt.incident_faces(v), fend = f;
-    do {
-      if (dt.is_infinite(f)) {
-        hull = true;
-        break;
-      }
-      far2 = std::max(far2, CGAL::squared_distance(v->point(), dt.circumcenter(f)));
-    } while (++f != fend);
-    if (hull) continue;
+    do centres.push_back(dt.circumcenter(f));
+    while (++f != fend);
+    auto reach = [&](const K::Point_2& y) {
+      if (inside(y)) far2 = std::max(far2, CGAL::squared_distance(v->point(), y));
+    };
+    for (std::size_t k = 0; k < centres.size(); ++k) {
+      reach(centres[k]);
+      if (!w) continue;
+      const K::Segment_2 edge(centres[k], centres[(k + 1) % centres.size()]);
+      if (edge.is_degenerate()) continue;
+      for (const K::Point_2& x : {prev, next})
+        if (const auto hit = CGAL::intersection(edge, K::Line_2(v->point(), x)))
+          if (const K::Point_2* y = boost::get<K::Point_2>(&*hit)) reach(*y);
+    }
     ++checked;
-    bad += far2 > 2 * nn2;
+    wedged += w != nullptr;
+    bad += far2 > bound * nn2;
   }
   return bad;
+}
+
+// The vertices in the closed water whose whole Voronoi cell in `points` reaches beyond rho NN, rho^2 = 2
+// exactly; hull vertices (an unbounded cell the box would clip) are left out.
+std::size_t water_vertices_not_well_spaced(const std::vector<Point2>& points, const engine::WaterRings& water,
+                                           std::size_t& checked) {
+  std::size_t wedged = 0;
+  return water_vertices_not_well_spaced_in_wedges(points, water, {}, checked, wedged, 0);
 }
 
 }  // namespace
@@ -290,82 +328,6 @@ TEST(ShoreCells, RingEditsWithShoreCellsEqualAFreshRun) {
   parameters.shore_cells = true;
   ring_edits_equal_a_fresh_run(true, parameters, true);
 }
-
-namespace {
-
-// A shore vertex's water wedge as the test knows it from the lake: the lines through v and prev, v and
-// next, water on side `side` of prev -> v -> next (ring 0 counter-clockwise with the water inside, the
-// islands counter-clockwise with it outside).
-struct Wedge {
-  Point2 prev, next;
-  int side;
-};
-
-// The vertices in the closed water whose cell, restricted to their wedge when they have one, reaches
-// beyond rho NN, rho^2 = 2 (1 + 2^-32) (what a fill enforces). Exact: CGAL's Delaunay triangulation with
-// exact constructions; the restricted cell's vertices are the circumcentres in the wedge and the points
-// where its Voronoi edges cross the wedge's lines inside it. Hull vertices are left out.
-std::size_t water_vertices_not_well_spaced_in_wedges(const std::vector<Point2>& points, const engine::WaterRings& water,
-                                                     const std::map<Point2, Wedge>& wedges, std::size_t& checked,
-                                                     std::size_t& wedged) {
-  using K = CGAL::Exact_predicates_exact_constructions_kernel;
-  using DT = CGAL::Delaunay_triangulation_2<K>;
-  DT dt;
-  for (const Point2& p : points) dt.insert(K::Point_2(p[0], p[1]));
-  engine::PredicateCounters pc;
-  std::size_t bad = 0;
-  checked = wedged = 0;
-  const K::FT bound = K::FT(2) * (K::FT(1) + K::FT(std::ldexp(1.0, -32)));
-  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
-    const Point2 p{CGAL::to_double(v->point().x()), CGAL::to_double(v->point().y())};
-    if (!water.in_closed_water(p, pc)) continue;
-    const auto it = wedges.find(p);
-    const Wedge* w = it == wedges.end() ? nullptr : &it->second;
-    K::Point_2 prev, next;
-    bool convex = true;
-    if (w) {
-      prev = K::Point_2(w->prev[0], w->prev[1]);
-      next = K::Point_2(w->next[0], w->next[1]);
-      convex = w->side * int(CGAL::orientation(prev, v->point(), next)) >= 0;
-    }
-    auto inside = [&](const K::Point_2& y) {
-      if (!w) return true;
-      const bool a = w->side * int(CGAL::orientation(prev, v->point(), y)) >= 0;
-      const bool b = w->side * int(CGAL::orientation(v->point(), next, y)) >= 0;
-      return convex ? a && b : a || b;
-    };
-    bool hull = false;
-    K::FT nn2 = -1, far2 = 0;
-    auto u = dt.incident_vertices(v), uend = u;
-    do {
-      if (dt.is_infinite(u)) hull = true;
-      else if (const K::FT d2 = CGAL::squared_distance(v->point(), u->point()); nn2 < 0 || d2 < nn2) nn2 = d2;
-    } while (++u != uend);
-    if (hull) continue;
-    std::vector<K::Point_2> centres;
-    auto f = dt.incident_faces(v), fend = f;
-    do centres.push_back(dt.circumcenter(f));
-    while (++f != fend);
-    auto reach = [&](const K::Point_2& y) {
-      if (inside(y)) far2 = std::max(far2, CGAL::squared_distance(v->point(), y));
-    };
-    for (std::size_t k = 0; k < centres.size(); ++k) {
-      reach(centres[k]);
-      if (!w) continue;
-      const K::Segment_2 edge(centres[k], centres[(k + 1) % centres.size()]);
-      if (edge.is_degenerate()) continue;
-      for (const K::Point_2& x : {prev, next})
-        if (const auto hit = CGAL::intersection(edge, K::Line_2(v->point(), x)))
-          if (const K::Point_2* y = boost::get<K::Point_2>(&*hit)) reach(*y);
-    }
-    ++checked;
-    wedged += w != nullptr;
-    bad += far2 > bound * nn2;
-  }
-  return bad;
-}
-
-}  // namespace
 
 // What a fill with shore_cells enforces, checked from the output alone: every vertex in the water is
 // rho-well-spaced in its Voronoi cell restricted to its water wedge (the whole cell off the shore), and
