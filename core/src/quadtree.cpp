@@ -122,6 +122,13 @@ NodeId Quadtree<D>::allocate_children() {
     return first;
   }
   NodeId first = NodeId(nodes_.size());
+  // Grows by a quarter, not double: the node arrays are among the engine's largest (a build sizes
+  // them to its tree and a sixteenth more, room for the edits that follow).
+  if (nodes_.size() + kChildren > nodes_.capacity()) {
+    const std::size_t capacity = nodes_.size() + std::max<std::size_t>(nodes_.size() / 4, 64 * kChildren);
+    nodes_.reserve(capacity);
+    search_.reserve(capacity);
+  }
   nodes_.resize(nodes_.size() + kChildren);
   search_.resize(nodes_.size());
   return first;
@@ -685,8 +692,9 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
   std::size_t compact_cells = 0;
   for (int level = 0; level <= std::min(deepest, kCompactLevels<D>); ++level) compact_cells += internal[std::size_t(level)].size();
   map_.reserve(compact_cells, internal_count - compact_cells);
-  nodes_.reserve(kChildren * (1 + internal_count));
-  search_.reserve(kChildren * (1 + internal_count));
+  const std::size_t node_count = kChildren * (1 + internal_count);
+  nodes_.reserve(node_count + node_count / 16);
+  search_.reserve(node_count + node_count / 16);
   make_root();
   pool_.reserve(n);
   std::array<std::size_t, kMaxLevel + 1> next{};  // per level: the next internal cell in Morton order
