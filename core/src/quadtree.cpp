@@ -10,20 +10,6 @@
 
 namespace shoremesh::engine {
 
-namespace {
-
-// Morton code of a cell at the finest level: the bits of the D coordinates interleaved, so that every
-// cell at every level is one contiguous range of codes (used to count inputs in a cell during build).
-template <int D>
-CellKey morton(const std::array<std::uint64_t, D>& c, int level) {
-  CellKey code = 0;
-  for (int b = level - 1; b >= 0; --b)
-    for (int i = D - 1; i >= 0; --i) code = (code << 1) | CellKey((c[i] >> b) & 1u);
-  return code;
-}
-
-}  // namespace
-
 template <int D>
 typename Quadtree<D>::Coords Quadtree<D>::cell_of(const Point<D>& p, int level) {
   Coords c;
@@ -136,6 +122,13 @@ NodeId Quadtree<D>::allocate_children() {
     return first;
   }
   NodeId first = NodeId(nodes_.size());
+  // Grows by a quarter, not double: the node arrays are among the engine's largest (a build sizes
+  // them to its tree and a sixteenth more, room for the edits that follow).
+  if (nodes_.size() + kChildren > nodes_.capacity()) {
+    const std::size_t capacity = nodes_.size() + std::max<std::size_t>(nodes_.size() / 4, 64 * kChildren);
+    nodes_.reserve(capacity);
+    search_.reserve(capacity);
+  }
   nodes_.resize(nodes_.size() + kChildren);
   search_.resize(nodes_.size());
   return first;
@@ -456,6 +449,73 @@ void Quadtree<D>::balance_around(std::vector<NodeId>& worklist, std::vector<Node
   }
 }
 
+namespace {
+
+// Morton codes by table: kSpread<D>[b] puts bit j of byte b at bit D j, so a coordinate's 5 bytes
+// (coordinates are below 2^40) are spread with 5 look-ups instead of a loop over its 40 bits.
+template <int D>
+constexpr auto kSpread = [] {
+  std::array<std::uint32_t, 256> t{};
+  for (int b = 0; b < 256; ++b)
+    for (int j = 0; j < 8; ++j)
+      if (b >> j & 1) t[std::size_t(b)] |= 1u << (D * j);
+  return t;
+}();
+
+// The Morton code of cell c (bit b of axis i at bit D b + i): a cell holds the finer cells whose codes
+// have its code as prefix, so the inputs sorted by code list every cell's inputs as one range.
+template <int D>
+CellKey interleave(const std::array<std::uint64_t, D>& c) {
+  CellKey code = 0;
+  for (int i = 0; i < D; ++i) {
+    CellKey spread = 0;
+    for (int byte = 0; byte < 5; ++byte) spread |= CellKey(kSpread<D>[(c[i] >> (8 * byte)) & 0xff]) << (D * 8 * byte);
+    code |= spread << i;
+  }
+  return code;
+}
+
+// The inverse: kGather<D>[phase][b][i] packs the bits of byte b that belong to axis i when the byte's
+// first bit is bit `phase` (mod D) of a code.
+template <int D>
+constexpr auto kGather = [] {
+  std::array<std::array<std::array<std::uint8_t, D>, 256>, D> t{};
+  for (int phase = 0; phase < D; ++phase)
+    for (int b = 0; b < 256; ++b) {
+      std::array<int, D> next{};
+      for (int m = 0; m < 8; ++m) {
+        const int axis = (phase + m) % D;
+        if (b >> m & 1) t[std::size_t(phase)][std::size_t(b)][std::size_t(axis)] |= std::uint8_t(1u << next[std::size_t(axis)]);
+        ++next[std::size_t(axis)];
+      }
+    }
+  return t;
+}();
+
+template <int D>
+std::array<std::uint64_t, D> deinterleave(CellKey code) {
+  std::array<std::uint64_t, D> c{};
+  for (int byte = 0; code != 0; ++byte, code >>= 8) {
+    const int first = 8 * byte;
+    const auto& g = kGather<D>[std::size_t(first % D)][std::size_t(code & 0xff)];
+    for (int i = 0; i < D; ++i) c[std::size_t(i)] |= std::uint64_t(g[std::size_t(i)]) << ((first + D - 1 - i) / D);
+  }
+  return c;
+}
+
+}  // namespace
+
+// The build makes the canonical tree in three passes instead of splitting leaf by leaf:
+//  1. crowding: a depth-first descent over the inputs sorted by Morton code (a cell's inputs are a
+//     contiguous range) lists the crowded cells per level; they are closed under ancestors.
+//  2. balance, per level from the deepest up: a cell of level K is internal iff it is crowded or touches
+//     an internal cell of level K+1 (a node two levels finer than it touches it iff such a cell does).
+//     The cells of level K touching an internal cell h of level K+1 are, per axis, (h-1)/2 .. (h+1)/2.
+//  3. nodes: one depth-first descent allocates each internal node's children as it visits the node, the
+//     arrays reserved to their final size (the count of internal cells is known), children in Morton
+//     order, so the node ids run along the curve.
+// The result is the same minimal fixed point as splitting and balance_around (tests/engine compares the
+// build with a tree made by add_input one point at a time).
 template <int D>
 void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const VertexId> ids) {
   nodes_.clear();
@@ -466,84 +526,223 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
   for (auto& free : free_arrays_) free.clear();
   map_.clear();
   leaf_count_ = 1;
-  make_root();
-  if (inputs.empty()) return;
-  pool_.reserve(inputs.size());
+  if (inputs.empty()) {
+    make_root();
+    return;
+  }
+  const std::size_t n = inputs.size();
 
   // Sort the inputs by Morton code at the finest level: every cell is then a contiguous range.
   struct Keyed {
     CellKey code;
     std::uint32_t index;
   };
-  std::vector<Keyed> keyed(inputs.size());
-  for (std::size_t i = 0; i < inputs.size(); ++i)
-    keyed[i] = {morton<D>(cell_of(inputs[i], kMaxLevel), kMaxLevel), std::uint32_t(i)};
+  std::vector<Keyed> keyed(n);
+  for (std::size_t i = 0; i < n; ++i) keyed[i] = {interleave<D>(cell_of(inputs[i], kMaxLevel)), std::uint32_t(i)};
   std::sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) { return a.code < b.code; });
-  for (std::size_t i = 1; i < keyed.size(); ++i)
+  for (std::size_t i = 1; i < n; ++i)
     if (keyed[i].code == keyed[i - 1].code)
       throw PointInputError("input points " + std::to_string(keyed[i - 1].index) + " and " +
                                 std::to_string(keyed[i].index) +
                                 " are closer than the engine's resolution (2^-40 of the box side)",
                             {keyed[i - 1].index, keyed[i].index});
-  auto range_of = [&](int level, const Coords& c) {
+  std::vector<CellKey> codes(n);
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    codes[i] = keyed[i].code;
+    order[i] = keyed[i].index;
+  }
+  std::vector<Keyed>().swap(keyed);
+  // The inputs of the cell of `level` with Morton code `key`, searched within [b, e) (a range holding it).
+  auto range_of = [&](int level, CellKey key, std::uint32_t b, std::uint32_t e) {
     const int shift = D * (kMaxLevel - level);
-    const CellKey lo = morton<D>(c, level) << shift;
+    const CellKey lo = key << shift;
     const CellKey hi = lo + (CellKey(1) << shift);
-    auto b = std::lower_bound(keyed.begin(), keyed.end(), lo, [](const Keyed& k, CellKey v) { return k.code < v; });
-    auto e = std::lower_bound(b, keyed.end(), hi, [](const Keyed& k, CellKey v) { return k.code < v; });
-    return std::pair<std::size_t, std::size_t>(std::size_t(b - keyed.begin()), std::size_t(e - keyed.begin()));
+    const auto first = std::lower_bound(codes.begin() + b, codes.begin() + e, lo);
+    const auto last = std::lower_bound(first, codes.begin() + e, hi);
+    return std::pair<std::uint32_t, std::uint32_t>(std::uint32_t(first - codes.begin()), std::uint32_t(last - codes.begin()));
+  };
+  // The inputs of child k of the cell (level, key) that holds [b, e): children split the range in order.
+  auto child_ranges = [&](int level, CellKey key, std::uint32_t b, std::uint32_t e) {
+    std::array<std::uint32_t, kChildren + 1> at;
+    at[0] = b;
+    at[kChildren] = e;
+    const int shift = D * (kMaxLevel - level - 1);
+    for (int k = 1; k < kChildren; ++k) {
+      const CellKey lo = ((key << D) | CellKey(k)) << shift;
+      std::uint32_t j = at[std::size_t(k - 1)];
+      if (e - j <= 16)
+        while (j < e && codes[j] < lo) ++j;
+      else
+        j = std::uint32_t(std::lower_bound(codes.begin() + j, codes.begin() + e, lo) - codes.begin());
+      at[std::size_t(k)] = j;
+    }
+    return at;
   };
 
-  // Top-down crowding splits. A node with two inputs is crowded; with one, when a neighbour cell of the
-  // same size holds an input too (counted by binary search in the Morton order).
-  struct Task {
-    NodeId node;
-    std::size_t begin, end;
+  // 1. Crowding. A cell with one input (sorted index b) is crowded when another input's cell two levels
+  // finer lies within one such cell of the cell's block: such an input lies in a neighbour cell q, found
+  // by binary search within the range of the common ancestor of the cell and q (held on the path).
+  std::array<std::pair<std::uint32_t, std::uint32_t>, kMaxLevel + 1> path;
+  auto fine_cell = [&](std::uint32_t sorted, int fine) {
+    if (fine > kMaxLevel) return cell_of(inputs[order[sorted]], fine);
+    Coords c = deinterleave<D>(codes[sorted]);
+    for (int i = 0; i < D; ++i) c[i] >>= (kMaxLevel - fine);
+    return c;
   };
-  std::vector<Task> tasks{{0, 0, inputs.size()}};
-  std::vector<NodeId> leaves;
-  while (!tasks.empty()) {
-    const Task t = tasks.back();
-    tasks.pop_back();
-    Record& nd = nodes_[t.node];
-    nd.input_count = std::uint32_t(t.end - t.begin);
-    const bool is_crowded = crowded_by(nd.level, nd.coords(), nd.input_count, [&](int level, const Coords& q) {
-      auto [b, e] = range_of(level, q);
-      return std::uint32_t(e - b);
-    });
-    if (!is_crowded) {
-      if (nd.input_count == 1) {
-        const VertexId v = ids[keyed[t.begin].index];
-        nd.input_vertex = v;
-        leaf_push(t.node, {inputs[keyed[t.begin].index], 0, v});
+  auto ring_crowded = [&](int level, const Coords& c) {
+    const int fine = level + kCrowdingMargin;
+    const std::int64_t s = std::int64_t(1) << kCrowdingMargin;
+    bool found = false;
+    for_each_neighbour_cell(level, c, 1, [&](const Coords& q) {
+      if (found || q == c) return;
+      int lca = level;
+      for (int i = 0; i < D; ++i) lca = std::min(lca, level - int(std::bit_width(c[i] ^ q[i])));
+      const auto [qb, qe] = range_of(level, interleave<D>(q), path[std::size_t(lca)].first, path[std::size_t(lca)].second);
+      std::array<std::int64_t, D> lo, hi;
+      for (int i = 0; i < D; ++i) {
+        lo[i] = std::max(std::int64_t(c[i]) * s - 1, std::int64_t(q[i]) * s);
+        hi[i] = std::min(std::int64_t(c[i]) * s + s, std::int64_t(q[i]) * s + s - 1);
       }
-      leaves.push_back(t.node);
+      if (qe - qb <= std::uint32_t(kChildren)) {
+        // Few inputs (always below level 39, where the finer cells have no Morton code): test each.
+        for (std::uint32_t u = qb; u < qe && !found; ++u) {
+          const Coords f = fine_cell(u, fine);
+          bool inside = true;
+          for (int i = 0; i < D; ++i) inside = inside && std::int64_t(f[i]) >= lo[i] && std::int64_t(f[i]) <= hi[i];
+          found = inside;
+        }
+        return;
+      }
+      for_each_index_in_box<D>(lo, hi, [&](const std::array<std::int64_t, D>& r) {
+        if (found) return;
+        Coords fc;
+        for (int i = 0; i < D; ++i) fc[i] = std::uint64_t(r[i]);
+        const auto [fb, fe] = range_of(fine, interleave<D>(fc), qb, qe);
+        found = fe > fb;
+      });
+    });
+    return found;
+  };
+  // internal[L]: the Morton codes of the internal cells of level L, ascending.
+  std::vector<std::vector<CellKey>> internal(kMaxLevel + 1);
+  {
+    struct Task {
+      Coords c;
+      CellKey key;
+      std::uint32_t b, e;
+      int level;
+    };
+    std::vector<Task> tasks{{Coords{}, 0, 0, std::uint32_t(n), 0}};
+    while (!tasks.empty()) {
+      const Task t = tasks.back();
+      tasks.pop_back();
+      path[std::size_t(t.level)] = {t.b, t.e};
+      const std::uint32_t count = t.e - t.b;
+      if (count == 0 || (count == 1 && !ring_crowded(t.level, t.c))) continue;
+      if (t.level >= kMaxLevel)
+        throw PointInputError("input points are closer than the engine's resolution (2^-40 of the box side)", {});
+      internal[std::size_t(t.level)].push_back(t.key);
+      const auto at = child_ranges(t.level, t.key, t.b, t.e);
+      // Child 0 popped first: each level's cells come out in Morton order.
+      for (int k = kChildren; k-- > 0;) {
+        Coords cc;
+        for (int i = 0; i < D; ++i) cc[i] = 2 * t.c[i] + ((k >> i) & 1);
+        tasks.push_back({cc, (t.key << D) | CellKey(k), at[std::size_t(k)], at[std::size_t(k + 1)], t.level + 1});
+      }
+    }
+  }
+
+  // 2. Balance, deepest level first.
+  int deepest = kMaxLevel;
+  while (deepest > 0 && internal[std::size_t(deepest)].empty()) --deepest;
+  std::size_t internal_count = internal[std::size_t(deepest)].size();
+  for (int level = deepest - 1; level >= 0; --level) {
+    std::vector<CellKey>& cells = internal[std::size_t(level)];
+    const std::uint64_t top = (std::uint64_t(1) << level) - 1;
+    // The finer level's cells come in Morton order, siblings together: the cells touching one parent's
+    // internal children are listed once per parent.
+    CellKey group_parent = ~CellKey(0);
+    CellKey group[1 << (2 * D)];
+    int group_count = 0;
+    for (const CellKey h : internal[std::size_t(level + 1)]) {
+      if ((h >> D) != group_parent) {
+        group_parent = h >> D;
+        group_count = 0;
+      }
+      const Coords hc = deinterleave<D>(h);
+      Coords first, last;
+      for (int i = 0; i < D; ++i) {
+        first[i] = hc[i] == 0 ? 0 : (hc[i] - 1) >> 1;
+        last[i] = std::min(top, (hc[i] + 1) >> 1);
+      }
+      for_each_index_in_box<D>(first, last, [&](const Coords& q) {
+        const CellKey key = interleave<D>(q);
+        if (std::find(group, group + group_count, key) != group + group_count) return;
+        group[group_count++] = key;
+        cells.push_back(key);
+      });
+    }
+    std::sort(cells.begin(), cells.end());
+    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+    internal_count += cells.size();
+  }
+
+  // 3. Nodes, depth first, each internal node's children allocated when it is visited.
+  std::size_t compact_cells = 0;
+  for (int level = 0; level <= std::min(deepest, kCompactLevels<D>); ++level) compact_cells += internal[std::size_t(level)].size();
+  map_.reserve(compact_cells, internal_count - compact_cells);
+  const std::size_t node_count = kChildren * (1 + internal_count);
+  nodes_.reserve(node_count + node_count / 16);
+  search_.reserve(node_count + node_count / 16);
+  make_root();
+  pool_.reserve(n);
+  std::array<std::size_t, kMaxLevel + 1> next{};  // per level: the next internal cell in Morton order
+  struct Visit {
+    NodeId node;
+    CellKey key;
+    std::uint32_t b, e;
+  };
+  std::vector<Visit> visits{{root(), 0, 0, std::uint32_t(n)}};
+  while (!visits.empty()) {
+    const Visit t = visits.back();
+    visits.pop_back();
+    const int level = nodes_[t.node].level;
+    nodes_[t.node].input_count = t.e - t.b;
+    const std::vector<CellKey>& cells = internal[std::size_t(level)];
+    std::size_t& at_level = next[std::size_t(level)];
+    if (at_level == cells.size() || cells[at_level] != t.key) {
+      if (t.e > t.b) {
+        const VertexId v = ids[order[t.b]];
+        nodes_[t.node].input_vertex = v;
+        leaf_push(t.node, {inputs[order[t.b]], 0, v});
+      }
       continue;
     }
-    if (nd.level >= kMaxLevel)
-      throw PointInputError("input points are closer than the engine's resolution (2^-40 of the box side)", {});
-    const NodeId first = allocate_children();
+    ++at_level;
+    const NodeId first = NodeId(nodes_.size());
+    nodes_.resize(nodes_.size() + kChildren);
+    search_.resize(nodes_.size());
     search_[t.node].first_child = first;
-    const int level = nodes_[t.node].level + 1;
     const Coords pc = nodes_[t.node].coords();
-    map_.insert<D>(level - 1, pc, first);
+    map_.insert<D>(level, pc, first);
     leaf_count_ += kChildren - 1;
+    const auto at = child_ranges(level, t.key, t.b, t.e);
     for (int k = 0; k < kChildren; ++k) {
       Coords cc;
       for (int i = 0; i < D; ++i) cc[i] = 2 * pc[i] + ((k >> i) & 1);
       Record& ch = nodes_[first + NodeId(k)];
-      ch = Record{};
-      ch.level = std::int8_t(level);
+      ch.level = std::int8_t(level + 1);
       ch.set_coords(cc);
-      search_[first + NodeId(k)] = SearchEntry{};
       search_[first + NodeId(k)].parent = t.node;
-      auto [b, e] = range_of(level, cc);
-      tasks.push_back({first + NodeId(k), b, e});
     }
+    for (int k = kChildren; k-- > 0;)
+      visits.push_back({first + NodeId(k), (t.key << D) | CellKey(k), at[std::size_t(k)], at[std::size_t(k + 1)]});
   }
-  balance_around(leaves, nullptr, nullptr);
-  // The occupied masks bottom-up: a fresh build appends children after their parent.
-  for (NodeId n = NodeId(nodes_.size()); n-- > 0;) sync_search(n);
+  for (int level = 0; level <= kMaxLevel; ++level)
+    if (next[std::size_t(level)] != internal[std::size_t(level)].size()) throw std::logic_error("quadtree build: an internal cell without a parent");
+  // The occupied masks bottom-up: children are allocated after their parent.
+  for (NodeId m = NodeId(nodes_.size()); m-- > 0;) sync_search(m);
 }
 
 template <int D>

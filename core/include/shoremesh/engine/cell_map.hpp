@@ -129,6 +129,12 @@ class CellTable {
     --size_;
   }
 
+  // Room for `count` keys without a rehash on the way (a build that knows its size up front).
+  void reserve(std::size_t count) {
+    std::size_t capacity = slots_.size();
+    while (2 * count > capacity) capacity *= 2;
+    if (capacity != slots_.size()) rehash(capacity);
+  }
   void clear(std::size_t capacity) {
     changed();
     slots_.assign(capacity, Slot{});
@@ -209,6 +215,11 @@ class CellMap {
       deep_.erase(make_cell_key<D>(level, coords));
   }
 
+  // Room for that many cells of levels up to kCompactLevels<D> and deeper ones.
+  void reserve(std::size_t compact_cells, std::size_t deep_cells) {
+    compact_.reserve(compact_cells);
+    deep_.reserve(deep_cells);
+  }
   void clear() {
     compact_.clear(kInitialCapacity);
     deep_.clear(kInitialDeepCapacity);
