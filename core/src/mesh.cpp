@@ -12,6 +12,9 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -372,7 +375,15 @@ class MeshTriangulation {
           if (a != b && va != Vertex() && vb != Vertex()) insert_constraint(va, vb);
         }
     }
-    C::for_each_finite_face(triangulation, [&](Face f) { classify(f); });
+    // Each face's class depends on that face alone (its corners, the rings, the box): classified on
+    // every thread, each face writing its own info.
+    std::vector<Face> faces;
+    if constexpr (D == 2) faces.reserve(triangulation.number_of_faces());
+    else faces.reserve(triangulation.number_of_finite_cells());
+    C::for_each_finite_face(triangulation, [&](Face f) { faces.push_back(f); });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) classify(faces[i]);
+    });
     return true;
   }
 
