@@ -437,7 +437,6 @@ class MeshTriangulation {
   std::unordered_map<Point2, std::uint32_t, PointHash<2>> segment_ends;
   bool segment_ends_made = false;
   void make_segment_ends(const Domain2& domain) {
-    if (segment_ends_made) return;
     segment_ends_made = true;
     for (const Ring& ring : domain.rings)
       for (std::size_t k = 0; k < ring.segment_count(); ++k) {
@@ -1168,7 +1167,9 @@ template <int D>
 MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domain2* domain, const ShoreChange* shore) {
   auto& t = *triangulation_;
   t.vertex_of();  // made before the triangulation changes
-  if constexpr (D == 2) t.make_segment_ends(this->domain());  // from the rings before the change
+  // From the rings before the change (asked only the first time: domain() may have a refinement to make).
+  if constexpr (D == 2)
+    if (!t.segment_ends_made) t.make_segment_ends(this->domain());
   // Validate everything first, so that a bad change leaves the mesh as it was.
   if (change.added_input_count > change.added.size())
     throw InputError("added_input_count exceeds the number of added points");
