@@ -356,7 +356,7 @@ io::InputSet read_user_inputs(const InputArgs& a, Progress& progress) {
     sets.push_back(std::move(traced.traced.input));
   }
   for (const std::string& file : a.files) {
-    const bool image = io::detect_input_format(file) == io::InputFormat::Image;
+    const bool image = io::is_image_input(file);  // for the label: detecting a text file's format reads it whole
     progress.stage((image ? "tracing " : "reading ") + std::filesystem::path(file).filename().string());
     // One projection for all: the first lon/lat input fixes it for the ones after it (inputs before it
     // have none).

@@ -7,12 +7,15 @@
 #include <string>
 #include <vector>
 
+#include <tbb/parallel_invoke.h>
+
 #include "commands.hpp"
 #include "free_memory.hpp"
 #include "input_args.hpp"
 #include "land_water.hpp"
 #include "pipeline.hpp"
 #include "progress.hpp"
+#include "timings.hpp"
 #include "shoremesh/error.hpp"
 #include "shoremesh/io/atomic_file.hpp"
 #include "shoremesh/io/point_set_csv.hpp"
@@ -32,6 +35,7 @@ struct MeshOptions {
   std::string format;
   std::string edits;  // --land-up-to only (land_water.cpp)
   bool json = false;
+  bool timings = false;
 };
 
 // Every output of the run, checked before any work and written together at the end (io::OutputBatch):
@@ -49,8 +53,9 @@ OutputPaths plan_outputs(io::OutputBatch& batch, const std::filesystem::path& ou
 }
 
 template <int D>
-int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress) {
-  const EngineInput<D> in = engine_input<D>(set, parse_box<D>(opt.engine.box), size_terms(opt.size, set));
+int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress, Timings& timings) {
+  const EngineInput<D> in =
+      timings.time("shore", [&] { return engine_input<D>(set, parse_box<D>(opt.engine.box), size_terms(opt.size, set)); });
   const std::vector<Point<D>>& points = in.points;
   const UserFrame frame = UserFrame::of(set);
   const std::filesystem::path output = opt.output;
@@ -68,19 +73,21 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
   io::OutputBatch batch(read);
   const OutputPaths staged = plan_outputs(batch, output, format, opt.preview);
 
-  release_free_memory();  // the reading's temporaries
+  timings.time("purge", [] { release_free_memory(); });  // the reading's temporaries
   progress.stage("StableWS on " + std::to_string(points.size()) + " points");
   StableResult<D> result;
   try {
     Parameters<D> parameters = session_parameters<D>(opt.engine.rho);
     parameters.shore_cells = !opt.engine.whole_shore_cells;
-    result = stable_well_spaced<D>(points, parameters, in.box, &set.domain);
+    result = timings.time("engine", [&] { return stable_well_spaced<D>(points, parameters, in.box, &set.domain); });
   } catch (const PointInputError& e) {
     rethrow_with_origin(e, set);
   }
-  release_free_memory();  // the engine's
+  timings.time("purge", [] { release_free_memory(); });  // the engine's
   progress.stage("meshing " + std::to_string(result.points.size()) + " points");
-  const Mesh<D> mesh = well_spaced_mesh<D>(result.points, result.input_count, in.domain, result.box, opt.engine.keep_hull);
+  const Mesh<D> mesh = timings.time("mesh", [&] {
+    return well_spaced_mesh<D>(result.points, result.input_count, in.domain, result.box, opt.engine.keep_hull);
+  });
   if (mesh.element_count() == 0 && (!point_set || !opt.preview.empty()))
     throw InputError(std::string("the mesh has no ") + (D == 2 ? "triangle" : "tetrahedron") + ": " +
                          std::to_string(result.points.size()) + " points" +
@@ -89,23 +96,36 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
                                  : "tetrahedron (give at least 4 points not on one plane)"),
                      opt.output);
 
-  progress.stage("writing " + output.filename().string());
-  if (point_set) {
-    io::write_point_set_csv<D>(staged.output, result.box, result.points);
-  } else {
-    export_mesh_file<D>(mesh, staged.output, format, frame);
-  }
-  if (!opt.preview.empty()) {
-    progress.stage("drawing " + std::filesystem::path(opt.preview).filename().string());
-    PreviewArgs args = opt.preview_args;
-    args.rho = opt.engine.rho;
-    args.size = in.size;
-    write_preview<D>(mesh, staged.preview, args, &frame);
-  }
-  progress.stage("measuring quality");
-  QualityNumbers quality = quality_numbers<D>(mesh, opt.engine.rho, result.box, frame, &set.domain);
+  // The outputs and the summary only read the finished mesh: they are made at the same time (each output
+  // to its staged file, committed together once all are written).
+  progress.stage("writing " + output.filename().string() + " and measuring quality");
+  auto write_outputs = [&] {
+    timings.time("write", [&] {
+      if (point_set) {
+        io::write_point_set_csv<D>(staged.output, result.box, result.points);
+      } else {
+        export_mesh_file<D>(mesh, staged.output, format, frame);
+      }
+    });
+    if (!opt.preview.empty()) {
+      PreviewArgs args = opt.preview_args;
+      args.rho = opt.engine.rho;
+      args.size = in.size;
+      timings.time("preview", [&] { write_preview<D>(mesh, staged.preview, args, &frame); });
+    }
+  };
+  QualityNumbers quality;
+  std::string size_and_depths;  // the summary's lines after the quality's
+  auto measure = [&] {
+    quality = timings.time("quality", [&] { return quality_numbers<D>(mesh, opt.engine.rho, result.box, frame, &set.domain); });
+    if constexpr (D == 2) {
+      if (in.size) size_and_depths += size_text(*in.size, mesh, in.seed_count, frame);
+      if (frame.depth) size_and_depths += depth_text(mesh_depths(io::MeshSnapshot<2>(mesh).view(), frame));
+    }
+  };
+  tbb::parallel_invoke(write_outputs, measure);
   quality.shore_splits = in.split_count;
-  batch.commit();
+  timings.time("commit", [&] { batch.commit(); });
   progress.finish();
 
   // The engine's Steiner points fill its whole box; the mesh keeps those its elements use (the water).
@@ -114,14 +134,11 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
             << '\n';
   std::cout << describe_input(set);
   std::cout << "box: origin " << frame.point(result.box.origin) << ", side " << frame.length(result.box.side) << '\n';
-  std::cout << quality_text(quality, D);
-  if constexpr (D == 2)
-    if (in.size) std::cout << size_text(*in.size, mesh, in.seed_count, frame);
-  if constexpr (D == 2)
-    if (frame.depth) std::cout << depth_text(mesh_depths(io::MeshSnapshot<2>(mesh).view(), frame));
+  std::cout << quality_text(quality, D) << size_and_depths;
   std::cout << "wrote " << opt.output;
   if (!opt.preview.empty()) std::cout << " and " << opt.preview;
   std::cout << '\n';
+  std::cerr << timings.line();
   return kExitOk;
 }
 
@@ -150,6 +167,7 @@ Command add_mesh_command(CLI::App& app) {
                   "window of new heights; the contours and the mesh follow, equal to a fresh run on the patched DEM) "
                   "| export PATH | stats; -o is written after the last line");
   cmd->add_flag("--json", opt->json, "--edits: reply to each edit line with one JSON object");
+  cmd->add_flag("--timings", opt->timings, "Print the wall time of each phase of the run on stderr at its end");
   cmd->footer(
       "Examples:\n"
       "  shoremesh mesh samples/superior/superior_watermask_h.png --largest-water --spacing 5000 \\\n"
@@ -170,9 +188,10 @@ Command add_mesh_command(CLI::App& app) {
     }
     if (!opt->edits.empty() || opt->json)
       throw ParameterError("--edits and --json are for --land-up-to meshes (water meshes are edited with `edit`)");
-    const io::InputSet set = read_user_inputs(opt->in, progress);
+    Timings timings(opt->timings);
+    const io::InputSet set = timings.time("read", [&] { return read_user_inputs(opt->in, progress); });
     const int dim = opt->engine.dim != 0 ? opt->engine.dim : set.dimension;
-    return dim == 3 ? run_mesh<3>(*opt, set, progress) : run_mesh<2>(*opt, set, progress);
+    return dim == 3 ? run_mesh<3>(*opt, set, progress, timings) : run_mesh<2>(*opt, set, progress, timings);
   };
 }
 

@@ -1,8 +1,5 @@
 #include "pipeline.hpp"
 
-#include <boost/geometry.hpp>
-#include <boost/geometry/index/rtree.hpp>
-
 #include <algorithm>
 #include <cctype>
 #include <array>
@@ -10,8 +7,10 @@
 #include <limits>
 #include <numbers>
 #include <set>
+#include <span>
 #include <sstream>
-#include <unordered_map>
+
+#include <tbb/parallel_invoke.h>
 
 #include "shoremesh/error.hpp"
 #include "shoremesh/io/dem.hpp"
@@ -22,18 +21,6 @@
 #include "shoremesh/shore_session.hpp"
 
 namespace shoremesh::tool {
-
-namespace {
-struct PointKey {
-  std::size_t operator()(const Point2& p) const {
-    return std::hash<double>{}(p[0] + 0.0) * 0x9E3779B97F4A7C15ull ^ std::hash<double>{}(p[1] + 0.0);
-  }
-};
-namespace bg = boost::geometry;
-namespace bgi = boost::geometry::index;
-using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
-using BBox = bg::model::box<BPoint>;
-}  // namespace
 
 template <int D>
 std::optional<BoxTransform<D>> parse_box(const std::vector<double>& numbers) {
@@ -239,24 +226,165 @@ void write_preview(const Mesh<D>& mesh, const std::filesystem::path& path, const
   io::render_preview<D>(path, view, options);
 }
 
+namespace {
+
+// The points in square cells (a counting sort: linear, where packing an R-tree of a million points took a
+// tenth of a second), for the few circumcircles quality_numbers looks into.
+class PointGrid {
+ public:
+  explicit PointGrid(std::span<const Point2> points) : points_(points) {
+    Point2 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()}, hi{-lo[0], -lo[1]};
+    for (const Point2& p : points)
+      for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+    origin_ = lo;
+    // About two points a cell over the points' box.
+    const double w = std::max(hi[0] - lo[0], 0.0), h = std::max(hi[1] - lo[1], 0.0);
+    const double cells = std::max(1.0, static_cast<double>(points.size()) / 2);
+    cell_ = std::max(std::sqrt(w * h / cells), std::max(w, h) / cells);
+    if (!(cell_ > 0) || !std::isfinite(cell_)) cell_ = 1;
+    nx_ = std::min<std::size_t>(std::size_t(w / cell_) + 1, 1u << 20);
+    ny_ = std::min<std::size_t>(std::size_t(h / cell_) + 1, 1u << 20);
+    first_.assign(nx_ * ny_ + 1, 0);
+    for (const Point2& p : points) ++first_[cell_of(p) + 1];
+    for (std::size_t c = 0; c + 1 < first_.size(); ++c) first_[c + 1] += first_[c];
+    items_.resize(points.size());
+    std::vector<std::uint32_t> next(first_.begin(), first_.end() - 1);
+    for (std::uint32_t i = 0; i < points.size(); ++i) items_[next[cell_of(points[i])]++] = i;
+  }
+  // Whether f holds for a point in the box [lo, hi] (it may be asked of points near the box too).
+  template <class F>
+  bool any_near(const Point2& lo, const Point2& hi, F&& f) const {
+    const std::size_t x0 = column(lo[0]), x1 = column(hi[0]), y0 = row(lo[1]), y1 = row(hi[1]);
+    for (std::size_t y = y0; y <= y1; ++y)
+      for (std::size_t x = x0; x <= x1; ++x)
+        for (std::uint32_t k = first_[y * nx_ + x]; k < first_[y * nx_ + x + 1]; ++k)
+          if (f(points_[items_[k]])) return true;
+    return false;
+  }
+
+ private:
+  std::size_t index(double v, double o, std::size_t n) const {
+    const double t = (v - o) / cell_;
+    return !(t > 0) ? 0 : std::min(n - 1, static_cast<std::size_t>(std::min(t, 1e18)));
+  }
+  std::size_t column(double x) const { return index(x, origin_[0], nx_); }
+  std::size_t row(double y) const { return index(y, origin_[1], ny_); }
+  std::size_t cell_of(const Point2& p) const { return row(p[1]) * nx_ + column(p[0]); }
+
+  std::span<const Point2> points_;
+  Point2 origin_{};
+  double cell_ = 1;
+  std::size_t nx_ = 1, ny_ = 1;
+  std::vector<std::uint32_t> first_, items_;
+};
+
+}  // namespace
+
+// The elements below the bound of a mesh with rings: those the shore's constraints made and the others,
+// those at a sharp input corner and the worst elsewhere (quality_numbers; sets those fields of q only).
+static void shore_quality(const Mesh<2>& mesh, std::span<const Element<2>> elements, double rho, const UserFrame& frame,
+                          const Domain2* input_rings, QualityNumbers& q) {
+  // Elements below the bound: those the shore's constraints made (their circumcircle holds a mesh point
+  // hidden behind the shore, so they are not Delaunay) and the others. The points in a grid (made at
+  // the first element below the bound): a fine mesh near a detailed shore has thousands of them, each
+  // checked against a million points otherwise.
+  std::optional<PointGrid> index;
+  std::vector<std::pair<ElementCorners<2>, ElementShape<2>>> below;  // the elements below the bound
+  for (const auto& e : elements) {
+    const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
+    if (radius_edge<2>(c) <= rho) continue;  // the shape's ratio, without its angles
+    const ElementShape<2> shape = element_shape<2>(c);
+    below.emplace_back(c, shape);
+    if (!index) index.emplace(mesh.points());
+    const double radius = std::hypot(c[0][0] - shape.circumcentre[0], c[0][1] - shape.circumcentre[1]);
+    const Point2& o = shape.circumcentre;
+    // Strictly inside the circle (by more than its rounding): such a point is in the box about it.
+    const bool hides = index->any_near({o[0] - radius, o[1] - radius}, {o[0] + radius, o[1] + radius}, [&](const Point2& p) {
+      return std::hypot(p[0] - o[0], p[1] - o[1]) < radius * (1 - 1e-9);
+    });
+    ++(hides ? q.shore_below_bound : q.interior_below_bound);
+  }
+  // Those near an input corner sharper than 60 degrees (core: sharp_corners, docs/conforming.md "Where
+  // the bound may fail"), from the input's segments: the refined rings' would give the splits' pieces.
+  const std::vector<SharpCorner> corners = sharp_corners(input_rings ? *input_rings : mesh.domain());
+  q.sharp_corners = corners.size();
+  // A corner whose water lies outside it (a spike of land): its apex's water angle, the sum of the
+  // mesh's angles there, is reflex. The apexes sorted, each with its sum: a few against every corner.
+  std::vector<std::pair<Point2, double>> apex_angle;
+  for (const SharpCorner& c : corners) apex_angle.emplace_back(c.apex, 0.0);
+  std::sort(apex_angle.begin(), apex_angle.end());
+  apex_angle.erase(std::unique(apex_angle.begin(), apex_angle.end(),
+                               [](const auto& a, const auto& b) { return a.first == b.first; }),
+                   apex_angle.end());
+  auto apex_at = [&](const Point2& p) -> double* {
+    const auto it = std::lower_bound(apex_angle.begin(), apex_angle.end(), p,
+                                     [](const auto& a, const Point2& x) { return a.first < x; });
+    return it != apex_angle.end() && it->first == p ? &it->second : nullptr;
+  };
+  auto angles_of = [](const ElementCorners<2>& c) {
+    std::array<double, 3> a{};
+    for (std::size_t i = 0; i < 3; ++i) {
+      const Point2 &p = c[i], &u = c[(i + 1) % 3], &w = c[(i + 2) % 3];
+      a[i] = std::atan2(std::abs((u[0] - p[0]) * (w[1] - p[1]) - (u[1] - p[1]) * (w[0] - p[0])),
+                        (u[0] - p[0]) * (w[0] - p[0]) + (u[1] - p[1]) * (w[1] - p[1]));
+    }
+    return a;
+  };
+  if (!apex_angle.empty())
+    for (const auto& e : elements) {
+      const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
+      for (std::size_t i = 0; i < 3; ++i)
+        if (double* sum = apex_at(c[i])) *sum += angles_of(c)[i];
+    }
+  for (const SharpCorner& c : corners) q.sharp_corners_of_land += *apex_at(c.apex) > std::numbers::pi;
+  double worst_elsewhere = std::numeric_limits<double>::infinity();
+  for (const auto& [c, shape] : below) {
+    if (sharp_corner_at(c, corners)) {
+      ++q.below_bound_at_sharp_corners;
+    } else if (const auto a = angles_of(c); *std::min_element(a.begin(), a.end()) < worst_elsewhere) {
+      worst_elsewhere = *std::min_element(a.begin(), a.end());
+      q.worst_elsewhere_at = frame.point(shape.centroid);
+    }
+  }
+}
+
 template <int D>
 QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransform<D>& box, const UserFrame& frame,
                                const Domain2* input_rings) {
   // One list of the elements for the report and the counts below (Mesh::quality would make its own).
   const auto elements = mesh.elements();
-  const QualityReport<D> r = quality_report<D>(mesh.points(), elements, rho, box);
+  // The parts below only read the mesh, each into its own variables: they run at the same time, and the
+  // numbers are the same whatever the thread count.
+  QualityReport<D> r;
   QualityNumbers q;
-  q.elements = r.elements;
-  // Points of the mesh: those an element uses (the fill on land is not part of it).
-  std::vector<bool> used(mesh.points().size(), elements.empty());
-  for (const auto& e : elements)
-    for (auto i : e) used[i] = true;
-  for (std::size_t i = 0; i < used.size(); ++i) {
-    if (!used[i]) continue;
-    ++q.points;
-    ++(mesh.kinds()[i] == PointKind::Input ? q.input_points : q.steiner_points);
+  auto report = [&] { r = quality_report<D>(mesh.points(), elements, rho, box); };
+  auto count_points = [&] {
+    // Points of the mesh: those an element uses (the fill on land is not part of it).
+    std::vector<bool> used(mesh.points().size(), elements.empty());
+    for (const auto& e : elements)
+      for (auto i : e) used[i] = true;
+    for (std::size_t i = 0; i < used.size(); ++i) {
+      if (!used[i]) continue;
+      ++q.points;
+      ++(mesh.kinds()[i] == PointKind::Input ? q.input_points : q.steiner_points);
+    }
+  };
+  if constexpr (D == 2) {
+    if (!mesh.domain().empty()) {
+      ShorelineReport s;
+      tbb::parallel_invoke(report, count_points, [&] { s = mesh.shoreline_crossings(); },
+                           [&] { shore_quality(mesh, elements, rho, frame, input_rings, q); });
+      q.shore_segments = s.segments;
+      q.shore_covered = s.covered;
+      q.shore_worst_depth = s.worst_depth;
+      q.shore_worst_depth_text = frame.length(s.worst_depth);
+    } else {
+      tbb::parallel_invoke(report, count_points);
+    }
+  } else {
+    tbb::parallel_invoke(report, count_points);
   }
-
+  q.elements = r.elements;
   q.min_angle = r.min_angle;
   q.max_angle = r.max_angle;
   q.min_angle_bound = r.min_angle_bound;
@@ -268,73 +396,6 @@ QualityNumbers quality_numbers(const Mesh<D>& mesh, double rho, const BoxTransfo
   q.meeting_bound = r.meeting_bound;
   if (mesh.covered_box()) q.left_out_at_box_edge = mesh.uncovered_count();
   if (!r.worst.empty()) q.worst_at = frame.point(r.worst.front().shape.centroid);
-  if constexpr (D == 2) {
-    if (!mesh.domain().empty()) {
-      // Elements below the bound: those the shore's constraints made (their circumcircle holds a mesh point
-      // hidden behind the shore, so they are not Delaunay) and the others. The points in an R-tree (built
-      // at the first element below the bound): a fine mesh near a detailed shore has thousands of them,
-      // each checked against a million points otherwise.
-      std::optional<bgi::rtree<BPoint, bgi::quadratic<16>>> index;
-      std::vector<std::pair<ElementCorners<2>, ElementShape<2>>> below;  // the elements below the bound
-      for (const auto& e : elements) {
-        const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
-        const ElementShape<2> shape = element_shape<2>(c);
-        if (shape.radius_edge <= rho) continue;
-        below.emplace_back(c, shape);
-        if (!index) {
-          std::vector<BPoint> all;
-          all.reserve(mesh.points().size());
-          for (const Point2& p : mesh.points()) all.emplace_back(p[0], p[1]);
-          index.emplace(all.begin(), all.end());
-        }
-        const double radius = std::hypot(c[0][0] - shape.circumcentre[0], c[0][1] - shape.circumcentre[1]);
-        const Point2& o = shape.circumcentre;
-        bool hides = false;
-        for (auto it = index->qbegin(bgi::intersects(BBox(BPoint(o[0] - radius, o[1] - radius), BPoint(o[0] + radius, o[1] + radius))));
-             it != index->qend() && !hides; ++it)
-          hides = std::hypot(bg::get<0>(*it) - o[0], bg::get<1>(*it) - o[1]) < radius * (1 - 1e-9);
-        ++(hides ? q.shore_below_bound : q.interior_below_bound);
-      }
-      // Those near an input corner sharper than 60 degrees (core: sharp_corners, docs/conforming.md "Where
-      // the bound may fail"), from the input's segments: the refined rings' would give the splits' pieces.
-      const std::vector<SharpCorner> corners = sharp_corners(input_rings ? *input_rings : mesh.domain());
-      q.sharp_corners = corners.size();
-      // A corner whose water lies outside it (a spike of land): its apex's water angle, the sum of the
-      // mesh's angles there, is reflex.
-      std::unordered_map<Point2, double, PointKey> apex_angle;
-      for (const SharpCorner& c : corners) apex_angle.emplace(c.apex, 0.0);
-      auto angles_of = [](const ElementCorners<2>& c) {
-        std::array<double, 3> a{};
-        for (std::size_t i = 0; i < 3; ++i) {
-          const Point2 &p = c[i], &u = c[(i + 1) % 3], &w = c[(i + 2) % 3];
-          a[i] = std::atan2(std::abs((u[0] - p[0]) * (w[1] - p[1]) - (u[1] - p[1]) * (w[0] - p[0])),
-                            (u[0] - p[0]) * (w[0] - p[0]) + (u[1] - p[1]) * (w[1] - p[1]));
-        }
-        return a;
-      };
-      if (!apex_angle.empty())
-        for (const auto& e : elements) {
-          const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
-          for (std::size_t i = 0; i < 3; ++i)
-            if (const auto it = apex_angle.find(c[i]); it != apex_angle.end()) it->second += angles_of(c)[i];
-        }
-      for (const SharpCorner& c : corners) q.sharp_corners_of_land += apex_angle[c.apex] > std::numbers::pi;
-      double worst_elsewhere = std::numeric_limits<double>::infinity();
-      for (const auto& [c, shape] : below) {
-        if (sharp_corner_at(c, corners)) {
-          ++q.below_bound_at_sharp_corners;
-        } else if (const auto a = angles_of(c); *std::min_element(a.begin(), a.end()) < worst_elsewhere) {
-          worst_elsewhere = *std::min_element(a.begin(), a.end());
-          q.worst_elsewhere_at = frame.point(shape.centroid);
-        }
-      }
-      const ShorelineReport s = mesh.shoreline_crossings();
-      q.shore_segments = s.segments;
-      q.shore_covered = s.covered;
-      q.shore_worst_depth = s.worst_depth;
-      q.shore_worst_depth_text = frame.length(s.worst_depth);
-    }
-  }
   return q;
 }
 

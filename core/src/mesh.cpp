@@ -12,6 +12,9 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -278,6 +281,48 @@ void changed_segments(const Domain2& before, const Domain2& after, const Changed
                       std::back_inserter(inserted));
 }
 
+// Values by point for a set of points known up front (open addressing, linear probing): a mesh's ring
+// vertices, looked up once per mesh vertex, at a fraction of a node-based map's cost.
+template <class V>
+class PointTable {
+ public:
+  PointTable() = default;
+  explicit PointTable(std::size_t count) {
+    const std::size_t capacity = std::bit_ceil(std::max<std::size_t>(16, count + count / 2 + 1));
+    shift_ = 64 - std::countr_zero(capacity);
+    slots_.resize(capacity);
+    used_.assign(capacity, 0);
+  }
+  bool empty() const { return size_ == 0; }
+  // Adds p with `value` unless p is there.
+  void insert(const Point2& p, const V& value) {
+    std::size_t i = home(p);
+    for (; used_[i]; i = (i + 1) & (slots_.size() - 1))
+      if (slots_[i].first == p) return;
+    used_[i] = 1;
+    slots_[i] = {p, value};
+    ++size_;
+  }
+  V* find(const Point2& p) {
+    if (slots_.empty()) return nullptr;
+    for (std::size_t i = home(p); used_[i]; i = (i + 1) & (slots_.size() - 1))
+      if (slots_[i].first == p) return &slots_[i].second;
+    return nullptr;
+  }
+  const V& at(const Point2& p) const {
+    const V* v = const_cast<PointTable*>(this)->find(p);
+    if (!v) throw std::out_of_range("PointTable::at: no such point");
+    return *v;
+  }
+
+ private:
+  std::size_t home(const Point2& p) const { return (PointHash<2>{}(p) * 0x9E3779B97F4A7C15ull) >> shift_; }
+  std::vector<std::pair<Point2, V>> slots_;
+  std::vector<std::uint8_t> used_;
+  std::size_t size_ = 0;
+  int shift_ = 64;
+};
+
 }  // namespace
 
 template <int D>
@@ -314,15 +359,17 @@ class MeshTriangulation {
 
   // The mesh vertex at each point of `domain`'s rings (a null handle where none is), by one pass over the
   // vertices: what the build and a report on the shore need, without vertex_of's map of every vertex.
-  std::unordered_map<Point2, Vertex, PointHash<2>> vertices_at(const Domain2& domain) const
+  PointTable<Vertex> vertices_at(const Domain2& domain) const
     requires(D == 2)
   {
-    std::unordered_map<Point2, Vertex, PointHash<2>> at;
+    std::size_t count = 0;
+    for (const Ring& ring : domain.rings) count += ring.points.size();
+    PointTable<Vertex> at(count);
     for (const Ring& ring : domain.rings)
-      for (const Point2& p : ring.points) at.emplace(p, Vertex());
+      for (const Point2& p : ring.points) at.insert(p, Vertex());
     if (!at.empty())
       for (Vertex v : triangulation.finite_vertex_handles())
-        if (const auto it = at.find(C::from_cgal(v->point())); it != at.end()) it->second = v;
+        if (Vertex* slot = at.find(C::from_cgal(v->point()))) *slot = v;
     return at;
   }
 
@@ -366,19 +413,38 @@ class MeshTriangulation {
         for (std::size_t k = 0; k < ring.segment_count(); ++k) {
           const Point2& a = ring.points[k];
           const Point2& b = ring.points[(k + 1) % ring.points.size()];
-          if (a != b) count_segment(a, b, 1);
           const Vertex va = ring_vertex.at(a), vb = ring_vertex.at(b);
           // A ring vertex that is not a mesh point leaves its segments out (shoreline_crossings says so).
           if (a != b && va != Vertex() && vb != Vertex()) insert_constraint(va, vb);
         }
     }
-    C::for_each_finite_face(triangulation, [&](Face f) { classify(f); });
+    // Each face's class depends on that face alone (its corners, the rings, the box): classified on
+    // every thread, each face writing its own info.
+    std::vector<Face> faces;
+    if constexpr (D == 2) faces.reserve(triangulation.number_of_faces());
+    else faces.reserve(triangulation.number_of_finite_cells());
+    C::for_each_finite_face(triangulation, [&](Face f) { faces.push_back(f); });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) classify(faces[i]);
+    });
     return true;
   }
 
   // How many shore segments end at each point: a point with constraints that is no segment's end lies
   // inside one (Steiner points on a straight shore), whose constraint is joined again when it goes.
+  // Made at the first update, from the rings the mesh was built with (a mesh built once and exported
+  // never asks).
   std::unordered_map<Point2, std::uint32_t, PointHash<2>> segment_ends;
+  bool segment_ends_made = false;
+  void make_segment_ends(const Domain2& domain) {
+    segment_ends_made = true;
+    for (const Ring& ring : domain.rings)
+      for (std::size_t k = 0; k < ring.segment_count(); ++k) {
+        const Point2& a = ring.points[k];
+        const Point2& b = ring.points[(k + 1) % ring.points.size()];
+        if (a != b) count_segment(a, b, 1);
+      }
+  }
   void count_segment(const Point2& a, const Point2& b, int delta) {
     for (const Point2* p : {&a, &b}) {
       auto& n = segment_ends[*p];
@@ -1101,6 +1167,9 @@ template <int D>
 MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domain2* domain, const ShoreChange* shore) {
   auto& t = *triangulation_;
   t.vertex_of();  // made before the triangulation changes
+  // From the rings before the change (asked only the first time: domain() may have a refinement to make).
+  if constexpr (D == 2)
+    if (!t.segment_ends_made) t.make_segment_ends(this->domain());
   // Validate everything first, so that a bad change leaves the mesh as it was.
   if (change.added_input_count > change.added.size())
     throw InputError("added_input_count exceeds the number of added points");
@@ -1245,7 +1314,7 @@ ShorelineReport Mesh<D>::shoreline_crossings() const
 
   const Domain2& domain = this->domain();
   // The rings' vertices: from the map of every vertex when updates have made it, else by one pass.
-  std::unordered_map<Point2, C::Vertex, PointHash<2>> ring_vertex;
+  PointTable<C::Vertex> ring_vertex;
   if (!t.has_vertex_map()) ring_vertex = t.vertices_at(domain);
   auto vertex_at = [&](const Point2& p) {
     if (!t.has_vertex_map()) return ring_vertex.at(p);

@@ -3,22 +3,41 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
+#include <cstddef>
+#include <cstdint>
 #include <utility>
+#include <vector>
 
 namespace shoremesh {
 
 std::vector<BoundaryLoop> boundary_loops(std::span<const Point2> points, std::span<const Element<2>> elements) {
   // A directed edge (a, b) of a counter-clockwise triangle is on the boundary iff no triangle has (b, a).
-  // Sorted vectors, not maps: a mesh of a million triangles has three million directed edges.
+  // The directed edges bucketed by their first node (a counting sort: a mesh of a million triangles has
+  // three million of them), so that (b, a) is looked for among the few edges leaving b.
   using Edge = std::pair<std::uint32_t, std::uint32_t>;
-  std::vector<Edge> directed;
-  directed.reserve(3 * elements.size());
+  std::uint32_t nodes = 0;
   for (const auto& e : elements)
-    for (int i = 0; i < 3; ++i) directed.emplace_back(e[i], e[(i + 1) % 3]);
-  std::sort(directed.begin(), directed.end());
+    for (int i = 0; i < 3; ++i) nodes = std::max(nodes, e[i] + 1);
+  std::vector<std::uint32_t> first(std::size_t(nodes) + 1, 0);  // edges leaving node a: [first[a], first[a + 1])
+  for (const auto& e : elements)
+    for (int i = 0; i < 3; ++i) ++first[e[i] + 1];
+  for (std::size_t a = 0; a < nodes; ++a) first[a + 1] += first[a];
+  std::vector<std::uint32_t> target(first.back());
+  {
+    std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
+    for (const auto& e : elements)
+      for (int i = 0; i < 3; ++i) target[next[e[i]]++] = e[(i + 1) % 3];
+  }
   std::vector<Edge> outgoing;  // the boundary edges, sorted: those leaving a node are a range
-  for (const Edge& e : directed)
-    if (!std::binary_search(directed.begin(), directed.end(), Edge{e.second, e.first})) outgoing.push_back(e);
+  for (std::uint32_t a = 0; a < nodes; ++a) {
+    const std::size_t begin = outgoing.size();
+    for (std::uint32_t k = first[a]; k < first[a + 1]; ++k) {
+      const std::uint32_t b = target[k];
+      const auto from_b = target.begin() + first[b], end_b = target.begin() + first[b + 1];
+      if (std::find(from_b, end_b, a) == end_b) outgoing.emplace_back(a, b);
+    }
+    std::sort(outgoing.begin() + static_cast<std::ptrdiff_t>(begin), outgoing.end());
+  }
   std::vector<bool> used(outgoing.size(), false);
   auto index_of = [&](const Edge& e) { return std::size_t(std::lower_bound(outgoing.begin(), outgoing.end(), e) - outgoing.begin()); };
 

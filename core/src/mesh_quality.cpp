@@ -6,7 +6,6 @@
 #include <numbers>
 #include <sstream>
 #include <tuple>
-#include <unordered_map>
 
 #include "shoremesh/mesh_coverage.hpp"
 #include "shoremesh/shore_refinement.hpp"
@@ -67,6 +66,25 @@ void add_to(Histogram& h, double value) {
 
 }  // namespace
 
+// The circumcentre relative to corner 0, and the radius-edge ratio: what element_shape and radius_edge
+// both give, computed once here so that the two agree to the bit.
+template <int D>
+double radius_edge_of(const ElementCorners<D>& c, Point<D>& offset) {
+  double shortest = std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= D; ++i)
+    for (int j = i + 1; j <= D; ++j) shortest = std::min(shortest, std::sqrt(dot<D>(sub<D>(c[i], c[j]), sub<D>(c[i], c[j]))));
+  if constexpr (D == 2) offset = circumcentre_offset(sub<2>(c[1], c[0]), sub<2>(c[2], c[0]));
+  else offset = circumcentre_offset(sub<3>(c[1], c[0]), sub<3>(c[2], c[0]), sub<3>(c[3], c[0]));
+  const double ratio = std::sqrt(dot<D>(offset, offset)) / shortest;
+  return std::isnan(ratio) ? std::numeric_limits<double>::infinity() : ratio;
+}
+
+template <int D>
+double radius_edge(const ElementCorners<D>& c) {
+  Point<D> offset;
+  return radius_edge_of<D>(c, offset);
+}
+
 template <int D>
 ElementShape<D> element_shape(const ElementCorners<D>& c) {
   ElementShape<D> s;
@@ -75,13 +93,9 @@ ElementShape<D> element_shape(const ElementCorners<D>& c) {
     for (const auto& p : c) sum += p[i];
     s.centroid[i] = sum / (D + 1);
   }
-  double shortest = std::numeric_limits<double>::infinity();
-  for (int i = 0; i <= D; ++i)
-    for (int j = i + 1; j <= D; ++j) shortest = std::min(shortest, std::sqrt(dot<D>(sub<D>(c[i], c[j]), sub<D>(c[i], c[j]))));
-
   Point<D> offset;
+  s.radius_edge = radius_edge_of<D>(c, offset);
   if constexpr (D == 2) {
-    offset = circumcentre_offset(sub<2>(c[1], c[0]), sub<2>(c[2], c[0]));
     s.min_angle = 180;
     s.max_angle = 0;
     for (int i = 0; i < 3; ++i) {
@@ -91,7 +105,6 @@ ElementShape<D> element_shape(const ElementCorners<D>& c) {
       s.max_angle = std::max(s.max_angle, a);
     }
   } else {
-    offset = circumcentre_offset(sub<3>(c[1], c[0]), sub<3>(c[2], c[0]), sub<3>(c[3], c[0]));
     // The dihedral angle at edge (i, j) is the angle between the two faces that share it, measured
     // through the normals of the faces opposite k and l.
     s.min_angle = 180;
@@ -115,8 +128,6 @@ ElementShape<D> element_shape(const ElementCorners<D>& c) {
       }
   }
   for (int i = 0; i < D; ++i) s.circumcentre[i] = c[0][i] + offset[i];
-  s.radius_edge = std::sqrt(dot<D>(offset, offset)) / shortest;
-  if (std::isnan(s.radius_edge)) s.radius_edge = std::numeric_limits<double>::infinity();
   return s;
 }
 
@@ -205,23 +216,29 @@ std::string QualityReport<D>::summary() const {
 }
 
 std::vector<SharpCorner> sharp_corners(const Domain2& rings) {
-  // Each vertex's other ends, over every ring and line through it (a shared vertex is one point).
-  std::unordered_map<Point2, std::vector<Point2>, PointHash<2>> ends;
+  // Each vertex's other ends, over every ring and line through it (a shared vertex is one point): the
+  // pairs (vertex, other end) sorted, so that a vertex's others are a sorted range.
+  std::vector<std::pair<Point2, Point2>> ends;
+  std::size_t count = 0;
+  for (const Ring& ring : rings.rings) count += 2 * ring.segment_count();
+  ends.reserve(count);
   for (const Ring& ring : rings.rings)
     for (std::size_t k = 0; k < ring.segment_count(); ++k) {
       const Point2& p = ring.points[k];
       const Point2& q = ring.points[(k + 1) % ring.points.size()];
       if (p == q) continue;
-      ends[p].push_back(q);
-      ends[q].push_back(p);
+      ends.emplace_back(p, q);
+      ends.emplace_back(q, p);
     }
+  std::sort(ends.begin(), ends.end());
+  ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
   std::vector<SharpCorner> out;
-  for (auto& [apex, others] : ends) {
-    std::sort(others.begin(), others.end());
-    others.erase(std::unique(others.begin(), others.end()), others.end());
-    for (std::size_t i = 0; i < others.size(); ++i)
-      for (std::size_t j = i + 1; j < others.size(); ++j) {
-        const Point2 &a = others[i], &b = others[j];
+  for (std::size_t first = 0, last = 0; first < ends.size(); first = last) {
+    const Point2 apex = ends[first].first;
+    while (last < ends.size() && ends[last].first == apex) ++last;
+    for (std::size_t i = first; i < last; ++i)
+      for (std::size_t j = i + 1; j < last; ++j) {
+        const Point2 &a = ends[i].second, &b = ends[j].second;
         if (!corner_sharper_than_60(apex, a, b)) continue;
         const Point2 u = sub<2>(a, apex), w = sub<2>(b, apex);
         const double la = std::sqrt(dot<2>(u, u)), lb = std::sqrt(dot<2>(w, w));
@@ -243,6 +260,8 @@ std::optional<std::size_t> sharp_corner_at(const ElementCorners<2>& t, std::span
   return std::nullopt;
 }
 
+template double radius_edge<2>(const ElementCorners<2>&);
+template double radius_edge<3>(const ElementCorners<3>&);
 template ElementShape<2> element_shape<2>(const ElementCorners<2>&);
 template ElementShape<3> element_shape<3>(const ElementCorners<3>&);
 template QualityReport<2> quality_report<2>(std::span<const Point2>, std::span<const Element<2>>, double,

@@ -283,7 +283,8 @@ struct ShoreRefinement::Impl {
     }
   }
 
-  std::uint32_t new_edge(const Point2& p, const Point2& q, bool water) {
+  // `add`: its node goes into the disks' tree now (build loads the first nodes into it at once instead).
+  std::uint32_t new_edge(const Point2& p, const Point2& q, bool water, bool add = true) {
     const EdgeKey k = edge_key(p, q);
     std::uint32_t i;
     if (!free_edges.empty()) {
@@ -300,7 +301,7 @@ struct ShoreRefinement::Impl {
       touched.push_back(i);
     }
     edge_of.emplace(k, i);
-    add_node({i, 0, 1});
+    if (add) add_node({i, 0, 1});
     return i;
   }
 
@@ -353,7 +354,12 @@ struct ShoreRefinement::Impl {
   }
 
   void build(std::span<const Point2> loose) {
+    std::size_t vertices = 0;
+    for (const Ring& ring : rings.rings) vertices += ring.points.size();
+    ring_vertex.reserve(vertices);
+    edge_of.reserve(vertices);
     std::vector<Point2> all;
+    all.reserve(vertices + loose.size());
     for (std::size_t r = 0; r < rings.rings.size(); ++r) {
       const Ring& ring = rings.rings[r];
       add_ring_vertices(r, ring, 0, ring.points.size());
@@ -372,8 +378,14 @@ struct ShoreRefinement::Impl {
         const Point2& p = ring.points[k];
         const Point2& q = ring.points[(k + 1) % ring.points.size()];
         if (p == q || edge_of.count(edge_key(p, q))) continue;
-        work.push_back({new_edge(p, q, ring.closed()), 0, 1});
+        work.push_back({new_edge(p, q, ring.closed(), false), 0, 1});
       }
+    // The edges' first nodes loaded at once (packed), not inserted one by one: the closure is the least
+    // fixed point of the rule, whatever order the tree gives the leaves in.
+    std::vector<DiskEntry> first_nodes;
+    first_nodes.reserve(work.size());
+    for (const Node& n : work) first_nodes.emplace_back(disk_box(n), n);
+    disks = DiskTree(first_nodes.begin(), first_nodes.end());
     close(std::move(work));
     made.clear();
   }

@@ -232,6 +232,28 @@ TEST(MeshCommand, SuperiorImageToMeshPreviewAndGeoJson) {
   EXPECT_LT(lon_max, -83.9);
 }
 
+// The outputs and the summary are made at the same time (and their parts on every thread): the same
+// bytes on one thread as on two; --timings adds one line on stderr and changes nothing else.
+TEST(MeshCommand, SameOutputsOnOneThreadAndTwoAndATimingsLine) {
+  TempDir dir;
+  const std::string args = "mesh " + quote(superior_mask()) + " --largest-water --spacing 8000 --preview-colour quality";
+  const RunResult one = shoremesh(dir, args + " -o one.msh --preview one.png --threads 1");
+  ASSERT_EQ(one.code, 0) << one.err;
+  const RunResult two = shoremesh(dir, args + " -o two.msh --preview two.png --threads 2 --timings");
+  ASSERT_EQ(two.code, 0) << two.err;
+  EXPECT_EQ(read_file(dir / "one.msh"), read_file(dir / "two.msh"));
+  EXPECT_EQ(read_file(dir / "one.png"), read_file(dir / "two.png"));
+  auto without_names = [](std::string text) {
+    for (const char* name : {"one", "two"}) text = std::regex_replace(text, std::regex(name), "X");
+    return text;
+  };
+  EXPECT_EQ(without_names(one.out), without_names(two.out));
+  EXPECT_THAT(one.err, ::testing::Not(HasSubstr("timings")));
+  EXPECT_THAT(two.err, HasSubstr("timings (wall): read "));
+  for (const char* phase : {"read", "shore", "engine", "mesh", "write", "preview", "quality", "total"})
+    EXPECT_THAT(two.err, ::testing::ContainsRegex(std::string(" ") + phase + " [0-9]+\\.[0-9]+ s")) << phase;
+}
+
 TEST(MeshCommand, ColourMapImageWithAUserBox) {
   TempDir dir;
   const std::string map = quote(samples("superior/superior_map_gmt.png"));

@@ -29,6 +29,9 @@ struct ElementShape {
 
 template <int D>
 ElementShape<D> element_shape(const ElementCorners<D>& corners);
+// element_shape(corners).radius_edge alone (no angles), the same number.
+template <int D>
+double radius_edge(const ElementCorners<D>& corners);
 
 struct Histogram {
   double low = 0, high = 0;          // bins of equal width over [low, high); the last bin takes values >= high

@@ -100,6 +100,8 @@ InputFormat detect_input_format(const std::string& path) {
                    path);
 }
 
+bool is_image_input(const std::string& path) { return format_from_extension(path) == InputFormat::Image; }
+
 InputSet read_input(const std::string& path, const InputOptions& options) {
   const auto projection = options.projection;
   const auto choice = options.projection_choice;

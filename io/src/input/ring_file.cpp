@@ -1,5 +1,9 @@
 #include "shoremesh/io/ring_file.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
 #include <stdexcept>
 
 #include "input_builder.hpp"
@@ -88,19 +92,38 @@ InputSet ring_file_to_input(const RingFile& rf, const std::string& file, bool lo
     set.notes.push_back(chosen.note);
   }
   std::vector<std::vector<Point2>> rings = rf.rings;
-  double count = 0;  // the points the spacing gives, checked before sampling any
-  for (std::size_t r = 0; r < rings.size(); ++r) {
-    if (lonlat) {
-      for (std::size_t k = 0; k < rings[r].size(); ++k) {
-        try {
-          rings[r][k] = set.projection.forward({rings[r][k][0], rings[r][k][1]});
-        } catch (const std::domain_error& e) {
-          throw InputError(e.what(), file, rf.lines[r][k]);
+  if (lonlat) {
+    // Each point on its own, on every thread; the error is the first point's that has one, as in order.
+    std::size_t total = 0;
+    for (const auto& ring : rings) total += ring.size();
+    std::atomic<std::size_t> first_bad{total};
+    tbb::parallel_for(std::size_t(0), rings.size(), [&](std::size_t r) {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rings[r].size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t k = range.begin(); k != range.end(); ++k) {
+          try {
+            rings[r][k] = set.projection.forward({rings[r][k][0], rings[r][k][1]});
+          } catch (const std::domain_error&) {
+            std::size_t flat = k;  // the point's place in the file's order
+            for (std::size_t q = 0; q < r; ++q) flat += rings[q].size();
+            std::size_t seen = first_bad.load();
+            while (flat < seen && !first_bad.compare_exchange_weak(seen, flat)) {
+            }
+          }
         }
+      });
+    });
+    if (std::size_t flat = first_bad.load(); flat < total) {
+      std::size_t r = 0;
+      while (flat >= rings[r].size()) flat -= rings[r++].size();
+      try {
+        (void)set.projection.forward({rf.rings[r][flat][0], rf.rings[r][flat][1]});
+      } catch (const std::domain_error& e) {
+        throw InputError(e.what(), file, rf.lines[r][flat]);
       }
     }
-    count += detail::subdivided_count(rings[r], true, spacing);
   }
+  double count = 0;  // the points the spacing gives, checked before sampling any
+  for (std::size_t r = 0; r < rings.size(); ++r) count += detail::subdivided_count(rings[r], true, spacing);
   detail::check_sampled_count(count, spacing, kMaxSampledPoints, file);
   detail::InputBuilder builder(set, file, Source::Location::Line);
   for (std::size_t r = 0; r < rings.size(); ++r) builder.add_ring(rings[r], RingRole::Shore, rf.lines[r], spacing);

@@ -41,6 +41,8 @@ struct InputOptions {
 
 // The format read_input would use for `path` (reads the start of CSV/text files to decide).
 InputFormat detect_input_format(const std::string& path);
+// Whether read_input traces `path` as an image: by its extension alone (reads nothing; text is never one).
+bool is_image_input(const std::string& path);
 
 InputSet read_input(const std::string& path, const InputOptions& options = {});
 
