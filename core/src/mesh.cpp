@@ -281,33 +281,23 @@ void changed_segments(const Domain2& before, const Domain2& after, const Changed
                       std::back_inserter(inserted));
 }
 
-// Values by point for a set of points known up front (open addressing, linear probing): a mesh's ring
-// vertices, looked up once per mesh vertex, at a fraction of a node-based map's cost.
+// Values by point for a set of points known up front, as a sorted array searched by halving: a mesh's
+// ring vertices, looked up once per mesh vertex, without a node-based map's allocation per point.
 template <class V>
 class PointTable {
  public:
   PointTable() = default;
-  explicit PointTable(std::size_t count) {
-    const std::size_t capacity = std::bit_ceil(std::max<std::size_t>(16, count + count / 2 + 1));
-    shift_ = 64 - std::countr_zero(capacity);
-    slots_.resize(capacity);
-    used_.assign(capacity, 0);
+  // Call add for each point, then seal; a point added twice is kept once.
+  void add(const Point2& p) { slots_.push_back({p, V()}); }
+  void seal() {
+    std::sort(slots_.begin(), slots_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    slots_.erase(std::unique(slots_.begin(), slots_.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
+                 slots_.end());
   }
-  bool empty() const { return size_ == 0; }
-  // Adds p with `value` unless p is there.
-  void insert(const Point2& p, const V& value) {
-    std::size_t i = home(p);
-    for (; used_[i]; i = (i + 1) & (slots_.size() - 1))
-      if (slots_[i].first == p) return;
-    used_[i] = 1;
-    slots_[i] = {p, value};
-    ++size_;
-  }
+  bool empty() const { return slots_.empty(); }
   V* find(const Point2& p) {
-    if (slots_.empty()) return nullptr;
-    for (std::size_t i = home(p); used_[i]; i = (i + 1) & (slots_.size() - 1))
-      if (slots_[i].first == p) return &slots_[i].second;
-    return nullptr;
+    const auto it = std::lower_bound(slots_.begin(), slots_.end(), p, [](const auto& s, const Point2& q) { return s.first < q; });
+    return it != slots_.end() && it->first == p ? &it->second : nullptr;
   }
   const V& at(const Point2& p) const {
     const V* v = const_cast<PointTable*>(this)->find(p);
@@ -316,11 +306,7 @@ class PointTable {
   }
 
  private:
-  std::size_t home(const Point2& p) const { return (PointHash<2>{}(p) * 0x9E3779B97F4A7C15ull) >> shift_; }
   std::vector<std::pair<Point2, V>> slots_;
-  std::vector<std::uint8_t> used_;
-  std::size_t size_ = 0;
-  int shift_ = 64;
 };
 
 }  // namespace
@@ -362,11 +348,10 @@ class MeshTriangulation {
   PointTable<Vertex> vertices_at(const Domain2& domain) const
     requires(D == 2)
   {
-    std::size_t count = 0;
-    for (const Ring& ring : domain.rings) count += ring.points.size();
-    PointTable<Vertex> at(count);
+    PointTable<Vertex> at;
     for (const Ring& ring : domain.rings)
-      for (const Point2& p : ring.points) at.insert(p, Vertex());
+      for (const Point2& p : ring.points) at.add(p);
+    at.seal();
     if (!at.empty())
       for (Vertex v : triangulation.finite_vertex_handles())
         if (Vertex* slot = at.find(C::from_cgal(v->point()))) *slot = v;
