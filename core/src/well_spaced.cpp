@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -26,6 +27,12 @@ WellSpacedSet<D>& WellSpacedSet<D>::operator=(WellSpacedSet&&) noexcept = defaul
 template <int D>
 void WellSpacedSet<D>::build(std::span<const Point<D>> unit_points, BuildFor purpose) {
   const std::vector<std::uint32_t> vertex_of_point = engine_->build(unit_points, purpose == BuildFor::Updates);
+  if (purpose == BuildFor::OutputOnly) {
+    // Nothing will be edited: no vertex -> id map (8 bytes per output vertex, allocated while the
+    // engine is at its largest) and no room to grow.
+    input_vertex_.assign(vertex_of_point.begin(), vertex_of_point.end());
+    return;
+  }
   // Both arrays get room to grow. Each add takes a new id, and a vertex numbered past the end of
   // input_id_ made it copy itself whole in the middle of that update: 51 ms at 2D n = 1e6, after about
   // 3,600 changes (bench/RESULTS.md). Room never written takes no physical memory.
@@ -98,6 +105,7 @@ void WellSpacedSet<D>::check_new_point(const Point<D>& p, std::span<const std::s
 template <int D>
 std::vector<std::size_t> WellSpacedSet<D>::apply(std::span<const Edit<D>> edits, UpdateReport<D>* report,
                                                  std::span<const engine::WaterEdit> water) {
+  if (!engine_->updatable()) throw std::logic_error("the set was built for its output only: it cannot be updated");
   // Check everything first, in order, as if applied one by one: an error leaves the set untouched.
   std::vector<std::size_t> removed;
   std::vector<Point<D>> added;
@@ -190,13 +198,20 @@ template <int D>
 std::vector<Point<D>> WellSpacedSet<D>::output_points() const {
   const auto all = engine_->positions();
   std::vector<Point<D>> out;
+  out.reserve(input_count() + steiner_count());
   for (std::uint32_t v : input_vertex_)
     if (v != engine::kNoVertex) out.push_back(all[v]);
-  const std::size_t inputs = out.size();
+  append_steiner_points(out);
+  return out;
+}
+
+template <int D>
+void WellSpacedSet<D>::append_steiner_points(std::vector<Point<D>>& out) const {
+  const auto all = engine_->positions();
+  const std::size_t before = out.size();
   for (engine::VertexId v = 0; v < all.size(); ++v)
     if (engine_->vertex(v).alive && !engine_->vertex(v).is_input) out.push_back(all[v]);
-  std::sort(out.begin() + long(inputs), out.end());
-  return out;
+  std::sort(out.begin() + long(before), out.end());
 }
 template <int D>
 const Counters& WellSpacedSet<D>::counters() const {
@@ -547,10 +562,15 @@ Point<D> DynamicWellSpaced<D>::input_point(std::size_t id) const {
 
 template <int D>
 std::vector<Point<D>> DynamicWellSpaced<D>::points() const {
+  // One array of the output's size, the Steiner points mapped in place: the engine is at its largest
+  // while this runs (a one-shot build's peak was here, with three copies of the output).
   std::vector<Point<D>> out;
-  for (std::size_t id : set_.input_ids()) out.push_back(user_inputs_[id]);
-  const std::vector<Point<D>> unit = set_.output_points();
-  for (std::size_t k = out.size(); k < unit.size(); ++k) out.push_back(box_.to_user(unit[k]));
+  out.reserve(set_.input_count() + set_.steiner_count());
+  for (std::size_t id = 0; id < user_inputs_.size(); ++id)
+    if (set_.has_input(id)) out.push_back(user_inputs_[id]);
+  const std::size_t inputs = out.size();
+  set_.append_steiner_points(out);
+  for (std::size_t k = inputs; k < out.size(); ++k) out[k] = box_.to_user(out[k]);
   return out;
 }
 

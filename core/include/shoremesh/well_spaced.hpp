@@ -106,6 +106,8 @@ class WellSpacedSet {
   // Input points by increasing id, then the Steiner points in canonical order (sorted by coordinates,
   // so the list does not depend on the order of the input or on the edit history).
   std::vector<Point<D>> output_points() const;
+  // Its Steiner points, in that order, at the end of `out` (which the caller sized).
+  void append_steiner_points(std::vector<Point<D>>& out) const;
   const Counters& counters() const;
   // Bytes held by the live structures (quadtree, vertices, operations, read lists), measured by capacity.
   std::size_t memory_bytes() const;
