@@ -50,6 +50,7 @@ template <int D>
 void WellSpacedEngine<D>::reset() {
   vertices_.clear();
   positions_.clear();
+  filter_keys_.clear();
   ops_.clear();
   children_.clear();
   reads_.clear();
@@ -115,9 +116,9 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(s
   for (VertexId v = 0; v < input_count_; ++v) {
     vertices_[v].is_input = true;
     vertices_[v].alive = true;
-    vertices_[v].filter_key = v;
     ids[v] = v;
   }
+  if (recording_) filter_keys_ = ids;
   tree_.build(positions_, ids);
   for (NodeId n = 0; n < tree_.node_capacity(); ++n) {
     const auto& nd = tree_.node(n);
@@ -457,18 +458,20 @@ typename WellSpacedEngine<D>::VertexId WellSpacedEngine<D>::new_vertex(const Poi
   if (!free_vertices_.empty()) {
     const VertexId id = free_vertices_.back();
     free_vertices_.pop_back();
-    vx.filter_key = id;
     vertices_[id] = vx;
     positions_[id] = p;
+    if (recording_) filter_keys_[id] = id;
     return id;
   }
-  vx.filter_key = std::uint32_t(vertices_.size());
+  const VertexId id = VertexId(vertices_.size());
   if (!dynamic_) {
     room_for_one(vertices_);
     room_for_one(positions_);
+    if (recording_) room_for_one(filter_keys_);
   }
   vertices_.push_back(vx);
   positions_.push_back(p);
+  if (recording_) filter_keys_.push_back(id);
   return VertexId(vertices_.size() - 1);
 }
 
@@ -633,7 +636,7 @@ std::vector<std::tuple<Point<D>, int, std::uint32_t>> WellSpacedEngine<D>::opera
 template <int D>
 typename WellSpacedEngine<D>::MemoryBreakdown WellSpacedEngine<D>::memory_breakdown() const {
   MemoryBreakdown m;
-  m.vertices = vertices_.capacity() * sizeof(Vertex);
+  m.vertices = vertices_.capacity() * sizeof(Vertex) + filter_keys_.capacity() * sizeof(std::uint32_t);
   m.positions = positions_.capacity() * sizeof(Point<D>);
   m.operations = ops_.capacity() * sizeof(Op);
   m.children = children_.memory_bytes();

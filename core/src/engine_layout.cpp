@@ -46,7 +46,7 @@ void with_room(std::vector<T>& items) {
 // reader's operation and its vertex's position): at n = 1e6 each such load was a cache miss. Numbered
 // by place instead (vertices along the curve, each vertex's operations in time order after it), they
 // share cache lines. The ids are internal: only the references change, and the facet filters hash each
-// vertex's filter_key, which stays.
+// vertex's filter key (filter_keys_), which moves with it.
 template <int D>
 std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::renumber_vertices_by_place() {
   const std::size_t count = vertices_.size();
@@ -64,6 +64,7 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::renumbe
     if (id == kNoVertex) id = next++;  // free slots last
   permute_in_place(vertices_, new_id);
   permute_in_place(positions_, new_id);
+  permute_in_place(filter_keys_, new_id);
   for (Op& op : ops_)
     if (op.vertex != kNoVertex) op.vertex = new_id[op.vertex];
   for (VertexId& v : free_vertices_) v = new_id[v];
@@ -107,6 +108,7 @@ void WellSpacedEngine<D>::renumber_operations_by_place() {
   with_room(ops_);
   with_room(vertices_);
   with_room(positions_);
+  with_room(filter_keys_);
 }
 
 // Rewrites the children and reads pools with each operation's runs in operation order (after the

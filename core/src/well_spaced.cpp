@@ -289,10 +289,14 @@ DynamicWellSpaced<D>::DynamicWellSpaced(std::span<const Point<D>> user_points, c
     water_rings_ = water_now();
     if (std::any_of(water_rings_.begin(), water_rings_.end(), [](const auto& r) { return !r.empty(); })) {
       std::vector<std::vector<Point2>> rings(water_rings_.size());
-      for (std::size_t r = 0; r < rings.size(); ++r)
+      for (std::size_t r = 0; r < rings.size(); ++r) {
+        rings[r].reserve(water_rings_[r].size());
         for (const Point2& p : water_rings_[r]) rings[r].push_back(box_.to_unit(p));
+      }
       set_.engine().set_water(std::move(rings));
     }
+    // Only edits compare the rings with this copy.
+    if (purpose == BuildFor::OutputOnly) std::vector<std::vector<Point2>>().swap(water_rings_);
   }
   set_.build(unit, purpose);
   user_inputs_.assign(user_points.begin(), user_points.end());

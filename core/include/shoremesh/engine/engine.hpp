@@ -49,9 +49,6 @@ class WellSpacedEngine {
     OpId creator = engine::kNoOp;      // the fill that inserted this Steiner vertex; none for inputs
     OpId dispatch = engine::kNoOp;     // the one dispatch acting on it
     OpId first_fill = engine::kNoOp;   // its fills, linked by Op::next_fill (one per rank)
-    // What its facet bits hash (facet_filter.hpp): its id when it was made. Filters recorded before the
-    // build renumbered the vertices by place keep meaning the same vertices.
-    std::uint32_t filter_key = 0;
     bool is_input = false;
     bool alive = false;
   };
@@ -335,7 +332,7 @@ class WellSpacedEngine {
   // Returns the new id of each old vertex id.
   std::vector<VertexId> renumber_vertices_by_place();
   void renumber_operations_by_place();
-  engine::FacetFilter<D> facet_bits(VertexId w) const { return engine::FacetFilter<D>::of(vertices_[w].filter_key); }
+  engine::FacetFilter<D> facet_bits(VertexId w) const { return engine::FacetFilter<D>::of(filter_keys_[w]); }
   double squared_distance(VertexId a, VertexId b) const;
 
   DerivedParameters<D> params_;
@@ -343,6 +340,10 @@ class WellSpacedEngine {
   engine::Quadtree<D> tree_;
   std::vector<Vertex> vertices_;
   std::vector<Point<D>> positions_;     // by vertex id
+  // By vertex id, what its facet bits hash (facet_filter.hpp): its id when it was made, so that filters
+  // recorded before the build renumbered the vertices by place keep meaning the same vertices. Only
+  // updates read facets: empty after a one-shot build.
+  std::vector<std::uint32_t> filter_keys_;
   std::size_t input_count_ = 0;
   std::vector<Op> ops_;
   engine::BlockPool children_;  // each operation's run: children_count from children_begin
