@@ -86,6 +86,19 @@ double WellSpacedEngine<D>::squared_distance(VertexId a, VertexId b) const {
 template <int D>
 std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(std::span<const Point<D>> unit_points,
                                                                                   bool for_updates) {
+  return build(unit_points, nullptr, for_updates);
+}
+
+template <int D>
+std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(std::vector<Point<D>>&& unit_points,
+                                                                                  bool for_updates) {
+  return build(std::span<const Point<D>>(unit_points), &unit_points, for_updates);
+}
+
+template <int D>
+std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(std::span<const Point<D>> unit_points,
+                                                                                  std::vector<Point<D>>* own,
+                                                                                  bool for_updates) {
   reset();
   recording_ = for_updates;
   for (std::size_t i = 0; i < unit_points.size(); ++i)
@@ -106,10 +119,13 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(s
 
   input_count_ = unit_points.size();
   std::vector<VertexId> vertex_of_point(input_count_);
-  positions_.resize(input_count_);
-  for (VertexId v = 0; v < input_count_; ++v) {
-    positions_[v] = unit_points[along_curve[v]];
-    vertex_of_point[along_curve[v]] = v;
+  for (VertexId v = 0; v < input_count_; ++v) vertex_of_point[along_curve[v]] = v;
+  if (own) {
+    positions_ = std::move(*own);  // unit_points' array: not read from here on
+    engine_detail::permute_in_place(positions_, vertex_of_point);
+  } else {
+    positions_.resize(input_count_);
+    for (VertexId v = 0; v < input_count_; ++v) positions_[v] = unit_points[along_curve[v]];
   }
   vertices_.resize(input_count_);
   std::vector<VertexId> ids(input_count_);
@@ -168,7 +184,12 @@ typename WellSpacedEngine<D>::OpId WellSpacedEngine<D>::new_op(OpKind kind, Vert
     ops_[o] = op;
     return o;
   }
-  if (!dynamic_) room_for_one(ops_);
+  if (!dynamic_) {
+    room_for_one(ops_);
+    // The free slots never outnumber the slots: their list, which a one-shot build fills as its
+    // operations run, then never moves (a push_back would double it).
+    if (free_ops_.capacity() < ops_.capacity()) free_ops_.reserve(ops_.capacity());
+  }
   ops_.push_back(op);
   return OpId(ops_.size() - 1);
 }

@@ -3,6 +3,8 @@
 #include "shoremesh/engine/engine.hpp"
 #include "shoremesh/engine/spatial_order.hpp"
 
+#include "engine_internal.hpp"
+
 #include <algorithm>
 #include <vector>
 
@@ -10,24 +12,9 @@ namespace shoremesh {
 
 using namespace engine;
 
+using engine_detail::permute_in_place;
+
 namespace {
-// Moves item o of items to new_id[o], cycle by cycle (a copy would double the memory of the largest
-// arrays of the engine).
-template <class T>
-void permute_in_place(std::vector<T>& items, const std::vector<std::uint32_t>& new_id) {
-  std::vector<bool> placed(items.size(), false);
-  for (std::uint32_t start = 0; start < items.size(); ++start) {
-    if (placed[start]) continue;
-    T carried = items[start];
-    for (std::uint32_t from = start;;) {
-      const std::uint32_t to = new_id[from];
-      placed[to] = true;
-      std::swap(carried, items[to]);
-      if (to == start) break;
-      from = to;
-    }
-  }
-}
 // The items in an array with room for an eighth more (and a thousand): the room a pool keeps.
 template <class T>
 void with_room(std::vector<T>& items) {

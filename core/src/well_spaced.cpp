@@ -26,21 +26,31 @@ WellSpacedSet<D>& WellSpacedSet<D>::operator=(WellSpacedSet&&) noexcept = defaul
 
 template <int D>
 void WellSpacedSet<D>::build(std::span<const Point<D>> unit_points, BuildFor purpose) {
-  const std::vector<std::uint32_t> vertex_of_point = engine_->build(unit_points, purpose == BuildFor::Updates);
+  bind_inputs(engine_->build(unit_points, purpose == BuildFor::Updates), purpose);
+}
+
+template <int D>
+void WellSpacedSet<D>::build(std::vector<Point<D>>&& unit_points, BuildFor purpose) {
+  bind_inputs(engine_->build(std::move(unit_points), purpose == BuildFor::Updates), purpose);
+}
+
+template <int D>
+void WellSpacedSet<D>::bind_inputs(std::vector<std::uint32_t> vertex_of_point, BuildFor purpose) {
   if (purpose == BuildFor::OutputOnly) {
     // Nothing will be edited: no vertex -> id map (8 bytes per output vertex, allocated while the
     // engine is at its largest) and no room to grow.
-    input_vertex_.assign(vertex_of_point.begin(), vertex_of_point.end());
+    input_vertex_ = std::move(vertex_of_point);
     return;
   }
   // Both arrays get room to grow. Each add takes a new id, and a vertex numbered past the end of
   // input_id_ made it copy itself whole in the middle of that update: 51 ms at 2D n = 1e6, after about
   // 3,600 changes (bench/RESULTS.md). Room never written takes no physical memory.
-  input_vertex_.reserve(unit_points.size() + unit_points.size() / 2 + 1024);
+  const std::size_t n = vertex_of_point.size();
+  input_vertex_.reserve(n + n / 2 + 1024);
   input_vertex_.assign(vertex_of_point.begin(), vertex_of_point.end());
   input_id_.reserve(engine_->vertex_count() + engine_->vertex_count() / 2 + 1024);
   input_id_.resize(engine_->vertex_count());  // Steiner vertices may be numbered among the inputs
-  for (std::size_t i = 0; i < unit_points.size(); ++i) input_id_[vertex_of_point[i]] = i;
+  for (std::size_t i = 0; i < n; ++i) input_id_[vertex_of_point[i]] = i;
 }
 
 template <int D>
@@ -298,7 +308,7 @@ DynamicWellSpaced<D>::DynamicWellSpaced(std::span<const Point<D>> user_points, c
     // Only edits compare the rings with this copy.
     if (purpose == BuildFor::OutputOnly) std::vector<std::vector<Point2>>().swap(water_rings_);
   }
-  set_.build(unit, purpose);
+  set_.build(std::move(unit), purpose);
   user_inputs_.assign(user_points.begin(), user_points.end());
 }
 

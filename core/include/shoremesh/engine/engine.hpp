@@ -130,6 +130,8 @@ class WellSpacedEngine {
   // only updates read (reads, reader lists, children, facets, reach) and frees each operation once it
   // has run: apply() then throws std::logic_error.
   std::vector<VertexId> build(std::span<const Point<D>> unit_points, bool for_updates = true);
+  // The same, the points' array becoming the positions' (one copy of them fewer during the build).
+  std::vector<VertexId> build(std::vector<Point<D>>&& unit_points, bool for_updates = true);
   bool updatable() const { return recording_; }
 
   // PropagateWS: input edits applied to the live computation, which then equals build() on the new
@@ -234,6 +236,8 @@ class WellSpacedEngine {
     return (std::uint64_t(std::uint32_t(rank) ^ 0x80000000u) << 32) | color;
   }
   void reset();
+  // build(): `own`, when given, holds unit_points and becomes positions_.
+  std::vector<VertexId> build(std::span<const Point<D>> unit_points, std::vector<Point<D>>* own, bool for_updates);
   OpId new_op(OpKind kind, VertexId v, int rank, std::uint32_t color);
   // The agenda: operations keyed by time (rank, colour), executed in time order.
   void enqueue(OpId o);
