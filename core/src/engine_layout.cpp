@@ -3,6 +3,8 @@
 #include "shoremesh/engine/engine.hpp"
 #include "shoremesh/engine/spatial_order.hpp"
 
+#include "engine_internal.hpp"
+
 #include <algorithm>
 #include <vector>
 
@@ -10,24 +12,9 @@ namespace shoremesh {
 
 using namespace engine;
 
+using engine_detail::permute_in_place;
+
 namespace {
-// Moves item o of items to new_id[o], cycle by cycle (a copy would double the memory of the largest
-// arrays of the engine).
-template <class T>
-void permute_in_place(std::vector<T>& items, const std::vector<std::uint32_t>& new_id) {
-  std::vector<bool> placed(items.size(), false);
-  for (std::uint32_t start = 0; start < items.size(); ++start) {
-    if (placed[start]) continue;
-    T carried = items[start];
-    for (std::uint32_t from = start;;) {
-      const std::uint32_t to = new_id[from];
-      placed[to] = true;
-      std::swap(carried, items[to]);
-      if (to == start) break;
-      from = to;
-    }
-  }
-}
 // The items in an array with room for an eighth more (and a thousand): the room a pool keeps.
 template <class T>
 void with_room(std::vector<T>& items) {
@@ -46,7 +33,7 @@ void with_room(std::vector<T>& items) {
 // reader's operation and its vertex's position): at n = 1e6 each such load was a cache miss. Numbered
 // by place instead (vertices along the curve, each vertex's operations in time order after it), they
 // share cache lines. The ids are internal: only the references change, and the facet filters hash each
-// vertex's filter_key, which stays.
+// vertex's filter key (filter_keys_), which moves with it.
 template <int D>
 std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::renumber_vertices_by_place() {
   const std::size_t count = vertices_.size();
@@ -64,6 +51,7 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::renumbe
     if (id == kNoVertex) id = next++;  // free slots last
   permute_in_place(vertices_, new_id);
   permute_in_place(positions_, new_id);
+  permute_in_place(filter_keys_, new_id);
   for (Op& op : ops_)
     if (op.vertex != kNoVertex) op.vertex = new_id[op.vertex];
   for (VertexId& v : free_vertices_) v = new_id[v];
@@ -107,6 +95,7 @@ void WellSpacedEngine<D>::renumber_operations_by_place() {
   with_room(ops_);
   with_room(vertices_);
   with_room(positions_);
+  with_room(filter_keys_);
 }
 
 // Rewrites the children and reads pools with each operation's runs in operation order (after the

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -25,15 +26,31 @@ WellSpacedSet<D>& WellSpacedSet<D>::operator=(WellSpacedSet&&) noexcept = defaul
 
 template <int D>
 void WellSpacedSet<D>::build(std::span<const Point<D>> unit_points, BuildFor purpose) {
-  const std::vector<std::uint32_t> vertex_of_point = engine_->build(unit_points, purpose == BuildFor::Updates);
+  bind_inputs(engine_->build(unit_points, purpose == BuildFor::Updates), purpose);
+}
+
+template <int D>
+void WellSpacedSet<D>::build(std::vector<Point<D>>&& unit_points, BuildFor purpose) {
+  bind_inputs(engine_->build(std::move(unit_points), purpose == BuildFor::Updates), purpose);
+}
+
+template <int D>
+void WellSpacedSet<D>::bind_inputs(std::vector<std::uint32_t> vertex_of_point, BuildFor purpose) {
+  if (purpose == BuildFor::OutputOnly) {
+    // Nothing will be edited: no vertex -> id map (8 bytes per output vertex, allocated while the
+    // engine is at its largest) and no room to grow.
+    input_vertex_ = std::move(vertex_of_point);
+    return;
+  }
   // Both arrays get room to grow. Each add takes a new id, and a vertex numbered past the end of
   // input_id_ made it copy itself whole in the middle of that update: 51 ms at 2D n = 1e6, after about
   // 3,600 changes (bench/RESULTS.md). Room never written takes no physical memory.
-  input_vertex_.reserve(unit_points.size() + unit_points.size() / 2 + 1024);
+  const std::size_t n = vertex_of_point.size();
+  input_vertex_.reserve(n + n / 2 + 1024);
   input_vertex_.assign(vertex_of_point.begin(), vertex_of_point.end());
   input_id_.reserve(engine_->vertex_count() + engine_->vertex_count() / 2 + 1024);
   input_id_.resize(engine_->vertex_count());  // Steiner vertices may be numbered among the inputs
-  for (std::size_t i = 0; i < unit_points.size(); ++i) input_id_[vertex_of_point[i]] = i;
+  for (std::size_t i = 0; i < n; ++i) input_id_[vertex_of_point[i]] = i;
 }
 
 template <int D>
@@ -98,6 +115,7 @@ void WellSpacedSet<D>::check_new_point(const Point<D>& p, std::span<const std::s
 template <int D>
 std::vector<std::size_t> WellSpacedSet<D>::apply(std::span<const Edit<D>> edits, UpdateReport<D>* report,
                                                  std::span<const engine::WaterEdit> water) {
+  if (!engine_->updatable()) throw std::logic_error("the set was built for its output only: it cannot be updated");
   // Check everything first, in order, as if applied one by one: an error leaves the set untouched.
   std::vector<std::size_t> removed;
   std::vector<Point<D>> added;
@@ -190,13 +208,20 @@ template <int D>
 std::vector<Point<D>> WellSpacedSet<D>::output_points() const {
   const auto all = engine_->positions();
   std::vector<Point<D>> out;
+  out.reserve(input_count() + steiner_count());
   for (std::uint32_t v : input_vertex_)
     if (v != engine::kNoVertex) out.push_back(all[v]);
-  const std::size_t inputs = out.size();
+  append_steiner_points(out);
+  return out;
+}
+
+template <int D>
+void WellSpacedSet<D>::append_steiner_points(std::vector<Point<D>>& out) const {
+  const auto all = engine_->positions();
+  const std::size_t before = out.size();
   for (engine::VertexId v = 0; v < all.size(); ++v)
     if (engine_->vertex(v).alive && !engine_->vertex(v).is_input) out.push_back(all[v]);
-  std::sort(out.begin() + long(inputs), out.end());
-  return out;
+  std::sort(out.begin() + long(before), out.end());
 }
 template <int D>
 const Counters& WellSpacedSet<D>::counters() const {
@@ -274,12 +299,16 @@ DynamicWellSpaced<D>::DynamicWellSpaced(std::span<const Point<D>> user_points, c
     water_rings_ = water_now();
     if (std::any_of(water_rings_.begin(), water_rings_.end(), [](const auto& r) { return !r.empty(); })) {
       std::vector<std::vector<Point2>> rings(water_rings_.size());
-      for (std::size_t r = 0; r < rings.size(); ++r)
+      for (std::size_t r = 0; r < rings.size(); ++r) {
+        rings[r].reserve(water_rings_[r].size());
         for (const Point2& p : water_rings_[r]) rings[r].push_back(box_.to_unit(p));
+      }
       set_.engine().set_water(std::move(rings));
     }
+    // Only edits compare the rings with this copy.
+    if (purpose == BuildFor::OutputOnly) std::vector<std::vector<Point2>>().swap(water_rings_);
   }
-  set_.build(unit, purpose);
+  set_.build(std::move(unit), purpose);
   user_inputs_.assign(user_points.begin(), user_points.end());
 }
 
@@ -547,10 +576,15 @@ Point<D> DynamicWellSpaced<D>::input_point(std::size_t id) const {
 
 template <int D>
 std::vector<Point<D>> DynamicWellSpaced<D>::points() const {
+  // One array of the output's size, the Steiner points mapped in place: the engine is at its largest
+  // while this runs (a one-shot build's peak was here, with three copies of the output).
   std::vector<Point<D>> out;
-  for (std::size_t id : set_.input_ids()) out.push_back(user_inputs_[id]);
-  const std::vector<Point<D>> unit = set_.output_points();
-  for (std::size_t k = out.size(); k < unit.size(); ++k) out.push_back(box_.to_user(unit[k]));
+  out.reserve(set_.input_count() + set_.steiner_count());
+  for (std::size_t id = 0; id < user_inputs_.size(); ++id)
+    if (set_.has_input(id)) out.push_back(user_inputs_[id]);
+  const std::size_t inputs = out.size();
+  set_.append_steiner_points(out);
+  for (std::size_t k = inputs; k < out.size(); ++k) out[k] = box_.to_user(out[k]);
   return out;
 }
 

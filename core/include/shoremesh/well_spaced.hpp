@@ -85,6 +85,8 @@ class WellSpacedSet {
   // Runs StableWS on `unit_points` (all in [0,1]^D, finite, pairwise distinct; otherwise InputError
   // naming the point's index). Replaces any previous state.
   void build(std::span<const Point<D>> unit_points, BuildFor purpose = BuildFor::Updates);
+  // The same, the points' array becoming the engine's positions (one copy fewer during the build).
+  void build(std::vector<Point<D>>&& unit_points, BuildFor purpose = BuildFor::Updates);
 
   // Dynamic updates. add refuses (InputError) a point outside [0,1]^D, non-finite, or equal to an input
   // point; remove and move refuse an unknown id, and remove the last input point. After an error the set
@@ -106,6 +108,8 @@ class WellSpacedSet {
   // Input points by increasing id, then the Steiner points in canonical order (sorted by coordinates,
   // so the list does not depend on the order of the input or on the edit history).
   std::vector<Point<D>> output_points() const;
+  // Its Steiner points, in that order, at the end of `out` (which the caller sized).
+  void append_steiner_points(std::vector<Point<D>>& out) const;
   const Counters& counters() const;
   // Bytes held by the live structures (quadtree, vertices, operations, read lists), measured by capacity.
   std::size_t memory_bytes() const;
@@ -120,6 +124,8 @@ class WellSpacedSet {
   void check_new_point(const Point<D>& p, std::span<const std::size_t> removed_ids,
                        std::span<const Point<D>> added) const;
   std::uint32_t vertex_of(std::size_t id) const;  // InputError for an unknown id
+  // After a build: the maps between input ids and the engine's vertices.
+  void bind_inputs(std::vector<std::uint32_t> vertex_of_point, BuildFor purpose);
 
   std::unique_ptr<WellSpacedEngine<D>> engine_;
   std::vector<std::uint32_t> input_vertex_;  // by id: the engine's vertex, or none once removed

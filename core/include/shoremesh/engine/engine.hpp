@@ -49,9 +49,6 @@ class WellSpacedEngine {
     OpId creator = engine::kNoOp;      // the fill that inserted this Steiner vertex; none for inputs
     OpId dispatch = engine::kNoOp;     // the one dispatch acting on it
     OpId first_fill = engine::kNoOp;   // its fills, linked by Op::next_fill (one per rank)
-    // What its facet bits hash (facet_filter.hpp): its id when it was made. Filters recorded before the
-    // build renumbered the vertices by place keep meaning the same vertices.
-    std::uint32_t filter_key = 0;
     bool is_input = false;
     bool alive = false;
   };
@@ -133,6 +130,8 @@ class WellSpacedEngine {
   // only updates read (reads, reader lists, children, facets, reach) and frees each operation once it
   // has run: apply() then throws std::logic_error.
   std::vector<VertexId> build(std::span<const Point<D>> unit_points, bool for_updates = true);
+  // The same, the points' array becoming the positions' (one copy of them fewer during the build).
+  std::vector<VertexId> build(std::vector<Point<D>>&& unit_points, bool for_updates = true);
   bool updatable() const { return recording_; }
 
   // PropagateWS: input edits applied to the live computation, which then equals build() on the new
@@ -237,6 +236,8 @@ class WellSpacedEngine {
     return (std::uint64_t(std::uint32_t(rank) ^ 0x80000000u) << 32) | color;
   }
   void reset();
+  // build(): `own`, when given, holds unit_points and becomes positions_.
+  std::vector<VertexId> build(std::span<const Point<D>> unit_points, std::vector<Point<D>>* own, bool for_updates);
   OpId new_op(OpKind kind, VertexId v, int rank, std::uint32_t color);
   // The agenda: operations keyed by time (rank, colour), executed in time order.
   void enqueue(OpId o);
@@ -335,7 +336,7 @@ class WellSpacedEngine {
   // Returns the new id of each old vertex id.
   std::vector<VertexId> renumber_vertices_by_place();
   void renumber_operations_by_place();
-  engine::FacetFilter<D> facet_bits(VertexId w) const { return engine::FacetFilter<D>::of(vertices_[w].filter_key); }
+  engine::FacetFilter<D> facet_bits(VertexId w) const { return engine::FacetFilter<D>::of(filter_keys_[w]); }
   double squared_distance(VertexId a, VertexId b) const;
 
   DerivedParameters<D> params_;
@@ -343,6 +344,10 @@ class WellSpacedEngine {
   engine::Quadtree<D> tree_;
   std::vector<Vertex> vertices_;
   std::vector<Point<D>> positions_;     // by vertex id
+  // By vertex id, what its facet bits hash (facet_filter.hpp): its id when it was made, so that filters
+  // recorded before the build renumbered the vertices by place keep meaning the same vertices. Only
+  // updates read facets: empty after a one-shot build.
+  std::vector<std::uint32_t> filter_keys_;
   std::size_t input_count_ = 0;
   std::vector<Op> ops_;
   engine::BlockPool children_;  // each operation's run: children_count from children_begin
