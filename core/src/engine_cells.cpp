@@ -329,10 +329,10 @@ void WellSpacedEngine<D>::CellSearch::clip() {
     // Superior shore points a shore vertex's reach ends at 2 beta NN, 2.8 times its first box, which
     // steps of 1.5 took 2.9 searches to reach; steps of 2 take 22 % fewer searches over all cells for
     // 4 % more leaves. Which vertices are offered is all the schedule changes: each within the reach
-    // is clipped, in (d2, position) order, whatever box first found it. With the cell cache (updates,
-    // and builds for them) the box searched is also what the cell's entry lists and its reads cover:
-    // there steps of 2 read 3 % more leaves per updated cell, and the median update (bench_dynamic 2D
-    // 10^5) took about 4 % longer, so it grows by 1.5 as before.
+    // is clipped, in (d2, position) order, whatever box first found it. With the cell cache (an update's
+    // propagation) the box searched is also what the cell's entry lists and its reads cover: there
+    // steps of 2 read 3 % more leaves per updated cell, and the median update (bench_dynamic 2D 10^5)
+    // took about 4 % longer, so it grows by 1.5 as before.
     searched = std::min(std::sqrt(need2) * (1 + kReachMargin), (e.caching_ ? 1.5 : 2.0) * searched);
     search(searched);
   }
