@@ -169,9 +169,12 @@ class Quadtree {
     return for_each_occupied_leaf(box, seen, std::forward<F>(f), [](int, const std::array<std::int64_t, D>&) { return true; });
   }
   // The same, skipping every node that `keep(level, cell)` turns down, with its subtree (cell_box
-  // gives its closed box).
+  // gives its closed box). `near`: a leaf near the box (a search about a vertex: the vertex's leaf),
+  // or kNoNode: the node over its cell at the level the search starts at is found from it by its
+  // parents instead of a cell-map look-up. Any id will do: one that is not a leaf is ignored, and a
+  // leaf far from the box only goes unused.
   template <class F, class Keep>
-  std::size_t for_each_occupied_leaf(const Box& box, const Box& seen, F&& f, Keep&& keep) const;
+  std::size_t for_each_occupied_leaf(const Box& box, const Box& seen, F&& f, Keep&& keep, NodeId near = kNoNode) const;
   // Whether a search of the box [center - half, center + half] that already searched it counts `leaf`
   // as seen (the test for_each_occupied_leaf applies to its `seen` box).
   bool leaf_meets_box(NodeId leaf, const Point<D>& center, double half) const {
@@ -338,7 +341,7 @@ class Quadtree {
 
 template <int D>
 template <class F, class Keep>
-std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen, F&& f, Keep&& keep) const {
+std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen, F&& f, Keep&& keep, NodeId near) const {
   Point<D> lo, hi;
   const int level = box_level(box.lo, box.hi, lo, hi);
   // Per level L and axis i, the cell indices j whose closed cell [j, j+1] 2^-L meets the box
@@ -388,7 +391,15 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
     found[count++] = n;
     __builtin_prefetch(pool_.data() + search_[n].vertices);
   };
-  Item stack[kMaxLevel * kChildren + 32];
+  // The nodes to expand, first in first out: a node's children's block, prefetched when it was queued,
+  // is read only after the nodes queued before it (a stack reads it at once, and the descent waits on
+  // that miss). The order the leaves are found in is all that changes.
+  static thread_local std::vector<Item> queue;
+  std::size_t queued = 0;
+  auto enqueue = [&](const Item& item) {
+    if (queued == queue.size()) queue.resize(2 * queued + 64);
+    queue[queued++] = item;
+  };
   // From the first cell whose closed box meets the box: when lo lies exactly on a cell boundary, the
   // cell below it touches the box too, and its leaves count as seen in the next, larger search.
   Coords first;
@@ -402,8 +413,23 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
     NodeId node;
     int level;
   };
-  Top tops[27];
+  Top tops[28];
   int top_count = 0;
+  // The hint, if it is a leaf: the node over its cell at the box's level is its ancestor there, or the
+  // leaf itself when it is coarser. Either way a fact top_of may use like one it looked up (a cell of
+  // the same parent, or one inside the coarser leaf), whether or not that cell meets the box.
+  if (near < search_.size() && level > 0 && search_[near].first_child == kNoNode) {
+    const Record& r = nodes_[near];
+    if (r.level >= level) {
+      NodeId n = near;
+      for (int l = r.level; l > level; --l) n = search_[n].parent;
+      Coords cell;
+      for (int i = 0; i < D; ++i) cell[i] = r.coord(i) >> (r.level - level);
+      tops[top_count++] = Top{cell, n, level};
+    } else if (r.level >= 0) {
+      tops[top_count++] = Top{r.coords(), near, r.level};
+    }
+  }
   auto top_of = [&](const Coords& cell, int& top_level) -> NodeId {
     for (int t = 0; t < top_count; ++t) {
       const Top& o = tops[t];
@@ -422,7 +448,7 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
     return n;
   };
   // The nodes over the box's cells first, their entries and children's blocks fetched together, then
-  // one descent from each in turn (the stack takes them in reverse).
+  // the descent from all of them, level by level.
   Item starts[27];
   int start_count = 0;
   for_each_index_in_box<D>(first, last, [&](const Coords& cell) {
@@ -441,10 +467,9 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
   });
   for (int t = 0; t < start_count; ++t)
     if (const NodeId children = search_[starts[t].node].first_child; children != kNoNode) __builtin_prefetch(&search_[children]);
-  int top = 0;
-  for (int t = start_count; t-- > 0;) stack[top++] = starts[t];
-  while (top > 0) {
-    const Item it = stack[--top];
+  for (int t = 0; t < start_count; ++t) enqueue(starts[t]);
+  for (std::size_t head = 0; head < queued; ++head) {
+    const Item it = queue[head];
     if (!keep(it.level, it.c)) continue;
     const SearchEntry& e = search_[it.node];
     const Ranges& r = ranges_at(it.level);
@@ -475,10 +500,10 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
       if (grandchildren == kNoNode) {
         if (!meets_seen(rc, cc) && keep(it.level + 1, cc)) report(child_node);
       } else {
-        // Its children's block is read when it leaves the stack: fetched meanwhile, and for its
+        // Its children's block is read when it leaves the queue: fetched meanwhile, and for its
         // siblings in parallel (the descent's time goes mostly to these misses).
         __builtin_prefetch(&search_[grandchildren]);
-        stack[top++] = Item{child_node, it.level + 1, cc};
+        enqueue(Item{child_node, it.level + 1, cc});
       }
     }
   }
