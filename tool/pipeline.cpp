@@ -1,5 +1,8 @@
 #include "pipeline.hpp"
 
+#include <boost/geometry.hpp>
+#include <boost/geometry/index/rtree.hpp>
+
 #include <algorithm>
 #include <cctype>
 #include <array>
@@ -227,57 +230,10 @@ void write_preview(const Mesh<D>& mesh, const std::filesystem::path& path, const
 }
 
 namespace {
-
-// The points in square cells (a counting sort: linear, where packing an R-tree of a million points took a
-// tenth of a second), for the few circumcircles quality_numbers looks into.
-class PointGrid {
- public:
-  explicit PointGrid(std::span<const Point2> points) : points_(points) {
-    Point2 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()}, hi{-lo[0], -lo[1]};
-    for (const Point2& p : points)
-      for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
-    origin_ = lo;
-    // About two points a cell over the points' box.
-    const double w = std::max(hi[0] - lo[0], 0.0), h = std::max(hi[1] - lo[1], 0.0);
-    const double cells = std::max(1.0, static_cast<double>(points.size()) / 2);
-    cell_ = std::max(std::sqrt(w * h / cells), std::max(w, h) / cells);
-    if (!(cell_ > 0) || !std::isfinite(cell_)) cell_ = 1;
-    nx_ = std::min<std::size_t>(std::size_t(w / cell_) + 1, 1u << 20);
-    ny_ = std::min<std::size_t>(std::size_t(h / cell_) + 1, 1u << 20);
-    first_.assign(nx_ * ny_ + 1, 0);
-    for (const Point2& p : points) ++first_[cell_of(p) + 1];
-    for (std::size_t c = 0; c + 1 < first_.size(); ++c) first_[c + 1] += first_[c];
-    items_.resize(points.size());
-    std::vector<std::uint32_t> next(first_.begin(), first_.end() - 1);
-    for (std::uint32_t i = 0; i < points.size(); ++i) items_[next[cell_of(points[i])]++] = i;
-  }
-  // Whether f holds for a point in the box [lo, hi] (it may be asked of points near the box too).
-  template <class F>
-  bool any_near(const Point2& lo, const Point2& hi, F&& f) const {
-    const std::size_t x0 = column(lo[0]), x1 = column(hi[0]), y0 = row(lo[1]), y1 = row(hi[1]);
-    for (std::size_t y = y0; y <= y1; ++y)
-      for (std::size_t x = x0; x <= x1; ++x)
-        for (std::uint32_t k = first_[y * nx_ + x]; k < first_[y * nx_ + x + 1]; ++k)
-          if (f(points_[items_[k]])) return true;
-    return false;
-  }
-
- private:
-  std::size_t index(double v, double o, std::size_t n) const {
-    const double t = (v - o) / cell_;
-    return !(t > 0) ? 0 : std::min(n - 1, static_cast<std::size_t>(std::min(t, 1e18)));
-  }
-  std::size_t column(double x) const { return index(x, origin_[0], nx_); }
-  std::size_t row(double y) const { return index(y, origin_[1], ny_); }
-  std::size_t cell_of(const Point2& p) const { return row(p[1]) * nx_ + column(p[0]); }
-
-  std::span<const Point2> points_;
-  Point2 origin_{};
-  double cell_ = 1;
-  std::size_t nx_ = 1, ny_ = 1;
-  std::vector<std::uint32_t> first_, items_;
-};
-
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+using BPoint = bg::model::point<double, 2, bg::cs::cartesian>;
+using BBox = bg::model::box<BPoint>;
 }  // namespace
 
 // The elements below the bound of a mesh with rings: those the shore's constraints made and the others,
@@ -288,20 +244,26 @@ static void shore_quality(const Mesh<2>& mesh, std::span<const Element<2>> eleme
   // hidden behind the shore, so they are not Delaunay) and the others. The points in a grid (made at
   // the first element below the bound): a fine mesh near a detailed shore has thousands of them, each
   // checked against a million points otherwise.
-  std::optional<PointGrid> index;
+  std::optional<bgi::rtree<BPoint, bgi::quadratic<16>>> index;
   std::vector<std::pair<ElementCorners<2>, ElementShape<2>>> below;  // the elements below the bound
   for (const auto& e : elements) {
     const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
     if (radius_edge<2>(c) <= rho) continue;  // the shape's ratio, without its angles
     const ElementShape<2> shape = element_shape<2>(c);
     below.emplace_back(c, shape);
-    if (!index) index.emplace(mesh.points());
+    if (!index) {
+      std::vector<BPoint> all;
+      all.reserve(mesh.points().size());
+      for (const Point2& p : mesh.points()) all.emplace_back(p[0], p[1]);
+      index.emplace(all.begin(), all.end());
+    }
     const double radius = std::hypot(c[0][0] - shape.circumcentre[0], c[0][1] - shape.circumcentre[1]);
     const Point2& o = shape.circumcentre;
     // Strictly inside the circle (by more than its rounding): such a point is in the box about it.
-    const bool hides = index->any_near({o[0] - radius, o[1] - radius}, {o[0] + radius, o[1] + radius}, [&](const Point2& p) {
-      return std::hypot(p[0] - o[0], p[1] - o[1]) < radius * (1 - 1e-9);
-    });
+    bool hides = false;
+    for (auto it = index->qbegin(bgi::intersects(BBox(BPoint(o[0] - radius, o[1] - radius), BPoint(o[0] + radius, o[1] + radius))));
+         it != index->qend() && !hides; ++it)
+      hides = std::hypot(bg::get<0>(*it) - o[0], bg::get<1>(*it) - o[1]) < radius * (1 - 1e-9);
     ++(hides ? q.shore_below_bound : q.interior_below_bound);
   }
   // Those near an input corner sharper than 60 degrees (core: sharp_corners, docs/conforming.md "Where

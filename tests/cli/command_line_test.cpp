@@ -90,8 +90,9 @@ TEST(CommandLine, BadInputsExitWithOneAndNameTheLine) {
 TEST(CommandLine, ProgressBarOnATerminalOnly) {
   if (std::system("command -v script >/dev/null 2>&1") != 0) GTEST_SKIP() << "util-linux script not installed";
   TempDir dir;
-  // Large enough that StableWS is still running when the line is first drawn (after about a second).
-  write_file(dir / "big.csv", random_points(25000, 1000, 1000, 8));
+  // Large enough, on one thread, that StableWS is still running when the line is first drawn (after
+  // about a second; 25,000 points on two threads finished before it on an idle machine).
+  write_file(dir / "big.csv", random_points(60000, 1000, 1000, 8));
   auto on_terminal = [&](const std::string& args) {
     const std::string inner = quote(SHOREMESH_BINARY) + " " + args;
     const std::string cmd = "cd " + quote(dir.path().string()) + " && script -qec " + quote(inner) + " /dev/null >" +
@@ -99,8 +100,8 @@ TEST(CommandLine, ProgressBarOnATerminalOnly) {
     EXPECT_EQ(std::system(cmd.c_str()), 0) << args;
     return read_file(dir / "tty");
   };
-  EXPECT_THAT(on_terminal("mesh big.csv -o big.msh"), HasSubstr("] 2/5 StableWS on 25000 points"));
-  EXPECT_THAT(on_terminal("mesh --quiet big.csv -o big.msh"), ::testing::Not(HasSubstr("StableWS on")));
+  EXPECT_THAT(on_terminal("mesh big.csv -o big.msh --threads 1"), HasSubstr("] 2/5 StableWS on 60000 points"));
+  EXPECT_THAT(on_terminal("mesh --quiet big.csv -o big.msh --threads 1"), ::testing::Not(HasSubstr("StableWS on")));
 }
 
 }  // namespace
