@@ -16,6 +16,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include "shoremesh/error.hpp"
+#include "shoremesh/point_table.hpp"
 #include "shoremesh/io/dem.hpp"
 #include "shoremesh/io/open_boundary.hpp"
 #include "shoremesh/io/soundings.hpp"
@@ -272,17 +273,9 @@ static void shore_quality(const Mesh<2>& mesh, std::span<const Element<2>> eleme
   q.sharp_corners = corners.size();
   // A corner whose water lies outside it (a spike of land): its apex's water angle, the sum of the
   // mesh's angles there, is reflex. The apexes sorted, each with its sum: a few against every corner.
-  std::vector<std::pair<Point2, double>> apex_angle;
-  for (const SharpCorner& c : corners) apex_angle.emplace_back(c.apex, 0.0);
-  std::sort(apex_angle.begin(), apex_angle.end());
-  apex_angle.erase(std::unique(apex_angle.begin(), apex_angle.end(),
-                               [](const auto& a, const auto& b) { return a.first == b.first; }),
-                   apex_angle.end());
-  auto apex_at = [&](const Point2& p) -> double* {
-    const auto it = std::lower_bound(apex_angle.begin(), apex_angle.end(), p,
-                                     [](const auto& a, const Point2& x) { return a.first < x; });
-    return it != apex_angle.end() && it->first == p ? &it->second : nullptr;
-  };
+  PointTable<double> apex_angle;
+  for (const SharpCorner& c : corners) apex_angle.add(c.apex, 0.0);
+  apex_angle.seal();
   auto angles_of = [](const ElementCorners<2>& c) {
     std::array<double, 3> a{};
     for (std::size_t i = 0; i < 3; ++i) {
@@ -296,9 +289,9 @@ static void shore_quality(const Mesh<2>& mesh, std::span<const Element<2>> eleme
     for (const auto& e : elements) {
       const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
       for (std::size_t i = 0; i < 3; ++i)
-        if (double* sum = apex_at(c[i])) *sum += angles_of(c)[i];
+        if (double* sum = apex_angle.find(c[i])) *sum += angles_of(c)[i];
     }
-  for (const SharpCorner& c : corners) q.sharp_corners_of_land += *apex_at(c.apex) > std::numbers::pi;
+  for (const SharpCorner& c : corners) q.sharp_corners_of_land += apex_angle.at(c.apex) > std::numbers::pi;
   double worst_elsewhere = std::numeric_limits<double>::infinity();
   for (const auto& [c, shape] : below) {
     if (sharp_corner_at(c, corners)) {

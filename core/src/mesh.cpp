@@ -2,6 +2,7 @@
 // coordinates to vertex handles so that the points a dynamic update names are found in O(1).
 // All of CGAL's heavy templates live in this translation unit.
 #include "shoremesh/mesh.hpp"
+#include "shoremesh/point_table.hpp"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Constrained_triangulation_face_base_2.h>
@@ -281,33 +282,6 @@ void changed_segments(const Domain2& before, const Domain2& after, const Changed
                       std::back_inserter(inserted));
 }
 
-// Values by point for a set of points known up front, as a sorted array searched by halving: a mesh's
-// ring vertices, looked up once per mesh vertex, without a node-based map's allocation per point.
-template <class V>
-class PointTable {
- public:
-  PointTable() = default;
-  // Call add for each point, then seal; a point added twice is kept once.
-  void add(const Point2& p) { slots_.push_back({p, V()}); }
-  void seal() {
-    std::sort(slots_.begin(), slots_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    slots_.erase(std::unique(slots_.begin(), slots_.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
-                 slots_.end());
-  }
-  bool empty() const { return slots_.empty(); }
-  V* find(const Point2& p) {
-    const auto it = std::lower_bound(slots_.begin(), slots_.end(), p, [](const auto& s, const Point2& q) { return s.first < q; });
-    return it != slots_.end() && it->first == p ? &it->second : nullptr;
-  }
-  const V& at(const Point2& p) const {
-    const V* v = const_cast<PointTable*>(this)->find(p);
-    if (!v) throw std::out_of_range("PointTable::at: no such point");
-    return *v;
-  }
-
- private:
-  std::vector<std::pair<Point2, V>> slots_;
-};
 
 }  // namespace
 
