@@ -66,8 +66,8 @@ bool WellSpacedEngine<D>::reuse_cell(OpId o, const CachedCell& c, std::uint64_t 
   serial_.hood.nearest = c.nearest;
   serial_.hood.candidates = c.candidates;
   serial_.covering = c.covering;  // registered by its commit
-  ops_[o].depends2 = ops_[o].inserted_depends2 = c.depends2;
-  ops_[o].reach = c.reach;
+  recorded_ops_[o].depends2 = recorded_ops_[o].inserted_depends2 = c.depends2;
+  recorded_ops_[o].reach = c.reach;
   return true;
 }
 
@@ -81,7 +81,7 @@ const typename WellSpacedEngine<D>::CachedCell* WellSpacedEngine<D>::cached_neig
 
 template <int D>
 void WellSpacedEngine<D>::store_cell(OpId o, VertexId v, const Point<D>& p, double searched) {
-  const float depends2 = ops_[o].depends2;
+  const float depends2 = recorded_ops_[o].depends2;
   // The search must have seen every vertex within the dependency ball, born or not.
   if (serial_.cell.had_vertex_on_plane() || !(double(depends2) <= searched * searched)) {
     forget_cell(v);
@@ -101,7 +101,7 @@ void WellSpacedEngine<D>::store_cell(OpId o, VertexId v, const Point<D>& p, doub
     if (engine::squared_distance<double, D>(u.position, p) <= double(depends2))
       c.valid_until = std::min(c.valid_until, u.birth);
   c.depends2 = depends2;
-  c.reach = ops_[o].reach;
+  c.reach = recorded_ops_[o].reach;
   c.covering = serial_.covering;  // record_reads(o, p, searched) just left them there
   c.nearest = serial_.hood.nearest;
   c.searched = searched;

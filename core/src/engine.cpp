@@ -49,9 +49,11 @@ WellSpacedEngine<D>::~WellSpacedEngine() = default;
 template <int D>
 void WellSpacedEngine<D>::reset() {
   vertices_.clear();
+  vertex_ops_.clear();
   positions_.clear();
   filter_keys_.clear();
-  ops_.clear();
+  lean_ops_.clear();
+  recorded_ops_.clear();
   children_.clear();
   reads_.clear();
   readers_.clear();
@@ -134,7 +136,10 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(s
     vertices_[v].alive = true;
     ids[v] = v;
   }
-  if (recording_) filter_keys_ = ids;
+  if (recording_) {
+    filter_keys_ = ids;
+    vertex_ops_.resize(input_count_);
+  }
   tree_.build(positions_, ids);
   for (NodeId n = 0; n < tree_.node_capacity(); ++n) {
     const auto& nd = tree_.node(n);
@@ -151,7 +156,7 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(s
   for (VertexId v = 0; v < input_count_; ++v) {
     const int rank = ranks_.rank_of_length(tree_.approximate_nn(vertices_[v].leaf));
     const OpId o = new_op(OpKind::Dispatch, v, rank, 0);
-    vertices_[v].dispatch = o;
+    if (recording_) vertex_ops_[v].dispatch = o;
     mark_fresh(o);
   }
   // StableWS is a propagation in which every operation is fresh.
@@ -173,30 +178,33 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(s
 template <int D>
 typename WellSpacedEngine<D>::OpId WellSpacedEngine<D>::new_op(OpKind kind, VertexId v, int rank,
                                                                std::uint32_t color) {
-  Op op;
-  op.kind = kind;
-  op.vertex = v;
-  op.rank = std::int16_t(rank);
-  op.color = std::uint16_t(color);
-  if (!free_ops_.empty()) {
-    const OpId o = free_ops_.back();
-    free_ops_.pop_back();
-    ops_[o] = op;
-    return o;
-  }
-  if (!dynamic_) {
-    room_for_one(ops_);
-    // The free slots never outnumber the slots: their list, which a one-shot build fills as its
-    // operations run, then never moves (a push_back would double it).
-    if (free_ops_.capacity() < ops_.capacity()) free_ops_.reserve(ops_.capacity());
-  }
-  ops_.push_back(op);
-  return OpId(ops_.size() - 1);
+  auto place = [&](auto& ops) {
+    typename std::remove_reference_t<decltype(ops)>::value_type item{};
+    item.kind = kind;
+    item.vertex = v;
+    item.rank = std::int16_t(rank);
+    item.color = std::uint16_t(color);
+    if (!free_ops_.empty()) {
+      const OpId o = free_ops_.back();
+      free_ops_.pop_back();
+      ops[o] = item;
+      return o;
+    }
+    if (!dynamic_) {
+      room_for_one(ops);
+      // The free slots never outnumber the slots: their list, which a one-shot build fills as its
+      // operations run, then never moves (a push_back would double it).
+      if (free_ops_.capacity() < ops.capacity()) free_ops_.reserve(ops.capacity());
+    }
+    ops.push_back(item);
+    return OpId(ops.size() - 1);
+  };
+  return recording_ ? place(recorded_ops_) : place(lean_ops_);
 }
 
 template <int D>
 void WellSpacedEngine<D>::enqueue(OpId o) {
-  Op& op = ops_[o];
+  Op& op = op_at(o);
   if (op.flags & kQueued) return;
   op.flags |= kQueued;
   agenda_[agenda_slot(op.rank, op.color)].push_back(o);
@@ -222,20 +230,20 @@ std::size_t WellSpacedEngine<D>::agenda_slot(int rank, std::uint32_t color) {
 
 template <int D>
 void WellSpacedEngine<D>::mark_fresh(OpId o) {
-  ops_[o].flags |= kFresh;
+  op_at(o).flags |= kFresh;
   enqueue(o);
 }
 
 template <int D>
 void WellSpacedEngine<D>::mark_obsolete(OpId o) {
-  if (ops_[o].flags & kDead) return;
-  ops_[o].flags |= kObsolete;
+  if (op_at(o).flags & kDead) return;
+  op_at(o).flags |= kObsolete;
   enqueue(o);
 }
 
 template <int D>
 void WellSpacedEngine<D>::mark_redo(OpId o) {
-  Op& op = ops_[o];
+  Op& op = op_at(o);
   // Also when obsolete: a fill whose requesters all went away may be asked for again before its time,
   // and must then run again if what it read changed meanwhile.
   if ((op.flags & kDead) || !(op.flags & kExecuted)) return;
@@ -248,16 +256,16 @@ void WellSpacedEngine<D>::mark_readers_at(VertexId w, const Point<D>& p, NodeId 
                                           std::uint32_t color) {
   const bool inserted = change == VertexChange::Inserted;
   const auto bits = facet_bits(w);
-  // The lists of the coarse nodes hold hundreds of readers each, scattered over ops_ (an array too large
+  // The lists of the coarse nodes hold hundreds of readers each, scattered over recorded_ops_ (an array too large
   // for the caches at 10^6 inputs): each one's Op is fetched a few entries ahead.
   constexpr std::size_t kAhead = 8;
   for (NodeId n = leaf; n != kNoNode; n = tree_.parent(n)) {
     const std::span<const OpId> list = readers_.list(n);
-    for (std::size_t k = 0; k < std::min(kAhead, list.size()); ++k) __builtin_prefetch(&ops_[list[k]]);
+    for (std::size_t k = 0; k < std::min(kAhead, list.size()); ++k) __builtin_prefetch(&recorded_ops_[list[k]]);
     for (std::size_t k = 0; k < list.size(); ++k) {
-      if (k + kAhead < list.size()) __builtin_prefetch(&ops_[list[k + kAhead]]);
+      if (k + kAhead < list.size()) __builtin_prefetch(&recorded_ops_[list[k + kAhead]]);
       const OpId o = list[k];
-      const Op& op = ops_[o];
+      const RecordedOp& op = recorded_ops_[o];
       if (op.rank < rank || (op.rank == rank && op.color <= color)) continue;
       if (!inserted && !op.facets.may_hold(bits)) continue;
       const Point<D>& c = positions_[op.vertex];
@@ -278,7 +286,7 @@ template <int D>
 void WellSpacedEngine<D>::record_facets(OpId o, const Worker& wk) {
   auto facets = facet_bits(wk.hood.nearest);
   for (VertexId w : wk.neighbours) facets.add(facet_bits(w));
-  ops_[o].facets = facets;
+  recorded_ops_[o].facets = facets;
 }
 
 template <int D>
@@ -303,9 +311,9 @@ void WellSpacedEngine<D>::propagate(PropagationStats* stats) {
     // Updates keep theirs for the next propagation.
     if (!dynamic_) std::vector<OpId>().swap(agenda_[agenda_next_]);
     agenda_size_ -= batch_.size();
-    for (OpId o : batch_) ops_[o].flags &= std::uint8_t(~kQueued);
+    for (OpId o : batch_) op_at(o).flags &= std::uint8_t(~kQueued);
     // The vertices committed at earlier times join the triangulation; this time's wait (M_t).
-    if (delaunay_) delaunay_->insert_born_before(time_key(ops_[batch_[0]].rank, ops_[batch_[0]].color));
+    if (delaunay_) delaunay_->insert_born_before(time_key(op_at(batch_[0]).rank, op_at(batch_[0]).color));
     // In any order (Lemma 6.1); along the curve, so that the Steiner vertices and operations a large
     // batch creates (a build's) are numbered, and later read, in the order of their places.
     if (batch_.size() > kSortedBatch) sort_batch_by_place();
@@ -315,12 +323,12 @@ void WellSpacedEngine<D>::propagate(PropagationStats* stats) {
       continue;
     }
     for (OpId o : batch_) {
-      Op& op = ops_[o];
+      Op& op = op_at(o);
       if (op.kind == OpKind::Fill && op.requesters == 0) op.flags |= kObsolete;
       if ((op.flags & (kObsolete | kRedo)) && (op.flags & kExecuted)) undo(o);
     }
     for (OpId o : batch_) {
-      const std::uint8_t f = ops_[o].flags;
+      const std::uint8_t f = op_at(o).flags;
       if (f & kDead) continue;
       if (f & kObsolete) kill(o);
       else if (f & (kRedo | kFresh)) execute(o);
@@ -331,8 +339,9 @@ void WellSpacedEngine<D>::propagate(PropagationStats* stats) {
   collect_counters();
   // Slots of deleted operations and vertices are reused from now on.
   for (OpId o : dead_ops_) {
-    ops_[o] = Op{};
-    ops_[o].flags = kDead;
+    if (recording_) recorded_ops_[o] = RecordedOp{};
+    else lean_ops_[o] = Op{};
+    op_at(o).flags = kDead;
     free_ops_.push_back(o);
   }
   dead_ops_.clear();
@@ -355,7 +364,7 @@ void WellSpacedEngine<D>::sort_batch_by_place() {
   batch_keys_scratch_.resize(m);
   std::vector<std::uint32_t> counts(kDigits * kRadix, 0);
   for (std::size_t k = 0; k < m; ++k) {
-    const std::uint64_t key = engine::z_order_key<D>(positions_[ops_[batch_[k]].vertex]);
+    const std::uint64_t key = engine::z_order_key<D>(positions_[op_at(batch_[k]).vertex]);
     batch_keys_[k] = {key, batch_[k]};
     for (int d = 0; d < kDigits; ++d) ++counts[std::size_t(d) * kRadix + (key >> (d * kDigitBits) & (kRadix - 1))];
   }
@@ -379,6 +388,12 @@ void WellSpacedEngine<D>::sort_batch_by_place() {
     k = e;
   }
   for (std::size_t k = 0; k < m; ++k) batch_[k] = batch_keys_[k].second;
+  // A build's largest batches come first (the input dispatches): its keys would be held to the end,
+  // 32 bytes per operation of the largest batch. Updates sort small batches again and again.
+  if (!dynamic_) {
+    std::vector<std::pair<std::uint64_t, OpId>>().swap(batch_keys_);
+    std::vector<std::pair<std::uint64_t, OpId>>().swap(batch_keys_scratch_);
+  }
 }
 
 // Takes back what operation o did: the fills a dispatch asked for lose a requester; the Steiner vertices
@@ -386,13 +401,13 @@ void WellSpacedEngine<D>::sort_batch_by_place() {
 // read registrations go.
 template <int D>
 void WellSpacedEngine<D>::undo(OpId o) {
-  Op& op = ops_[o];
+  RecordedOp& op = recorded_ops_[o];
   const int rank = op.rank;
   const std::uint32_t color = op.color;
   const std::uint32_t cb = op.children_begin, ce = op.children_begin + op.children_count;
   if (op.kind == OpKind::Dispatch) {
     for (std::uint32_t k = cb; k < ce; ++k) {
-      Op& child = ops_[children_[k]];
+      Op& child = op_at(children_[k]);
       if (child.flags & kDead) continue;
       if (child.requesters > 0 && --child.requesters == 0) mark_obsolete(children_[k]);
     }
@@ -403,7 +418,7 @@ void WellSpacedEngine<D>::undo(OpId o) {
   } else {
     for (std::uint32_t k = cb; k < ce; ++k) {
       const OpId d = children_[k];
-      const VertexId w = ops_[d].vertex;
+      const VertexId w = op_at(d).vertex;
       mark_obsolete(d);
       if (!vertices_[w].alive) continue;
       tree_.erase_vertex(w, vertices_[w].leaf);
@@ -413,7 +428,7 @@ void WellSpacedEngine<D>::undo(OpId o) {
     }
   }
   for (NodeId n : reads(o)) readers_.erase(n, o);
-  Op& again = ops_[o];
+  RecordedOp& again = recorded_ops_[o];
   release_reads(again);
   if (!(again.flags & kStashed)) release_children(again);  // a stashed fill's go when it runs (fill)
   again.flags &= std::uint8_t(~kExecuted);
@@ -427,14 +442,14 @@ void WellSpacedEngine<D>::kill_vertex(VertexId v) {
   Vertex& vx = vertices_[v];
   vx.alive = false;
   if (caching_) forget_cell(v);
-  if (vx.dispatch != kNoOp) mark_obsolete(vx.dispatch);
-  for (OpId f = vx.first_fill; f != kNoOp; f = ops_[f].next_fill) mark_obsolete(f);
+  if (vertex_ops_[v].dispatch != kNoOp) mark_obsolete(vertex_ops_[v].dispatch);
+  for (OpId f = vx.first_fill; f != kNoOp; f = op_at(f).next_fill) mark_obsolete(f);
   dead_vertices_.push_back(v);
 }
 
 template <int D>
 void WellSpacedEngine<D>::kill(OpId o) {
-  Op& op = ops_[o];
+  RecordedOp& op = recorded_ops_[o];
   unlink_from_vertex(o);
   release_reads(op);  // none once undone; a fresh operation never ran
   release_children(op);
@@ -444,14 +459,14 @@ void WellSpacedEngine<D>::kill(OpId o) {
 
 
 template <int D>
-void WellSpacedEngine<D>::release_reads(Op& op) {
+void WellSpacedEngine<D>::release_reads(RecordedOp& op) {
   reads_.release(op.reads_begin, op.reads_count);
   op.reads_begin = 0;
   op.reads_count = 0;
 }
 
 template <int D>
-void WellSpacedEngine<D>::release_children(Op& op) {
+void WellSpacedEngine<D>::release_children(RecordedOp& op) {
   children_.release(op.children_begin, op.children_count);
   op.children_begin = 0;
   op.children_count = 0;
@@ -460,14 +475,14 @@ void WellSpacedEngine<D>::release_children(Op& op) {
 // The children the operation being executed gathered in new_children_ become its run.
 template <int D>
 void WellSpacedEngine<D>::store_children(OpId o) {
-  ops_[o].children_count = run_length(new_children_.size());
-  ops_[o].children_begin = children_.allocate(new_children_);
+  recorded_ops_[o].children_count = run_length(new_children_.size());
+  recorded_ops_[o].children_begin = children_.allocate(new_children_);
 }
 
 template <int D>
 void WellSpacedEngine<D>::register_reads(OpId o, std::span<const NodeId> nodes) {
-  ops_[o].reads_count = run_length(nodes.size());
-  ops_[o].reads_begin = reads_.allocate(nodes);
+  recorded_ops_[o].reads_count = run_length(nodes.size());
+  recorded_ops_[o].reads_begin = reads_.allocate(nodes);
   for (NodeId n : nodes) readers_.push(n, o);
 }
 
@@ -481,18 +496,27 @@ typename WellSpacedEngine<D>::VertexId WellSpacedEngine<D>::new_vertex(const Poi
     free_vertices_.pop_back();
     vertices_[id] = vx;
     positions_[id] = p;
-    if (recording_) filter_keys_[id] = id;
+    if (recording_) {
+      filter_keys_[id] = id;
+      vertex_ops_[id] = VertexOps{};
+    }
     return id;
   }
   const VertexId id = VertexId(vertices_.size());
   if (!dynamic_) {
     room_for_one(vertices_);
     room_for_one(positions_);
-    if (recording_) room_for_one(filter_keys_);
+    if (recording_) {
+      room_for_one(filter_keys_);
+      room_for_one(vertex_ops_);
+    }
   }
   vertices_.push_back(vx);
   positions_.push_back(p);
-  if (recording_) filter_keys_.push_back(id);
+  if (recording_) {
+    filter_keys_.push_back(id);
+    vertex_ops_.emplace_back();
+  }
   return VertexId(vertices_.size() - 1);
 }
 
@@ -515,10 +539,10 @@ void WellSpacedEngine<D>::apply_tree_change(const typename engine::Quadtree<D>::
 
 template <int D>
 void WellSpacedEngine<D>::redispatch_input(VertexId v) {
-  if (vertices_[v].dispatch != kNoOp) mark_obsolete(vertices_[v].dispatch);
+  if (vertex_ops_[v].dispatch != kNoOp) mark_obsolete(vertex_ops_[v].dispatch);
   const int rank = ranks_.rank_of_length(tree_.approximate_nn(vertices_[v].leaf));
   const OpId o = new_op(OpKind::Dispatch, v, rank, 0);
-  vertices_[v].dispatch = o;
+  vertex_ops_[v].dispatch = o;
   mark_fresh(o);
 }
 
@@ -536,8 +560,10 @@ void WellSpacedEngine<D>::set_water(std::vector<std::vector<Point2>> unit_rings)
 template <int D>
 std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::vertices_skipped_on_land() const {
   std::vector<VertexId> out;
-  for (const Op& op : ops_)
-    if (!(op.flags & kDead) && op.kind == OpKind::Fill && op.on_land) out.push_back(op.vertex);
+  for (OpId o = 0; o < op_count(); ++o) {
+    const Op& x = op(o);
+    if (!(x.flags & kDead) && x.kind == OpKind::Fill && x.on_land) out.push_back(x.vertex);
+  }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
@@ -562,7 +588,7 @@ void WellSpacedEngine<D>::mark_water_readers(const Point<D>& lo, const Point<D>&
     if (!meets) continue;
     if (n < readers_.node_count())
       for (OpId o : readers_.list(n)) {
-        const Op& op = ops_[o];
+        const RecordedOp& op = recorded_ops_[o];
         // Only a fill that tested the water read it: one skipped on land, or one that inserted (a fill
         // that found its vertex well-spaced, or idle by rank, decided without it). Its box lies within
         // sqrt(depends2) of its vertex (docs/water_only.md): farther from the changed box, nothing it read changed.
@@ -599,7 +625,7 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::apply(s
       apply_tree_change(change);
       // The new vertex changes what every reader of its square saw.
       mark_readers_at(v, e.point, vertices_[v].leaf, VertexChange::Inserted, kBeforeEverything, 0);
-      if (vertices_[v].dispatch == kNoOp || ops_[vertices_[v].dispatch].vertex != v) redispatch_input(v);
+      if (vertex_ops_[v].dispatch == kNoOp || recorded_ops_[vertex_ops_[v].dispatch].vertex != v) redispatch_input(v);
       added.push_back(v);
     } else {
       const VertexId v = e.vertex;
@@ -648,8 +674,10 @@ typename WellSpacedEngine<D>::VertexId WellSpacedEngine<D>::input_at(const Point
 template <int D>
 std::vector<std::tuple<Point<D>, int, std::uint32_t>> WellSpacedEngine<D>::operation_signature() const {
   std::vector<std::tuple<Point<D>, int, std::uint32_t>> sig;
-  for (const Op& op : ops_)
-    if (!(op.flags & kDead)) sig.emplace_back(positions_[op.vertex], op.rank, op.color);
+  for (OpId o = 0; o < op_count(); ++o) {
+    const Op& x = op(o);
+    if (!(x.flags & kDead)) sig.emplace_back(positions_[x.vertex], x.rank, x.color);
+  }
   std::sort(sig.begin(), sig.end());
   return sig;
 }
@@ -657,9 +685,10 @@ std::vector<std::tuple<Point<D>, int, std::uint32_t>> WellSpacedEngine<D>::opera
 template <int D>
 typename WellSpacedEngine<D>::MemoryBreakdown WellSpacedEngine<D>::memory_breakdown() const {
   MemoryBreakdown m;
-  m.vertices = vertices_.capacity() * sizeof(Vertex) + filter_keys_.capacity() * sizeof(std::uint32_t);
+  m.vertices = vertices_.capacity() * sizeof(Vertex) + vertex_ops_.capacity() * sizeof(VertexOps) +
+               filter_keys_.capacity() * sizeof(std::uint32_t);
   m.positions = positions_.capacity() * sizeof(Point<D>);
-  m.operations = ops_.capacity() * sizeof(Op);
+  m.operations = lean_ops_.capacity() * sizeof(Op) + recorded_ops_.capacity() * sizeof(RecordedOp);
   m.children = children_.memory_bytes();
   m.reads = reads_.memory_bytes();
   m.readers = readers_.memory_bytes();
@@ -667,6 +696,7 @@ typename WellSpacedEngine<D>::MemoryBreakdown WellSpacedEngine<D>::memory_breakd
   m.delaunay = delaunay_ ? delaunay_->memory_bytes() : 0;
   m.other = (free_ops_.capacity() + free_vertices_.capacity()) * sizeof(std::uint32_t);
   for (const auto& bucket : agenda_) m.other += bucket.capacity() * sizeof(OpId);
+  m.scratch = scratch_bytes();
   m.other += cell_cache_.capacity() * sizeof(CachedCell) + cache_table_.capacity() * sizeof(CacheSlot);
   for (const CachedCell& c : cell_cache_)
     m.other += c.candidates.capacity() * sizeof(Candidate) + c.covering.capacity() * sizeof(NodeId) +
@@ -688,9 +718,10 @@ void WellSpacedEngine<D>::check_valid() const {
         std::none_of(list.begin(), list.end(), [&](const LeafVertex<D>& e) { return e.id == v; }))
       fail("vertex " + std::to_string(v) + " not in its leaf");
     if (!recording_) continue;  // a one-shot build forgot its operations
-    if (vx.dispatch == kNoOp || ops_[vx.dispatch].vertex != v || ops_[vx.dispatch].kind != OpKind::Dispatch)
+    const VertexOps& vo = vertex_ops_[v];
+    if (vo.dispatch == kNoOp || recorded_ops_[vo.dispatch].vertex != v || recorded_ops_[vo.dispatch].kind != OpKind::Dispatch)
       fail("vertex " + std::to_string(v) + " without its dispatch");
-    if (!vx.is_input && (vx.creator == kNoOp || ops_[vx.creator].kind != OpKind::Fill)) fail("Steiner vertex creator");
+    if (!vx.is_input && (vo.creator == kNoOp || recorded_ops_[vo.creator].kind != OpKind::Fill)) fail("Steiner vertex creator");
   }
   if (inputs != input_count_) fail("input count");
   if (agenda_size_ != 0) fail("agenda not empty after propagation");
@@ -698,19 +729,19 @@ void WellSpacedEngine<D>::check_valid() const {
     if (live_op_count() != 0) fail("an operation of a one-shot build left");
     return;
   }
-  for (OpId o = 0; o < ops_.size(); ++o) {
-    const Op& op = ops_[o];
+  for (OpId o = 0; o < recorded_ops_.size(); ++o) {
+    const RecordedOp& op = recorded_ops_[o];
     if (op.flags & kDead) continue;
     if (op.flags != kExecuted) fail("operation " + std::to_string(o) + " left in state " + std::to_string(op.flags));
     if (op.vertex >= vertices_.size() || !vertices_[op.vertex].alive) fail("operation on a dead vertex");
     if ((op.kind == OpKind::Dispatch) != (op.color == 0)) fail("colour 0 is for dispatches only");
     if (op.kind == OpKind::Fill && op.requesters == 0) fail("a fill nobody asks for");
     for (OpId c : children(o)) {
-      if (c >= ops_.size() || (ops_[c].flags & kDead))
+      if (c >= recorded_ops_.size() || (recorded_ops_[c].flags & kDead))
         fail("operation " + std::to_string(o) + " (" + (op.kind == OpKind::Fill ? "fill" : "dispatch") + " rank " +
              std::to_string(op.rank) + " colour " + std::to_string(op.color) + ", vertex " + std::to_string(op.vertex) +
              (vertices_[op.vertex].is_input ? " input" : " Steiner") + ") has deleted child " + std::to_string(c));
-      if (ops_[c].rank < op.rank) fail("a child runs before its parent");
+      if (recorded_ops_[c].rank < op.rank) fail("a child runs before its parent");
     }
     for (NodeId n : reads(o)) {
       const auto rs = readers_.list(n);
@@ -721,7 +752,7 @@ void WellSpacedEngine<D>::check_valid() const {
   // holds a live operation's run or is free.
   for (NodeId n = 0; n < readers_.node_count(); ++n)
     for (OpId o : readers_.list(n))
-      if (ops_[o].flags & kDead) fail("reader entry of a deleted operation");
+      if (recorded_ops_[o].flags & kDead) fail("reader entry of a deleted operation");
   if (readers_.live_block_entries() + readers_.free_entries() != readers_.size()) fail("a reader block lost");
   const PoolEntries live = live_pool_entries();
   if (live.children + children_.free_entries() != children_.size()) fail("a children block lost");

@@ -103,7 +103,7 @@ struct WellSpacedEngine<D>::CellSearch {
   // Adds the vertices of the leaves of box [p - h, p + h] not searched yet.
   void search(double h) {
     const Box box = box_of(h);
-    pruning = has_cell && (e.ops_[o].crowded || pool.size() > kCrowdedPool || e.water_ != nullptr);
+    pruning = has_cell && (e.op_at(o).crowded || pool.size() > kCrowdedPool || e.water_ != nullptr);
     ++w.counters.neighbour_searches;
     const auto visit = [&](NodeId, std::span<const LeafVertex<D>> leaf) {
       for (const LeafVertex<D>& x : leaf)
@@ -146,7 +146,7 @@ void WellSpacedEngine<D>::CellSearch::gather_from_tree() {
   // crowded operation's starts at half a side: the tree is refined for the input points only, so a
   // large leaf out on the water can hold many Steiner vertices near a shore, and a box of two of its
   // sides thousands.
-  const Op& op = e.ops_[o];
+  const Op& op = e.op_at(o);
   half = (op.crowded ? 0.5 : 2.0) * e.tree_.side(e.vertices_[v].leaf);
   // An operation run again (inconsistent) mostly needs the box it needed last time: starting from its
   // previous dependency radius saves most of the searches that grow the box step by step (2.4 -> 1.5
@@ -158,7 +158,7 @@ void WellSpacedEngine<D>::CellSearch::gather_from_tree() {
   // shore points). (A fresh fill starting from the radius of its vertex's cell computed earlier in the
   // propagation searched more leaves than it saved: that cell is stale because a vertex came near, so
   // it shrank.)
-  const double previous2 = op.depends2;
+  const double previous2 = e.recording_ ? e.recorded_ops_[o].depends2 : 0.0;  // a one-shot build runs each once
   if (!op.crowded && previous2 > half * half && previous2 < 16 * half * half) half = std::sqrt(previous2) * (1 + kRadiusMargin);
   // With a stale entry (its cell computed earlier in this propagation): it lists what the leaves of
   // its box held then and what arrived there since, which is what they hold now, as a search would
@@ -346,7 +346,7 @@ void WellSpacedEngine<D>::CellSearch::clip() {
 template <int D>
 void WellSpacedEngine<D>::CellSearch::keep_cutting_candidates() {
   if (pool.size() <= kCrowdedPool) return;
-  e.ops_[o].crowded = true;
+  e.op_at(o).crowded = true;
   const double reach_final2 = 4 * w.cell.max_vertex_distance2() * (1 + kRadiusMargin);
   pool.erase(std::remove_if(pool.begin(), pool.end(), [&](const Candidate& c) {
                return c.d2 > reach_final2 || cannot_cut(c.position, c.position);
@@ -358,10 +358,11 @@ void WellSpacedEngine<D>::CellSearch::record_dependencies() {
   e.record_reads(w, p, searched);
   // Only a vertex that could cut the cell or be nearer than NN can change what this operation decides:
   // one within 2 x the cell's reach (capped at 2 beta NN), or within NN. A little margin on the rounding.
-  Op& op = e.ops_[o];
+  if (!e.recording_) return;  // a one-shot build: nobody reads the radii
+  RecordedOp& op = e.recorded_ops_[o];
   const double reach2 = std::min(4 * w.cell.max_vertex_distance2(), cap2);
   op.depends2 = op.inserted_depends2 = at_least(std::max(reach2, best_d2) * (1 + kRadiusMargin));
-  if (e.recording_) op.reach = engine::CellReach<D>::of([&](auto&& f) { w.cell.for_each_vertex_box(f); });
+  op.reach = engine::CellReach<D>::of([&](auto&& f) { w.cell.for_each_vertex_box(f); });
   if (e.caching_) e.store_cell(o, v, p, searched);
 }
 
@@ -370,7 +371,7 @@ template <int D>
 void WellSpacedEngine<D>::CellSearch::record_lone_vertex() {
   if (e.caching_) e.forget_cell(v);
   e.record_reads(w, p, half);
-  e.ops_[o].depends2 = e.ops_[o].inserted_depends2 = at_least(4.0 * D);
+  if (e.recording_) e.recorded_ops_[o].depends2 = e.recorded_ops_[o].inserted_depends2 = at_least(4.0 * D);
 }
 
 namespace {
@@ -384,17 +385,17 @@ engine::DelaunayNeighbours::Walk& delaunay_walk() {
 template <int D>
 bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill, Worker& w) {
   if (recording_) {
-    ops_[o].facets = engine::FacetFilter<D>::everything();
-    ops_[o].reach = engine::CellReach<D>::unbounded();
+    recorded_ops_[o].facets = engine::FacetFilter<D>::everything();
+    recorded_ops_[o].reach = engine::CellReach<D>::unbounded();
   }
   const Point<D> p = positions_[v];
-  const std::uint64_t now = time_key(ops_[o].rank, ops_[o].color);
+  const std::uint64_t now = time_key(op_at(o).rank, op_at(o).color);
   const bool may_idle = fill && !params_.literal_stable_ws;
   // v's cell computed earlier in this propagation, if any: taken as it is when it still holds, else
   // the vertices its entry lists spare the search (gather_from_tree).
   const CachedCell* earlier = caching_ ? cached_neighbourhood(v, p) : nullptr;
   if (earlier && may_idle && now < earlier->valid_until &&
-      ranks_.rank_below(p, positions_[earlier->nearest], ops_[o].rank, w.cell.counters())) {
+      ranks_.rank_below(p, positions_[earlier->nearest], op_at(o).rank, w.cell.counters())) {
     w.hood.nearest = earlier->nearest;  // still v's nearest neighbour: nothing came within its reach
     record_idle_fill(o, v, w);
     return false;
@@ -413,7 +414,7 @@ bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill, Worker& w)
     search.record_lone_vertex();
     return true;
   }
-  if (may_idle && ranks_.rank_below(p, positions_[w.hood.nearest], ops_[o].rank, w.cell.counters())) {
+  if (may_idle && ranks_.rank_below(p, positions_[w.hood.nearest], op_at(o).rank, w.cell.counters())) {
     record_idle_fill(o, v, w);
     return false;
   }
@@ -449,11 +450,12 @@ template <int D>
 void WellSpacedEngine<D>::record_idle_fill(OpId o, VertexId v, Worker& w) {
   const double nn2 = squared_distance(v, w.hood.nearest);
   record_reads(w, positions_[v], std::sqrt(nn2) * (1 + kRadiusMargin));
-  ops_[o].depends2 = at_least(nn2 * (1 + kRadiusMargin));
-  ops_[o].inserted_depends2 = 0;  // only a vertex exactly at v's place, which reruns it
   if (recording_) {
-    ops_[o].facets = facet_bits(w.hood.nearest);
-    ops_[o].reach = engine::CellReach<D>::unbounded();
+    RecordedOp& op = recorded_ops_[o];
+    op.depends2 = at_least(nn2 * (1 + kRadiusMargin));
+    op.inserted_depends2 = 0;  // only a vertex exactly at v's place, which reruns it
+    op.facets = facet_bits(w.hood.nearest);
+    op.reach = engine::CellReach<D>::unbounded();
   }
   ++w.counters.fills_idle_by_rank;
 }

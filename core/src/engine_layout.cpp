@@ -52,7 +52,8 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::renumbe
   permute_in_place(vertices_, new_id);
   permute_in_place(positions_, new_id);
   permute_in_place(filter_keys_, new_id);
-  for (Op& op : ops_)
+  permute_in_place(vertex_ops_, new_id);
+  for (RecordedOp& op : recorded_ops_)
     if (op.vertex != kNoVertex) op.vertex = new_id[op.vertex];
   for (VertexId& v : free_vertices_) v = new_id[v];
   tree_.rename_vertices(new_id);
@@ -61,41 +62,42 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::renumbe
 
 template <int D>
 void WellSpacedEngine<D>::renumber_operations_by_place() {
-  const std::size_t m = ops_.size();
+  const std::size_t m = recorded_ops_.size();
   std::vector<OpId> new_id(m, kNoOp);
   OpId next = 0;
   std::vector<OpId> own;
   for (VertexId v = 0; v < vertices_.size(); ++v) {  // along the curve, after renumber_vertices_by_place
     if (!vertices_[v].alive) continue;
     own.clear();
-    if (vertices_[v].dispatch != kNoOp) own.push_back(vertices_[v].dispatch);
-    for (OpId f = vertices_[v].first_fill; f != kNoOp; f = ops_[f].next_fill) own.push_back(f);
+    if (vertex_ops_[v].dispatch != kNoOp) own.push_back(vertex_ops_[v].dispatch);
+    for (OpId f = vertices_[v].first_fill; f != kNoOp; f = recorded_ops_[f].next_fill) own.push_back(f);
     std::sort(own.begin(), own.end(), [&](OpId a, OpId b) {
-      return time_key(ops_[a].rank, ops_[a].color) < time_key(ops_[b].rank, ops_[b].color);
+      return time_key(recorded_ops_[a].rank, recorded_ops_[a].color) < time_key(recorded_ops_[b].rank, recorded_ops_[b].color);
     });
     for (OpId o : own) new_id[o] = next++;
   }
   for (OpId& id : new_id)
     if (id == kNoOp) id = next++;  // deleted slots last
-  permute_in_place(ops_, new_id);
+  permute_in_place(recorded_ops_, new_id);
   auto renamed = [&](OpId o) { return o == kNoOp ? kNoOp : new_id[o]; };
-  for (Op& op : ops_) op.next_fill = renamed(op.next_fill);
-  for (Vertex& vx : vertices_) {
-    vx.creator = renamed(vx.creator);
-    vx.dispatch = renamed(vx.dispatch);
-    vx.first_fill = renamed(vx.first_fill);
+  for (RecordedOp& op : recorded_ops_) op.next_fill = renamed(op.next_fill);
+  for (Vertex& vx : vertices_) vx.first_fill = renamed(vx.first_fill);
+  for (VertexOps& vo : vertex_ops_) {
+    vo.creator = renamed(vo.creator);
+    vo.dispatch = renamed(vo.dispatch);
   }
-  for (const Op& op : ops_)
+  for (const RecordedOp& op : recorded_ops_)
     for (std::uint32_t k = op.children_begin; k < op.children_begin + op.children_count; ++k) children_[k] = new_id[children_[k]];
   readers_.rename([&](OpId o) { return new_id[o]; });
   for (OpId& o : free_ops_) o = new_id[o];
   lay_out_pools();  // the children and reads pools in the new order too
   // The arrays grew by doubling during the build: keep room for an eighth more (what an update adds
   // before the slots it frees come back), not up to twice as much.
-  with_room(ops_);
+  with_room(recorded_ops_);
   with_room(vertices_);
   with_room(positions_);
   with_room(filter_keys_);
+  with_room(vertex_ops_);
 }
 
 // Rewrites the children and reads pools with each operation's runs in operation order (after the
@@ -109,7 +111,7 @@ void WellSpacedEngine<D>::lay_out_pools() {
   engine::BlockPool children, reads;
   children.reserve(live.children + live.children / 8 + 1024);
   reads.reserve(live.reads + live.reads / 8 + 1024);
-  for (Op& op : ops_) {
+  for (RecordedOp& op : recorded_ops_) {
     op.children_begin = children.allocate(children_.run(op.children_begin, op.children_begin + op.children_count));
     op.reads_begin = reads.allocate(reads_.run(op.reads_begin, op.reads_begin + op.reads_count));
   }
@@ -121,7 +123,7 @@ void WellSpacedEngine<D>::lay_out_pools() {
 template <int D>
 typename WellSpacedEngine<D>::PoolEntries WellSpacedEngine<D>::live_pool_entries() const {
   PoolEntries live;
-  for (const Op& op : ops_)
+  for (const RecordedOp& op : recorded_ops_)
     if (!(op.flags & kDead)) {
       live.children += engine::BlockPool::block_size(op.children_count);
       live.reads += engine::BlockPool::block_size(op.reads_count);

@@ -67,18 +67,18 @@ void WellSpacedEngine<D>::compute(OpId o, Worker& w, Outcome& out) {
   out.requests.clear();
   out.steiner.clear();
   w.covering.clear();
-  if (ops_[o].kind == OpKind::Dispatch) compute_dispatch(o, w, out);
+  if (op_at(o).kind == OpKind::Dispatch) compute_dispatch(o, w, out);
   else compute_fill(o, w, out);
   std::swap(out.covering, w.covering);
 }
 
 template <int D>
 void WellSpacedEngine<D>::commit(OpId o, Outcome& out) {
-  ops_[o].flags &= std::uint8_t(~(kFresh | kRedo));
+  op_at(o).flags &= std::uint8_t(~(kFresh | kRedo));
   if (recording_) register_reads(o, out.covering);
-  if (ops_[o].kind == OpKind::Dispatch) commit_dispatch(o, out);
+  if (op_at(o).kind == OpKind::Dispatch) commit_dispatch(o, out);
   else commit_fill(o, out);
-  ops_[o].flags |= kExecuted;
+  op_at(o).flags |= kExecuted;
   if (stats_) ++stats_->executed;
   if (!recording_) release_executed(o);
 }
@@ -92,16 +92,16 @@ void WellSpacedEngine<D>::execute(OpId o) {
 // The vertex no longer names o: a fill leaves its vertex's fill list, a dispatch its dispatch slot.
 template <int D>
 void WellSpacedEngine<D>::unlink_from_vertex(OpId o) {
-  const Op& op = ops_[o];
+  const Op& op = op_at(o);
   Vertex& vx = vertices_[op.vertex];
   if (op.kind == OpKind::Fill) {
-    for (OpId* link = &vx.first_fill; *link != kNoOp; link = &ops_[*link].next_fill)
+    for (OpId* link = &vx.first_fill; *link != kNoOp; link = &op_at(*link).next_fill)
       if (*link == o) {
         *link = op.next_fill;
         break;
       }
-  } else if (vx.dispatch == o) {
-    vx.dispatch = kNoOp;
+  } else if (recording_ && vertex_ops_[op.vertex].dispatch == o) {
+    vertex_ops_[op.vertex].dispatch = kNoOp;
   }
 }
 
@@ -110,8 +110,8 @@ void WellSpacedEngine<D>::unlink_from_vertex(OpId o) {
 // fill's colour is never 0), so an executed fill leaves its vertex's list.
 template <int D>
 void WellSpacedEngine<D>::release_executed(OpId o) {
-  Op& op = ops_[o];
   unlink_from_vertex(o);
+  Op& op = lean_ops_[o];
   op = Op{};
   op.flags = kDead;
   free_ops_.push_back(o);
@@ -119,21 +119,23 @@ void WellSpacedEngine<D>::release_executed(OpId o) {
 
 template <int D>
 void WellSpacedEngine<D>::execute_batch_in_parallel() {
-  const std::size_t m = batch_.size();
-  if (outcomes_.size() < m) outcomes_.resize(m);
+  if (outcomes_.size() < std::min(batch_.size(), kParallelChunk)) outcomes_.resize(std::min(batch_.size(), kParallelChunk));
   if (!workers_) workers_.reset(new Workers);
   const unsigned threads = engine::thread_count();
   if (!workers_->arena || workers_->threads != threads) {
     workers_->arena = std::make_unique<tbb::task_arena>(int(threads));
     workers_->threads = threads;
   }
-  workers_->arena->execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m, 8), [&](const tbb::blocked_range<std::size_t>& range) {
-      Worker& w = workers_->local.local();
-      for (std::size_t k = range.begin(); k != range.end(); ++k) compute(batch_[k], w, outcomes_[k]);
+  for (std::size_t first = 0; first < batch_.size(); first += kParallelChunk) {
+    const std::size_t m = std::min(kParallelChunk, batch_.size() - first);
+    workers_->arena->execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m, 8), [&](const tbb::blocked_range<std::size_t>& range) {
+        Worker& w = workers_->local.local();
+        for (std::size_t k = range.begin(); k != range.end(); ++k) compute(batch_[first + k], w, outcomes_[k]);
+      });
     });
-  });
-  for (std::size_t k = 0; k < m; ++k) commit(batch_[k], outcomes_[k]);
+    for (std::size_t k = 0; k < m; ++k) commit(batch_[first + k], outcomes_[k]);
+  }
 }
 
 namespace {
@@ -169,6 +171,31 @@ void WellSpacedEngine<D>::add_counters(Worker& w) {
   w.cell.counters() = PredicateCounters{};
 }
 
+namespace {
+template <class T>
+std::size_t bytes_of(const std::vector<T>& items) {
+  return items.capacity() * sizeof(T);
+}
+}  // namespace
+
+template <int D>
+std::size_t WellSpacedEngine<D>::scratch_bytes() const {
+  auto worker = [](const Worker& w) {
+    return sizeof(Worker) + w.cell.memory_bytes() + w.part.memory_bytes() + bytes_of(w.hood.candidates) +
+           bytes_of(w.unborn) + bytes_of(w.neighbours) + bytes_of(w.covering) + bytes_of(w.shore_edges);
+  };
+  auto outcome = [](const Outcome& out) {
+    return sizeof(Outcome) + bytes_of(out.requests) + bytes_of(out.steiner) + bytes_of(out.covering);
+  };
+  std::size_t bytes = bytes_of(batch_) + bytes_of(batch_keys_) + bytes_of(batch_keys_scratch_) + bytes_of(new_children_) +
+                      bytes_of(stash_) + worker(serial_) + outcome(serial_outcome_);
+  for (const Outcome& out : outcomes_) bytes += outcome(out) - sizeof(Outcome);
+  bytes += bytes_of(outcomes_);
+  if (workers_)
+    for (const Worker& w : workers_->local) bytes += worker(w);
+  return bytes;
+}
+
 template <int D>
 void WellSpacedEngine<D>::collect_counters() {
   add_counters(serial_);
@@ -178,19 +205,19 @@ void WellSpacedEngine<D>::collect_counters() {
 
 template <int D>
 void WellSpacedEngine<D>::request_fill(VertexId w, int rank, bool crowded) {
-  for (OpId f = vertices_[w].first_fill; f != kNoOp; f = ops_[f].next_fill)
-    if (ops_[f].rank == rank && !(ops_[f].flags & kDead)) {
-      if (ops_[f].requesters == std::numeric_limits<std::uint16_t>::max())
+  for (OpId f = vertices_[w].first_fill; f != kNoOp; f = op_at(f).next_fill)
+    if (op_at(f).rank == rank && !(op_at(f).flags & kDead)) {
+      if (op_at(f).requesters == std::numeric_limits<std::uint16_t>::max())
         throw std::length_error("a fill asked for by over 65535 dispatches");
-      ++ops_[f].requesters;
-      ops_[f].flags &= std::uint8_t(~kObsolete);  // asked for again before its time: it lives on
+      ++op_at(f).requesters;
+      op_at(f).flags &= std::uint8_t(~kObsolete);  // asked for again before its time: it lives on
       new_children_.push_back(f);
       return;
     }
   const OpId f = new_op(OpKind::Fill, w, rank, ranks_.color(positions_[w], rank));
-  ops_[f].crowded = crowded;  // a neighbour's: the places are near
-  ops_[f].requesters = 1;
-  ops_[f].next_fill = vertices_[w].first_fill;
+  op_at(f).crowded = crowded;  // a neighbour's: the places are near
+  op_at(f).requesters = 1;
+  op_at(f).next_fill = vertices_[w].first_fill;
   vertices_[w].first_fill = f;
   new_children_.push_back(f);
   mark_fresh(f);
@@ -200,8 +227,8 @@ template <int D>
 void WellSpacedEngine<D>::compute_dispatch(OpId o, Worker& w, Outcome& out) {
   RoundingGuard guard;
   ++w.counters.dispatches;
-  const VertexId v = ops_[o].vertex;
-  const int op_rank = ops_[o].rank;
+  const VertexId v = op_at(o).vertex;
+  const int op_rank = op_at(o).rank;
   compute_cell(o, v, false, w);
   if (w.hood.nearest == kNoVertex) return;  // a lone vertex is well-spaced
   PredicateCounters& pc = w.cell.counters();
@@ -231,7 +258,7 @@ template <int D>
 void WellSpacedEngine<D>::commit_dispatch(OpId o, Outcome& out) {
   RoundingGuard guard;  // the colours of new fills are computed in it, as everywhere
   new_children_.clear();
-  for (const auto& [x, rank] : out.requests) request_fill(x, rank, ops_[o].crowded);
+  for (const auto& [x, rank] : out.requests) request_fill(x, rank, op_at(o).crowded);
   if (recording_) store_children(o);
 }
 
@@ -258,28 +285,28 @@ template <int D>
 void WellSpacedEngine<D>::compute_fill(OpId o, Worker& w, Outcome& out) {
   RoundingGuard guard;
   ++w.counters.fills;
-  const VertexId v = ops_[o].vertex;
-  const int op_rank = ops_[o].rank;
+  const VertexId v = op_at(o).vertex;
+  const int op_rank = op_at(o).rank;
   const Point<D> p = positions_[v];
   const bool has_cell = compute_cell(o, v, true, w);
   PredicateCounters& pc = w.cell.counters();
   // A fill that would insert, on a vertex whose cell cannot meet the water, inserts nothing (on land).
-  ops_[o].on_land = false;
-  ops_[o].shore_read = false;
+  op_at(o).on_land = false;
+  op_at(o).shore_read = false;
   const bool due = water_ && has_cell && w.hood.nearest != kNoVertex &&
                    !w.cell.within_scaled_distance(params_.fill_rho_squared, positions_[w.hood.nearest]);
   if (due && fill_on_land(v, w)) {
-    ops_[o].on_land = true;
+    op_at(o).on_land = true;
     ++w.counters.fills_on_land;
   }
   // A shore vertex's cell stops at the shore: well-spacedness and the picking region on its water wedge.
   ShoreWedge wedge;
   bool wedged = false;
-  if (due && !ops_[o].on_land && params_.shore_cells) {
-    ops_[o].shore_read = true;
+  if (due && !op_at(o).on_land && params_.shore_cells) {
+    op_at(o).shore_read = true;
     wedged = shore_wedge(v, w, wedge);
   }
-  for (int inserted = 0; has_cell && !ops_[o].on_land && w.hood.nearest != kNoVertex &&
+  for (int inserted = 0; has_cell && !op_at(o).on_land && w.hood.nearest != kNoVertex &&
                          (wedged ? !well_spaced_in_wedge(v, w, wedge)
                                  : !w.cell.within_scaled_distance(params_.fill_rho_squared, positions_[w.hood.nearest]));
        ++inserted) {
@@ -303,8 +330,8 @@ void WellSpacedEngine<D>::compute_fill(OpId o, Worker& w, Outcome& out) {
   // v was already well-spaced: a vertex inserted farther than NN(v) leaves NN(v) and the clipping cube
   // as they are and can only shrink the cell, so v stays well-spaced and this fill does nothing again.
   // (Not a fill skipped on land: it keeps the whole cell's dependencies, as one that inserted.)
-  if (recording_ && has_cell && out.steiner.empty() && !ops_[o].on_land && w.hood.nearest != kNoVertex) {
-    ops_[o].inserted_depends2 = at_least(squared_distance(v, w.hood.nearest) * (1 + kRadiusMargin));
+  if (recording_ && has_cell && out.steiner.empty() && !op_at(o).on_land && w.hood.nearest != kNoVertex) {
+    recorded_ops_[o].inserted_depends2 = at_least(squared_distance(v, w.hood.nearest) * (1 + kRadiusMargin));
     w.cell.bisector_neighbours(w.neighbours);
     record_facets(o, w);
   }
@@ -312,19 +339,19 @@ void WellSpacedEngine<D>::compute_fill(OpId o, Worker& w, Outcome& out) {
 
 template <int D>
 void WellSpacedEngine<D>::commit_fill(OpId o, Outcome& out) {
-  const VertexId v = ops_[o].vertex;
-  const int op_rank = ops_[o].rank;
-  const std::uint32_t op_color = ops_[o].color;
+  const VertexId v = op_at(o).vertex;
+  const int op_rank = op_at(o).rank;
+  const std::uint32_t op_color = op_at(o).color;
   // The Steiner vertices of this fill's previous run, when it runs again (see undo).
   stash_.clear();
-  if (ops_[o].flags & kStashed) {
+  if (op_at(o).flags & kStashed) {
     for (OpId d : children(o)) stash_.push_back(d);
-    release_children(ops_[o]);
-    ops_[o].flags &= std::uint8_t(~kStashed);
+    release_children(recorded_ops_[o]);
+    op_at(o).flags &= std::uint8_t(~kStashed);
   }
   new_children_.clear();
   for (const auto& [q, rank] : out.steiner) {
-    auto again = std::find_if(stash_.begin(), stash_.end(), [&](OpId d) { return positions_[ops_[d].vertex] == q; });
+    auto again = std::find_if(stash_.begin(), stash_.end(), [&](OpId d) { return positions_[op_at(d).vertex] == q; });
     if (again != stash_.end()) {
       // The same Steiner point as before: keep the vertex and its dispatch, nothing changes around it.
       new_children_.push_back(*again);
@@ -333,7 +360,7 @@ void WellSpacedEngine<D>::commit_fill(OpId o, Outcome& out) {
       continue;
     }
     const VertexId id = new_vertex(q);
-    vertices_[id].creator = o;
+    if (recording_) vertex_ops_[id].creator = o;
     vertices_[id].leaf = tree_.insert_vertex(id, q, time_key(op_rank, op_color), vertices_[v].leaf);
     ++counters_.steiner_points;
     if (dynamic_) mark_readers_at(id, q, vertices_[id].leaf, VertexChange::Inserted, op_rank, op_color);
@@ -342,15 +369,15 @@ void WellSpacedEngine<D>::commit_fill(OpId o, Outcome& out) {
       if (delaunay_) delaunay_->defer(id, q, v, time_key(op_rank, op_color));
     if (stats_) stats_->steiner_added.push_back(q);
     const OpId d = new_op(OpKind::Dispatch, id, rank, 0);
-    ops_[d].crowded = ops_[o].crowded;
-    vertices_[id].dispatch = d;
+    op_at(d).crowded = op_at(o).crowded;
+    if (recording_) vertex_ops_[id].dispatch = d;
     new_children_.push_back(d);
     mark_fresh(d);
   }
   if (recording_) store_children(o);
   // Steiner vertices of the previous run not inserted again leave the output.
   for (OpId d : stash_) {
-    const VertexId w = ops_[d].vertex;
+    const VertexId w = op_at(d).vertex;
     mark_obsolete(d);
     tree_.erase_vertex(w, vertices_[w].leaf);
     mark_readers_at(w, positions_[w], vertices_[w].leaf, VertexChange::Removed, op_rank, op_color);
@@ -463,6 +490,7 @@ Point<D> WellSpacedEngine<D>::pick_steiner(VertexId v, Worker& wk, const Point<D
   template void WellSpacedEngine<D>::execute_batch_in_parallel();                                      \
   template void WellSpacedEngine<D>::add_counters(Worker&);                                            \
   template void WellSpacedEngine<D>::collect_counters();                                               \
+  template std::size_t WellSpacedEngine<D>::scratch_bytes() const;                                     \
   template void WellSpacedEngine<D>::request_fill(VertexId, int, bool);                                \
   template void WellSpacedEngine<D>::compute_dispatch(OpId, Worker&, Outcome&);                        \
   template void WellSpacedEngine<D>::commit_dispatch(OpId, Outcome&);                                  \

@@ -44,14 +44,20 @@ class WellSpacedEngine {
   enum class OpKind : std::uint8_t { Dispatch, Fill };
 
   // Its position is positions_[v] (positions()): the one copy, contiguous for the tree and the searches.
+  // What every build keeps of a vertex (12 bytes); a build for updates also keeps its VertexOps.
   struct Vertex {
     NodeId leaf = engine::kNoNode;
-    OpId creator = engine::kNoOp;      // the fill that inserted this Steiner vertex; none for inputs
-    OpId dispatch = engine::kNoOp;     // the one dispatch acting on it
     OpId first_fill = engine::kNoOp;   // its fills, linked by Op::next_fill (one per rank)
     bool is_input = false;
     bool alive = false;
   };
+  // By vertex id, in a build for updates: what undoing and redispatching read.
+  struct VertexOps {
+    OpId creator = engine::kNoOp;      // the fill that inserted this Steiner vertex; none for inputs
+    OpId dispatch = engine::kNoOp;     // the one dispatch acting on it
+  };
+  // A vertex as a whole (vertex()): creator and dispatch are kNoOp after a one-shot build.
+  struct VertexInfo : Vertex, VertexOps {};
 
   // Operation states during change propagation (paper, Figure 4).
   enum OpFlag : std::uint8_t {
@@ -64,34 +70,19 @@ class WellSpacedEngine {
     kStashed = 64,    // an inconsistent fill undone but for its Steiner vertices: it may insert them again
   };
 
-  // Packed: 56 bytes in 2D, 88 in 3D (it was 72 and 96), an engine's largest array after its quadtree,
-  // which updates read one reader after the other (mark_readers_at). Ranks lie within
-  // [RankScale::min_rank, max_rank] (a few hundred at most) and colours within kappa^D + 1 (checked at
-  // construction); runs and requesters are counted in 16 bits (checked where they are written).
+  // What every build keeps of an operation: 16 bytes. A one-shot build's operations are the waiting
+  // ones (every operation is freed once it has run), a build for updates keeps them all, each with what
+  // only updates read (RecordedOp). Ranks lie within [RankScale::min_rank, max_rank] (a few hundred at
+  // most) and colours within kappa^D + 1 (checked at construction); requesters are counted in 16 bits
+  // (checked where they are written).
   struct Op {
-    // What marking readers reads of each reader it scans (rank to kind) comes first, together: a 2D Op
-    // starts at any of eight offsets in a cache line, and these 36 bytes straddle two lines at three
-    // of them (spread over the whole Op: at seven).
     std::int16_t rank = 0;
     std::uint16_t color = 0;           // 0 for dispatches
     VertexId vertex = engine::kNoVertex;
-    // Removing a vertex matters only if it bounds the cell (facet_filter.hpp); everything: any vertex.
-    engine::FacetFilter<D> facets = engine::FacetFilter<D>::everything();
-    // Its result depends only on the vertices within these squared distances: removing one within
-    // depends2, or inserting one within inserted_depends2 (smaller for a fill that found its vertex
-    // well-spaced: a new vertex farther than NN only shrinks the cell, and it stays well-spaced).
-    // Floats rounded up (see at_least): a radius only ever errs on the side of a rerun.
-    float depends2 = 0;
-    float inserted_depends2 = 0;
-    // Inserting a vertex within inserted_depends2 matters only if it can cut the cell (cell_reach.hpp).
-    engine::CellReach<D> reach = engine::CellReach<D>::unbounded();
-    std::uint8_t flags = 0;
-    OpKind kind = OpKind::Dispatch;
     OpId next_fill = engine::kNoOp;    // next fill acting on the same vertex
-    std::uint32_t children_begin = 0;  // into children_, children_count of them
-    std::uint32_t reads_begin = 0;     // into reads_, reads_count of them
-    std::uint16_t children_count = 0, reads_count = 0;
     std::uint16_t requesters = 0;      // fills: how many dispatches currently ask for it
+    std::uint8_t flags = 0;
+    OpKind kind : 1 = OpKind::Dispatch;
     // A hint for its searches, kept for its life: one of its cells had many candidates, or it was made
     // by an operation that was crowded (a fill asked for by a crowded dispatch, the dispatch of a
     // Steiner vertex a crowded fill inserted: they lie near). Its searches then skip what cannot cut
@@ -103,7 +94,27 @@ class WellSpacedEngine {
     // it read the rings there, so a ring edit nearby reruns it (docs/water_only.md).
     bool shore_read : 1 = false;
   };
-  static_assert(sizeof(Op) == (D == 2 ? 56 : 88), "Op packs to 56 bytes in 2D and 88 in 3D");
+  static_assert(sizeof(Op) == 16, "Op packs to 16 bytes");
+  // An operation of a build for updates: 56 bytes in 2D, 80 in 3D. What marking readers reads of each
+  // reader it scans (rank to reach) lies in the first 42 bytes: a 2D one starts at any of eight offsets
+  // in a cache line, and these straddle two lines at three of them. Runs are counted in 16 bits
+  // (checked where they are written).
+  struct RecordedOp : Op {
+    // Removing a vertex matters only if it bounds the cell (facet_filter.hpp); everything: any vertex.
+    engine::FacetFilter<D> facets = engine::FacetFilter<D>::everything();
+    // Its result depends only on the vertices within these squared distances: removing one within
+    // depends2, or inserting one within inserted_depends2 (smaller for a fill that found its vertex
+    // well-spaced: a new vertex farther than NN only shrinks the cell, and it stays well-spaced).
+    // Floats rounded up (see at_least): a radius only ever errs on the side of a rerun.
+    float depends2 = 0;
+    float inserted_depends2 = 0;
+    // Inserting a vertex within inserted_depends2 matters only if it can cut the cell (cell_reach.hpp).
+    engine::CellReach<D> reach = engine::CellReach<D>::unbounded();
+    std::uint16_t children_count = 0, reads_count = 0;
+    std::uint32_t children_begin = 0;  // into children_, children_count of them
+    std::uint32_t reads_begin = 0;     // into reads_, reads_count of them
+  };
+  static_assert(sizeof(RecordedOp) == (D == 2 ? 56 : 80), "RecordedOp packs to 56 bytes in 2D and 80 in 3D");
 
   // One edit for apply(): add a point (id returned) or remove an input vertex.
   struct InputEdit {
@@ -152,22 +163,32 @@ class WellSpacedEngine {
 
   // The live operations as (vertex position, rank, colour), sorted: equal for a dynamic and a fresh run.
   std::vector<std::tuple<Point<D>, int, std::uint32_t>> operation_signature() const;
-  std::size_t live_op_count() const { return ops_.size() - free_ops_.size(); }
+  std::size_t live_op_count() const { return op_count() - free_ops_.size(); }
   std::size_t live_vertex_count() const { return vertices_.size() - free_vertices_.size(); }
   // Whether some live input vertex sits exactly at p.
   VertexId input_at(const Point<D>& p) const;
 
   std::size_t input_count() const { return input_count_; }
   std::size_t vertex_count() const { return vertices_.size(); }
-  const Vertex& vertex(VertexId v) const { return vertices_[v]; }
+  VertexInfo vertex(VertexId v) const {
+    VertexInfo info;
+    static_cast<Vertex&>(info) = vertices_[v];
+    if (recording_) static_cast<VertexOps&>(info) = vertex_ops_[v];
+    return info;
+  }
   std::span<const Point<D>> positions() const { return positions_; }
-  std::size_t op_count() const { return ops_.size(); }
-  const Op& op(OpId o) const { return ops_[o]; }
+  std::size_t op_count() const { return recording_ ? recorded_ops_.size() : lean_ops_.size(); }
+  const Op& op(OpId o) const { return recording_ ? recorded_ops_[o] : lean_ops_[o]; }
+  // Runs of an engine built for updates (a one-shot build records none).
   std::span<const OpId> children(OpId o) const {
-    return children_.run(ops_[o].children_begin, ops_[o].children_begin + ops_[o].children_count);
+    if (!recording_) return {};
+    const RecordedOp& op = recorded_ops_[o];
+    return children_.run(op.children_begin, op.children_begin + op.children_count);
   }
   std::span<const NodeId> reads(OpId o) const {
-    return reads_.run(ops_[o].reads_begin, ops_[o].reads_begin + ops_[o].reads_count);
+    if (!recording_) return {};
+    const RecordedOp& op = recorded_ops_[o];
+    return reads_.run(op.reads_begin, op.reads_begin + op.reads_count);
   }
   const engine::Quadtree<D>& quadtree() const { return tree_; }
   const DerivedParameters<D>& parameters() const { return params_; }
@@ -178,8 +199,9 @@ class WellSpacedEngine {
     std::size_t vertices = 0, positions = 0, operations = 0, children = 0, reads = 0, readers = 0, tree = 0;
     std::size_t delaunay = 0;  // the one-shot build's triangulation of M_t, when it is the neighbour source
     std::size_t other = 0;     // the agenda, the free lists, the cell cache
+    std::size_t scratch = 0;   // the batch's, and each thread's (its cell, candidates, outcomes)
     std::size_t total() const {
-      return vertices + positions + operations + children + reads + readers + tree + delaunay + other;
+      return vertices + positions + operations + children + reads + readers + tree + delaunay + other + scratch;
     }
   };
   MemoryBreakdown memory_breakdown() const;
@@ -327,10 +349,11 @@ class WellSpacedEngine {
     std::size_t children = 0, reads = 0;
   };
   PoolEntries live_pool_entries() const;
-  void release_reads(Op& op);
-  void release_children(Op& op);
+  void release_reads(RecordedOp& op);
+  void release_children(RecordedOp& op);
   void store_children(OpId o);
   void add_counters(Worker& w);
+  std::size_t scratch_bytes() const;  // the batch's and the workers' buffers (memory_breakdown)
   void collect_counters();  // every worker's counts into counters_
   // After the build: vertices, then operations, renumbered along the curve (engine.cpp says why).
   // Returns the new id of each old vertex id.
@@ -343,13 +366,18 @@ class WellSpacedEngine {
   engine::RankScale<D> ranks_;
   engine::Quadtree<D> tree_;
   std::vector<Vertex> vertices_;
+  std::vector<VertexOps> vertex_ops_;   // by vertex id; only in a build for updates
   std::vector<Point<D>> positions_;     // by vertex id
   // By vertex id, what its facet bits hash (facet_filter.hpp): its id when it was made, so that filters
   // recorded before the build renumbered the vertices by place keep meaning the same vertices. Only
   // updates read facets: empty after a one-shot build.
   std::vector<std::uint32_t> filter_keys_;
   std::size_t input_count_ = 0;
-  std::vector<Op> ops_;
+  // The operations: a one-shot build's in lean_ops_, a build for updates' in recorded_ops_ (the other
+  // one empty). op_at reaches either.
+  std::vector<Op> lean_ops_;
+  std::vector<RecordedOp> recorded_ops_;
+  Op& op_at(OpId o) { return recording_ ? static_cast<Op&>(recorded_ops_[o]) : lean_ops_[o]; }
   engine::BlockPool children_;  // each operation's run: children_count from children_begin
   engine::BlockPool reads_;     // reads_count from reads_begin
   std::vector<OpId> new_children_;  // the children of the operation being executed, stored when it ends
@@ -368,7 +396,11 @@ class WellSpacedEngine {
   static constexpr std::size_t kSortedBatch = 256;
   // Batches at least this large are computed on several threads (smaller ones cost more to hand out).
   static constexpr std::size_t kParallelBatch = 64;
-  std::vector<Outcome> outcomes_;         // one per operation of a batch computed in parallel
+  // A larger batch is computed and committed this many operations at a time (in batch order, as one
+  // thread does: Lemma 6.1), so that the outcomes waiting for their commit, and their buffers, stay
+  // few: one per operation of the largest batch held a few tens of bytes per input vertex.
+  static constexpr std::size_t kParallelChunk = 4096;
+  std::vector<Outcome> outcomes_;         // one per operation of a chunk computed in parallel
   struct Workers;                         // per-thread Workers (TBB), engine_operations.cpp
   struct WorkersDeleter {
     void operator()(Workers* w) const;
