@@ -61,6 +61,8 @@ void WellSpacedEngine<D>::reset() {
   agenda_next_ = 0;
   agenda_size_ = 0;
   free_ops_.clear();
+  lean_free_ = kNoOp;
+  lean_free_count_ = 0;
   dead_ops_.clear();
   free_vertices_.clear();
   dead_vertices_.clear();
@@ -190,12 +192,14 @@ typename WellSpacedEngine<D>::OpId WellSpacedEngine<D>::new_op(OpKind kind, Vert
       ops[o] = item;
       return o;
     }
-    if (!dynamic_) {
-      room_for_one(ops);
-      // The free slots never outnumber the slots: their list, which a one-shot build fills as its
-      // operations run, then never moves (a push_back would double it).
-      if (free_ops_.capacity() < ops.capacity()) free_ops_.reserve(ops.capacity());
+    if (lean_free_ != kNoOp) {
+      const OpId o = lean_free_;
+      lean_free_ = ops[o].next_fill;
+      --lean_free_count_;
+      ops[o] = item;
+      return o;
     }
+    if (!dynamic_) room_for_one(ops);
     ops.push_back(item);
     return OpId(ops.size() - 1);
   };

@@ -114,7 +114,9 @@ void WellSpacedEngine<D>::release_executed(OpId o) {
   Op& op = lean_ops_[o];
   op = Op{};
   op.flags = kDead;
-  free_ops_.push_back(o);
+  op.next_fill = lean_free_;  // the free slots' list, last freed first
+  lean_free_ = o;
+  ++lean_free_count_;
 }
 
 template <int D>

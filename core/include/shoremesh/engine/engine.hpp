@@ -163,7 +163,7 @@ class WellSpacedEngine {
 
   // The live operations as (vertex position, rank, colour), sorted: equal for a dynamic and a fresh run.
   std::vector<std::tuple<Point<D>, int, std::uint32_t>> operation_signature() const;
-  std::size_t live_op_count() const { return op_count() - free_ops_.size(); }
+  std::size_t live_op_count() const { return op_count() - free_ops_.size() - lean_free_count_; }
   std::size_t live_vertex_count() const { return vertices_.size() - free_vertices_.size(); }
   // Whether some live input vertex sits exactly at p.
   VertexId input_at(const Point<D>& p) const;
@@ -412,6 +412,9 @@ class WellSpacedEngine {
   std::unique_ptr<engine::DelaunayNeighbours> delaunay_;
   std::unique_ptr<engine::WaterRings> water_;  // 2D: skip fills on land (docs/water_only.md)
   std::vector<OpId> free_ops_, dead_ops_;
+  // A one-shot build's free slots, linked by their next_fill (release_executed): no list beside them.
+  OpId lean_free_ = engine::kNoOp;
+  std::size_t lean_free_count_ = 0;
   std::vector<VertexId> free_vertices_, dead_vertices_;
   bool dynamic_ = false;                  // marking readers is needed only once a computation exists
   PropagationStats* stats_ = nullptr;
