@@ -291,6 +291,7 @@ void ConvexCell<D>::reset(const Point<D>& v, const Point<D>& lo, const Point<D>&
   constraints_.clear();
   exact_.clear();
   verts_.clear();
+  balls_stale_ = true;
   next_serial_ = 0;
   using Kind = typename Constraint<D>::Kind;
   // Constraint 2*axis is x[axis] >= lo, 2*axis+1 is x[axis] <= hi.
@@ -378,6 +379,7 @@ bool ConvexCell<D>::cut_by_last() {
     clip_polygon(plane);
   else
     clip_polyhedron(plane);
+  balls_stale_ = true;
   return true;
 }
 
@@ -668,21 +670,71 @@ double ConvexCell<D>::max_vertex_distance2() const {
   return best;
 }
 
+
+// The vertices' balls as surely_uncut_by_box reads them, and the box widened by the slack: whether the
+// box keeps clear of vertex j's ball by the margin, from the squared distance between it and the vertex's
+// interval box against the vertex's r2 (rounded upward under the caller's RoundingGuard; monotone in the
+// box whatever the rounding: a smaller box's gap is never smaller).
+namespace {
 template <int D>
-bool ConvexCell<D>::surely_uncut_by_box(const Point<D>& lo, const Point<D>& hi) const {
-  // Differences of coordinates in [0, 1] err by at most an ulp of 1: the box is widened by four.
-  constexpr double slack = 0x1p-50;
-  for (const Vertex& vtx : verts_) {
+struct BallTest {
+  const double* inf;
+  const double* sup;
+  const double* r2;
+  std::size_t m;
+  std::array<double, D> wide_lo, wide_hi;
+  BallTest(const std::vector<double>& balls, std::size_t count, const Point<D>& lo, const Point<D>& hi)
+      : inf(balls.data()), sup(balls.data() + D * count), r2(balls.data() + 2 * D * count), m(count) {
+    // Differences of coordinates in [0, 1] err by at most an ulp of 1: the box is widened by four.
+    constexpr double slack = 0x1p-50;
+    for (int i = 0; i < D; ++i) {
+      wide_lo[i] = lo[i] - slack;
+      wide_hi[i] = hi[i] + slack;
+    }
+  }
+  bool clear(std::size_t j) const {
     double gap2 = 0;  // the squared distance from the box to the vertex's interval box
     for (int i = 0; i < D; ++i) {
-      const double above = (lo[i] - slack) - vtx.y[i].sup();
-      const double below = vtx.y[i].inf() - (hi[i] + slack);
-      const double gap = std::max({0.0, above, below});
+      const double above = wide_lo[i] - sup[std::size_t(i) * m + j];
+      const double below = inf[std::size_t(i) * m + j] - wide_hi[i];
+      const double gap = std::max(std::max(0.0, above), below);
       gap2 += gap * gap;
     }
     // Rounded upward, gap2 may exceed the true distance by a few ulps: far inside the margin.
-    if (!(gap2 > vtx.r2 * (1 + 1e-3))) return false;
+    return gap2 > r2[j] * (1 + 1e-3);
   }
+};
+}  // namespace
+
+template <int D>
+void ConvexCell<D>::refresh_balls() const {
+  const std::size_t m = verts_.size();
+  balls_.resize((2 * D + 1) * m);
+  for (std::size_t j = 0; j < m; ++j) {
+    for (int i = 0; i < D; ++i) {
+      balls_[std::size_t(i) * m + j] = verts_[j].y[i].inf();
+      balls_[std::size_t(D + i) * m + j] = verts_[j].y[i].sup();
+    }
+    balls_[2 * D * m + j] = verts_[j].r2;
+  }
+  balls_stale_ = false;
+  last_meeting_ = 0;
+}
+
+template <int D>
+bool ConvexCell<D>::surely_uncut_by_box(const Point<D>& lo, const Point<D>& hi) const {
+  if (balls_stale_) refresh_balls();
+  const std::size_t m = verts_.size();
+  const BallTest<D> test(balls_, m, lo, hi);
+  // Which vertex is tried first changes nothing but the work: the box is let off only when it keeps
+  // clear of every ball. The one that met the last box is tried first (the next box, a nearby point of
+  // the same search, mostly meets it too).
+  if (last_meeting_ < m && !test.clear(last_meeting_)) return false;
+  for (std::size_t j = 0; j < m; ++j)
+    if (!test.clear(j)) {
+      last_meeting_ = std::uint32_t(j);
+      return false;
+    }
   return true;
 }
 
@@ -728,6 +780,7 @@ void ConvexCell<D>::assign_geometry(const ConvexCell& other) {
   constraints_ = other.constraints_;
   exact_ = other.exact_;
   verts_ = other.verts_;
+  balls_stale_ = true;
   vertex_on_plane_ = other.vertex_on_plane_;
   edges_ = other.edges_;
   next_serial_ = other.next_serial_;
@@ -741,7 +794,8 @@ std::size_t ConvexCell<D>::memory_bytes() const {
          (cut_edges_.capacity() + rim_.capacity()) * sizeof(PlanePair) + plane_places_.capacity() * sizeof(std::uint64_t) +
          plane_seen_.capacity() + edge_table_.capacity() * sizeof(std::uint32_t) +
          (order_scratch_.capacity() + renamed_scratch_.capacity()) * sizeof(std::uint16_t) +
-         sorted_scratch_.capacity() * sizeof(Constraint<D>) + plane_stamp_.capacity() * sizeof(std::uint32_t) + plane_local_.capacity() + out_bits_.capacity() * sizeof(std::uint64_t);
+         sorted_scratch_.capacity() * sizeof(Constraint<D>) + plane_stamp_.capacity() * sizeof(std::uint32_t) + plane_local_.capacity() + out_bits_.capacity() * sizeof(std::uint64_t) +
+         balls_.capacity() * sizeof(double);
 }
 
 static_assert(sizeof(Constraint<2>) == 112 && sizeof(Constraint<3>) == 144);

@@ -164,6 +164,16 @@ class ConvexCell {
   std::uint32_t next_serial_ = 0;
   mutable std::vector<std::uint8_t> plane_seen_;
   mutable std::vector<std::uint64_t> plane_places_;
+  // surely_uncut_by_box's copy of the vertices' enclosures, by component (a vertex's lower ends on each
+  // axis, its upper ends, its r2; m entries each): the searches ask it many times per shape of the
+  // cell (tens of millions of tests at Lake Superior), and read these 40 bytes per vertex instead of the
+  // records. Rebuilt on the first call after the vertices change (balls_stale_).
+  mutable std::vector<double> balls_;
+  mutable bool balls_stale_ = true;
+  // The vertex whose ball met the last box that the test could not let off: the next box (a nearby
+  // leaf or point of the same search) mostly meets it too, so it is tried first.
+  mutable std::uint32_t last_meeting_ = 0;
+  void refresh_balls() const;
   PredicateCounters counters_;
 };
 

@@ -470,14 +470,15 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
   for (int t = 0; t < start_count; ++t) enqueue(starts[t]);
   for (std::size_t head = 0; head < queued; ++head) {
     const Item it = queue[head];
-    if (!keep(it.level, it.c)) continue;
     const SearchEntry& e = search_[it.node];
     const Ranges& r = ranges_at(it.level);
+    // The tests on `seen` first: a few integer comparisons, where keep may cost far more (the engine's
+    // pruning tests the node's box against its cell: 3 million fewer tests at Lake Superior).
     if (e.first_child == kNoNode) {
-      if (e.occupied_or_size != 0 && !meets_seen(r, it.c)) report(it.node);
+      if (e.occupied_or_size != 0 && !meets_seen(r, it.c) && keep(it.level, it.c)) report(it.node);
       continue;
     }
-    if (inside_seen(r, it.c)) continue;
+    if (inside_seen(r, it.c) || !keep(it.level, it.c)) continue;
     // Children meeting the box, from index ranges one level down: a child is read only if it meets
     // the box and its subtree holds a vertex. Child k is the upper half along axis i when bit i of k
     // is set; kHalf[i][h] is the set of children in half h along axis i.
@@ -499,7 +500,7 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
       const NodeId grandchildren = search_[child_node].first_child;
       if (grandchildren == kNoNode) {
         if (!meets_seen(rc, cc) && keep(it.level + 1, cc)) report(child_node);
-      } else {
+      } else if (!inside_seen(rc, cc)) {  // one inside `seen` would only be dropped when dequeued
         // Its children's block is read when it leaves the queue: fetched meanwhile, and for its
         // siblings in parallel (the descent's time goes mostly to these misses).
         __builtin_prefetch(&search_[grandchildren]);
