@@ -670,7 +670,6 @@ double ConvexCell<D>::max_vertex_distance2() const {
   return best;
 }
 
-
 // The vertices' balls as surely_uncut_by_box reads them, and the box widened by the slack: whether the
 // box keeps clear of vertex j's ball by the margin, from the squared distance between it and the vertex's
 // interval box against the vertex's r2 (rounded upward under the caller's RoundingGuard; monotone in the
