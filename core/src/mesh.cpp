@@ -15,6 +15,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
@@ -30,6 +31,7 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -323,14 +325,27 @@ class MeshTriangulation {
   PointTable<Vertex> vertices_at(const Domain2& domain) const
     requires(D == 2)
   {
+    PointTable<Vertex> at = ring_point_table(domain);
+    find_vertices(at);
+    return at;
+  }
+  // vertices_at in two steps: the table of the rings' points (null handles), which needs no triangulation,
+  // then the vertices at them.
+  static PointTable<Vertex> ring_point_table(const Domain2& domain)
+    requires(D == 2)
+  {
     PointTable<Vertex> at;
     for (const Ring& ring : domain.rings)
       for (const Point2& p : ring.points) at.add(p);
     at.seal();
+    return at;
+  }
+  void find_vertices(PointTable<Vertex>& at) const
+    requires(D == 2)
+  {
     if (!at.empty())
       for (Vertex v : triangulation.finite_vertex_handles())
         if (Vertex* slot = at.find(C::from_cgal(v->point()))) *slot = v;
-    return at;
   }
 
   // The elements a change destroyed and created, netted once at the end: an element removed then
@@ -360,16 +375,22 @@ class MeshTriangulation {
   // The mesh of `points`; in 2D every segment of `domain`'s rings is a constraint.
   // False (and nothing more done) when two of the points are equal: CGAL merged them.
   bool build(std::span<const Point<D>> points, const Domain2& domain) {
-    {
-      std::vector<std::pair<decltype(C::to_cgal(points[0])), std::uint32_t>> input;
-      input.reserve(points.size());
-      for (std::uint32_t i = 0; i < points.size(); ++i) input.emplace_back(C::to_cgal(points[i]), i);
-      triangulation.insert(input.begin(), input.end());  // spatially sorted bulk insertion
-    }
+    // The rings' points sorted (2D) on another thread meanwhile: the insertion is sequential.
+    std::conditional_t<D == 2, PointTable<Vertex>, int> ring_vertex{};
+    tbb::parallel_invoke(
+        [&] {
+          std::vector<std::pair<decltype(C::to_cgal(points[0])), std::uint32_t>> input;
+          input.reserve(points.size());
+          for (std::uint32_t i = 0; i < points.size(); ++i) input.emplace_back(C::to_cgal(points[i]), i);
+          triangulation.insert(input.begin(), input.end());  // spatially sorted bulk insertion
+        },
+        [&] {
+          if constexpr (D == 2) ring_vertex = ring_point_table(domain);
+        });
     if (triangulation.number_of_vertices() != points.size()) return false;
     bool every_segment = true;  // every ring segment of positive length is a chain of constrained edges
     if constexpr (D == 2) {
-      const auto ring_vertex = vertices_at(domain);
+      find_vertices(ring_vertex);
       for (const Ring& ring : domain.rings)
         for (std::size_t k = 0; k < ring.segment_count(); ++k) {
           const Point2& a = ring.points[k];
