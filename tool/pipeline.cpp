@@ -13,7 +13,10 @@
 #include <span>
 #include <sstream>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/parallel_reduce.h>
 
 #include "shoremesh/error.hpp"
 #include "shoremesh/point_table.hpp"
@@ -242,30 +245,61 @@ using BBox = bg::model::box<BPoint>;
 static void shore_quality(const Mesh<2>& mesh, std::span<const Element<2>> elements, double rho, const UserFrame& frame,
                           const Domain2* input_rings, QualityNumbers& q) {
   // Elements below the bound: those the shore's constraints made (their circumcircle holds a mesh point
-  // hidden behind the shore, so they are not Delaunay) and the others. The points in a grid (made at
-  // the first element below the bound): a fine mesh near a detailed shore has thousands of them, each
-  // checked against a million points otherwise.
-  std::optional<bgi::rtree<BPoint, bgi::quadratic<16>>> index;
+  // hidden behind the shore, so they are not Delaunay) and the others. Below the bound are few elements
+  // (tens at a detailed shore): their circles' boxes go in a tree, and each mesh point asks it which of
+  // them hold it, on every thread.
   std::vector<std::pair<ElementCorners<2>, ElementShape<2>>> below;  // the elements below the bound
-  for (const auto& e : elements) {
+  std::vector<double> radius;                                         // their circumcircles' radii
+  // Their indices in element order, whatever the split of the work.
+  const std::vector<std::size_t> below_index = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, elements.size(), 16384), std::vector<std::size_t>(),
+      [&](const tbb::blocked_range<std::size_t>& range, std::vector<std::size_t> found) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+          const auto& e = elements[i];
+          const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
+          if (radius_edge<2>(c) > rho) found.push_back(i);  // the shape's ratio, without its angles
+        }
+        return found;
+      },
+      [](std::vector<std::size_t> a, const std::vector<std::size_t>& b) {
+        a.insert(a.end(), b.begin(), b.end());
+        return a;
+      });
+  for (const std::size_t i : below_index) {
+    const auto& e = elements[i];
     const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
-    if (radius_edge<2>(c) <= rho) continue;  // the shape's ratio, without its angles
     const ElementShape<2> shape = element_shape<2>(c);
     below.emplace_back(c, shape);
-    if (!index) {
-      std::vector<BPoint> all;
-      all.reserve(mesh.points().size());
-      for (const Point2& p : mesh.points()) all.emplace_back(p[0], p[1]);
-      index.emplace(all.begin(), all.end());
+    radius.push_back(std::hypot(c[0][0] - shape.circumcentre[0], c[0][1] - shape.circumcentre[1]));
+  }
+  if (!below.empty()) {
+    using Circle = std::pair<BBox, std::uint32_t>;
+    std::vector<Circle> boxes;
+    boxes.reserve(below.size());
+    for (std::uint32_t k = 0; k < below.size(); ++k) {
+      const Point2& o = below[k].second.circumcentre;
+      const double r = radius[k];
+      boxes.emplace_back(BBox(BPoint(o[0] - r, o[1] - r), BPoint(o[0] + r, o[1] + r)), k);
     }
-    const double radius = std::hypot(c[0][0] - shape.circumcentre[0], c[0][1] - shape.circumcentre[1]);
-    const Point2& o = shape.circumcentre;
+    const bgi::rtree<Circle, bgi::quadratic<16>> circles(boxes.begin(), boxes.end());
     // Strictly inside the circle (by more than its rounding): such a point is in the box about it.
-    bool hides = false;
-    for (auto it = index->qbegin(bgi::intersects(BBox(BPoint(o[0] - radius, o[1] - radius), BPoint(o[0] + radius, o[1] + radius))));
-         it != index->qend() && !hides; ++it)
-      hides = std::hypot(bg::get<0>(*it) - o[0], bg::get<1>(*it) - o[1]) < radius * (1 - 1e-9);
-    ++(hides ? q.shore_below_bound : q.interior_below_bound);
+    const std::vector<bool> hidden = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, mesh.points().size(), 16384), std::vector<bool>(below.size(), false),
+        [&](const tbb::blocked_range<std::size_t>& range, std::vector<bool> hides) {
+          for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            const Point2& p = mesh.points()[i];
+            for (auto it = circles.qbegin(bgi::intersects(BPoint(p[0], p[1]))); it != circles.qend(); ++it) {
+              const Point2& o = below[it->second].second.circumcentre;
+              if (std::hypot(p[0] - o[0], p[1] - o[1]) < radius[it->second] * (1 - 1e-9)) hides[it->second] = true;
+            }
+          }
+          return hides;
+        },
+        [](std::vector<bool> a, const std::vector<bool>& b) {
+          for (std::size_t k = 0; k < a.size(); ++k) a[k] = a[k] || b[k];
+          return a;
+        });
+    for (const bool hides : hidden) ++(hides ? q.shore_below_bound : q.interior_below_bound);
   }
   // Those near an input corner sharper than 60 degrees (core: sharp_corners, docs/conforming.md "Where
   // the bound may fail"), from the input's segments: the refined rings' would give the splits' pieces.
@@ -285,12 +319,20 @@ static void shore_quality(const Mesh<2>& mesh, std::span<const Element<2>> eleme
     }
     return a;
   };
-  if (!apex_angle.empty())
+  if (!apex_angle.empty()) {
+    // The mesh points at an apex, found once each (not at every corner of every element); the sums then
+    // in element order.
+    std::vector<std::uint8_t> at_apex(mesh.points().size(), 0);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, at_apex.size(), 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) at_apex[i] = apex_angle.find(mesh.points()[i]) != nullptr;
+    });
     for (const auto& e : elements) {
+      if (!(at_apex[e[0]] | at_apex[e[1]] | at_apex[e[2]])) continue;
       const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
       for (std::size_t i = 0; i < 3; ++i)
-        if (double* sum = apex_angle.find(c[i])) *sum += angles_of(c)[i];
+        if (at_apex[e[i]]) *apex_angle.find(c[i]) += angles_of(c)[i];
     }
+  }
   for (const SharpCorner& c : corners) q.sharp_corners_of_land += apex_angle.at(c.apex) > std::numbers::pi;
   double worst_elsewhere = std::numeric_limits<double>::infinity();
   for (const auto& [c, shape] : below) {

@@ -15,6 +15,8 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <bit>
@@ -29,6 +31,7 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -322,14 +325,27 @@ class MeshTriangulation {
   PointTable<Vertex> vertices_at(const Domain2& domain) const
     requires(D == 2)
   {
+    PointTable<Vertex> at = ring_point_table(domain);
+    find_vertices(at);
+    return at;
+  }
+  // vertices_at in two steps: the table of the rings' points (null handles), which needs no triangulation,
+  // then the vertices at them.
+  static PointTable<Vertex> ring_point_table(const Domain2& domain)
+    requires(D == 2)
+  {
     PointTable<Vertex> at;
     for (const Ring& ring : domain.rings)
       for (const Point2& p : ring.points) at.add(p);
     at.seal();
+    return at;
+  }
+  void find_vertices(PointTable<Vertex>& at) const
+    requires(D == 2)
+  {
     if (!at.empty())
       for (Vertex v : triangulation.finite_vertex_handles())
         if (Vertex* slot = at.find(C::from_cgal(v->point()))) *slot = v;
-    return at;
   }
 
   // The elements a change destroyed and created, netted once at the end: an element removed then
@@ -359,30 +375,45 @@ class MeshTriangulation {
   // The mesh of `points`; in 2D every segment of `domain`'s rings is a constraint.
   // False (and nothing more done) when two of the points are equal: CGAL merged them.
   bool build(std::span<const Point<D>> points, const Domain2& domain) {
-    {
-      std::vector<std::pair<decltype(C::to_cgal(points[0])), std::uint32_t>> input;
-      input.reserve(points.size());
-      for (std::uint32_t i = 0; i < points.size(); ++i) input.emplace_back(C::to_cgal(points[i]), i);
-      triangulation.insert(input.begin(), input.end());  // spatially sorted bulk insertion
-    }
+    // The rings' points sorted (2D) on another thread meanwhile: the insertion is sequential.
+    std::conditional_t<D == 2, PointTable<Vertex>, int> ring_vertex{};
+    tbb::parallel_invoke(
+        [&] {
+          std::vector<std::pair<decltype(C::to_cgal(points[0])), std::uint32_t>> input;
+          input.reserve(points.size());
+          for (std::uint32_t i = 0; i < points.size(); ++i) input.emplace_back(C::to_cgal(points[i]), i);
+          triangulation.insert(input.begin(), input.end());  // spatially sorted bulk insertion
+        },
+        [&] {
+          if constexpr (D == 2) ring_vertex = ring_point_table(domain);
+        });
     if (triangulation.number_of_vertices() != points.size()) return false;
+    bool every_segment = true;  // every ring segment of positive length is a chain of constrained edges
     if constexpr (D == 2) {
-      const auto ring_vertex = vertices_at(domain);
+      find_vertices(ring_vertex);
       for (const Ring& ring : domain.rings)
         for (std::size_t k = 0; k < ring.segment_count(); ++k) {
           const Point2& a = ring.points[k];
           const Point2& b = ring.points[(k + 1) % ring.points.size()];
           const Vertex va = ring_vertex.at(a), vb = ring_vertex.at(b);
           // A ring vertex that is not a mesh point leaves its segments out (shoreline_crossings says so).
-          if (a != b && va != Vertex() && vb != Vertex()) insert_constraint(va, vb);
+          if (a == b) continue;
+          if (va != Vertex() && vb != Vertex()) insert_constraint(va, vb);
+          else every_segment = false;
         }
     }
-    // Each face's class depends on that face alone (its corners, the rings, the box): classified on
-    // every thread, each face writing its own info.
     std::vector<Face> faces;
     if constexpr (D == 2) faces.reserve(triangulation.number_of_faces());
     else faces.reserve(triangulation.number_of_finite_cells());
     C::for_each_finite_face(triangulation, [&](Face f) { faces.push_back(f); });
+    if constexpr (D == 2) {
+      if (every_segment) {
+        classify_by_regions(faces);
+        return true;
+      }
+    }
+    // Each face's class depends on that face alone (its corners, the rings, the box): classified on
+    // every thread, each face writing its own info.
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t i = r.begin(); i != r.end(); ++i) classify(faces[i]);
     });
@@ -694,15 +725,71 @@ class MeshTriangulation {
   // split off the edge by one rounding; docs/water_only.md, "A sliver the empty land let in") is no element.
   std::uint8_t water_side(Face f) const {
     if constexpr (D == 2) {
-      const auto &a = f->vertex(0)->point(), &b = f->vertex(1)->point(), &d = f->vertex(2)->point();
-      const auto c = CGAL::centroid(a, b, d);
-      const CGAL::Orientation o = CGAL::orientation(a, b, d);
-      if (o == CGAL::COLLINEAR || CGAL::orientation(a, b, c) != o || CGAL::orientation(b, d, c) != o ||
-          CGAL::orientation(d, a, c) != o)
-        return 0;
-      return water_.in_water({c.x(), c.y()}) ? kInWater : 0;
+      const auto c = inner_centroid(f);
+      return c && water_.in_water(*c) ? kInWater : 0;
     } else {
       return kInWater;
+    }
+  }
+
+  // A 2D face's rounded centroid when it lies strictly inside the face (exact orientations); none for a
+  // sliver.
+  std::optional<Point2> inner_centroid(Face f) const
+    requires(D == 2)
+  {
+    const auto &a = f->vertex(0)->point(), &b = f->vertex(1)->point(), &d = f->vertex(2)->point();
+    const auto c = CGAL::centroid(a, b, d);
+    const CGAL::Orientation o = CGAL::orientation(a, b, d);
+    if (o == CGAL::COLLINEAR || CGAL::orientation(a, b, c) != o || CGAL::orientation(b, d, c) != o ||
+        CGAL::orientation(d, a, c) != o)
+      return std::nullopt;
+    return Point2{c.x(), c.y()};
+  }
+
+  // classify() for every finite face of a fresh build in which every ring segment is a chain of
+  // constrained edges. Faces joined by an unconstrained edge then lie on one side of every ring: the
+  // interior of their union meets no ring, so the side of each one's centroid (strictly inside it) is
+  // the same. One point-in-rings test per region of faces so joined, not one per face, gives the flags
+  // classify() gives (a sliver is still no element; a region of slivers alone has no water).
+  void classify_by_regions(const std::vector<Face>& faces)
+    requires(D == 2)
+  {
+    constexpr std::uint8_t kSolid = 8;  // during this call: the face is no sliver
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, faces.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+        const Face f = faces[i];
+        std::uint8_t flags = inner_centroid(f) ? kSolid : 0;
+        if (!covered_box_) {
+          flags |= kCovered;
+        } else {
+          ElementCorners<2> corners;
+          for (int k = 0; k < 3; ++k) corners[k] = C::from_cgal(f->vertex(k)->point());
+          if (circumcentre_in_box<2>(corners, *covered_box_)) flags |= kCovered;
+        }
+        C::flags(f) = flags;
+        f->info().stamp = stamp_of(f);
+      }
+    });
+    const std::uint32_t walk = next_walk();
+    std::vector<Face> stack;
+    for (const Face seed : faces) {
+      if (seed->info().visit == walk || !(C::flags(seed) & kSolid)) continue;
+      const std::uint8_t water = water_.in_water(*inner_centroid(seed)) ? kInWater : 0;
+      seed->info().visit = walk;
+      stack.push_back(seed);
+      while (!stack.empty()) {
+        const Face f = stack.back();
+        stack.pop_back();
+        std::uint8_t& flags = C::flags(f);
+        if (flags & kSolid) flags = static_cast<std::uint8_t>((flags & ~kSolid) | water);
+        for (int i = 0; i < 3; ++i) {
+          if (f->is_constrained(i)) continue;
+          const Face n = f->neighbor(i);
+          if (n->info().visit == walk || triangulation.is_infinite(n)) continue;
+          n->info().visit = walk;
+          stack.push_back(n);
+        }
+      }
     }
   }
 
@@ -1280,13 +1367,18 @@ ShorelineReport Mesh<D>::shoreline_crossings() const
     const auto it = t.vertex_of().find(p);
     return it == t.vertex_of().end() ? C::Vertex() : it->second;
   };
-  for (std::size_t r = 0; r < domain.rings.size(); ++r) {
+  // Each segment on its own (the walks only read the triangulation), on every thread; the issues in the
+  // rings' order, the counts summed, whatever the split.
+  std::vector<std::size_t> first_segment(domain.rings.size() + 1, 0);  // ring r's segments: a flat range
+  for (std::size_t r = 0; r < domain.rings.size(); ++r)
+    first_segment[r + 1] = first_segment[r] + domain.rings[r].segment_count();
+  auto check = [&](std::size_t r, std::size_t s, ShorelineReport& out) {
     const auto& ring = domain.rings[r].points;
-    for (std::size_t s = 0; s < domain.rings[r].segment_count(); ++s) {
+    {
       const Point2& a = ring[s];
       const Point2& b = ring[(s + 1) % ring.size()];
-      if (a == b) continue;
-      ++report.segments;
+      if (a == b) return;
+      ++out.segments;
       ShoreSegmentIssue issue;
       issue.ring = r, issue.segment = s, issue.a = a, issue.b = b;
       const auto pa = C::to_cgal(a), pb = C::to_cgal(b);
@@ -1299,13 +1391,18 @@ ShorelineReport Mesh<D>::shoreline_crossings() const
             for (const Point2& q : points_) nearest = std::min(nearest, std::hypot(q[0] - p.x(), q[1] - p.y()));
             if (!points_.empty()) issue.depth = std::max(issue.depth, nearest);
           }
-        report.issues.push_back(issue);
-        continue;
+        out.issues.push_back(issue);
+        return;
       }
       auto v = va;
       bool uncovered = false;
       std::vector<C::Face> passed;
       while (v != vb) {
+        // The segment a mesh edge (no vertex of the triangulation lies inside an edge of it).
+        if (dt.is_edge(v, vb)) {
+          v = vb;
+          continue;
+        }
         // A mesh edge from v along the segment towards b?
         C::Vertex next;
         for (auto w : C::adjacent_finite_vertices(dt, v))
@@ -1352,16 +1449,33 @@ ShorelineReport Mesh<D>::shoreline_crossings() const
         }
       }
       if (!uncovered) {
-        ++report.covered;
-        continue;
+        ++out.covered;
+        return;
       }
       std::sort(passed.begin(), passed.end());
       passed.erase(std::unique(passed.begin(), passed.end()), passed.end());
       for (C::Face f : passed)
         if (t.kept(f)) issue.crossing_elements.push_back(t.element(f));
-      report.issues.push_back(std::move(issue));
+      out.issues.push_back(std::move(issue));
     }
-  }
+  };
+  report = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, first_segment.back(), 4096), ShorelineReport{},
+      [&](const tbb::blocked_range<std::size_t>& range, ShorelineReport part) {
+        std::size_t r = static_cast<std::size_t>(
+            std::upper_bound(first_segment.begin(), first_segment.end(), range.begin()) - first_segment.begin() - 1);
+        for (std::size_t k = range.begin(); k != range.end(); ++k) {
+          while (k >= first_segment[r + 1]) ++r;
+          check(r, k - first_segment[r], part);
+        }
+        return part;
+      },
+      [](ShorelineReport x, ShorelineReport y) {
+        x.segments += y.segments;
+        x.covered += y.covered;
+        x.issues.insert(x.issues.end(), std::make_move_iterator(y.issues.begin()), std::make_move_iterator(y.issues.end()));
+        return x;
+      });
   for (const auto& issue : report.issues) report.worst_depth = std::max(report.worst_depth, issue.depth);
   return report;
 }

@@ -7,6 +7,9 @@
 #include <sstream>
 #include <tuple>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 #include "shoremesh/mesh_coverage.hpp"
 #include "shoremesh/shore_refinement.hpp"
 
@@ -161,29 +164,68 @@ QualityReport<D> quality_report(std::span<const Point<D>> points, std::span<cons
     double radius_edge;
     std::size_t element;
   };
-  std::vector<Ranked> ranked;
-  ranked.reserve(elements.size());
-  r.min_angle = r.min_radius_edge = std::numeric_limits<double>::infinity();
-  for (std::size_t e = 0; e < elements.size(); ++e) {
-    ElementCorners<D> corners;
-    for (int i = 0; i <= D; ++i) corners[i] = points[elements[e][i]];
-    const ElementShape<D> s = element_shape<D>(corners);
-    r.min_angle = std::min(r.min_angle, s.min_angle);
-    r.max_angle = std::max(r.max_angle, s.max_angle);
-    r.min_radius_edge = std::min(r.min_radius_edge, s.radius_edge);
-    r.max_radius_edge = std::max(r.max_radius_edge, s.radius_edge);
-    const bool meets = s.radius_edge <= tolerance;
-    const bool covered = circumcentre_in_box<D>(corners, low, high);  // exact, as the mesh clips
-    r.meeting_bound += meets;
-    if (covered) {
-      ++r.covered;
-      r.covered_meeting_bound += meets;
-      r.covered_max_radius_edge = std::max(r.covered_max_radius_edge, s.radius_edge);
-    }
-    add_to(r.min_angle_histogram, s.min_angle);
-    add_to(r.radius_edge_histogram, s.radius_edge);
-    ranked.push_back({s.radius_edge, e});
-  }
+  // Each element on its own, on every thread; the minima, maxima and counts do not depend on the split.
+  std::vector<Ranked> ranked(elements.size());
+  struct Partial {
+    double min_angle = std::numeric_limits<double>::infinity(), max_angle = 0;
+    double min_radius_edge = std::numeric_limits<double>::infinity(), max_radius_edge = 0;
+    double covered_max_radius_edge = 0;
+    std::size_t meeting_bound = 0, covered = 0, covered_meeting_bound = 0;
+    Histogram min_angle_histogram, radius_edge_histogram;
+  };
+  Partial empty;
+  empty.min_angle_histogram = r.min_angle_histogram;
+  empty.radius_edge_histogram = r.radius_edge_histogram;
+  const Partial all = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, elements.size(), 8192), empty,
+      [&](const tbb::blocked_range<std::size_t>& range, Partial p) {
+        for (std::size_t e = range.begin(); e != range.end(); ++e) {
+          ElementCorners<D> corners;
+          for (int i = 0; i <= D; ++i) corners[i] = points[elements[e][i]];
+          const ElementShape<D> s = element_shape<D>(corners);
+          p.min_angle = std::min(p.min_angle, s.min_angle);
+          p.max_angle = std::max(p.max_angle, s.max_angle);
+          p.min_radius_edge = std::min(p.min_radius_edge, s.radius_edge);
+          p.max_radius_edge = std::max(p.max_radius_edge, s.radius_edge);
+          const bool meets = s.radius_edge <= tolerance;
+          const bool covered = circumcentre_in_box<D>(corners, low, high);  // exact, as the mesh clips
+          p.meeting_bound += meets;
+          if (covered) {
+            ++p.covered;
+            p.covered_meeting_bound += meets;
+            p.covered_max_radius_edge = std::max(p.covered_max_radius_edge, s.radius_edge);
+          }
+          add_to(p.min_angle_histogram, s.min_angle);
+          add_to(p.radius_edge_histogram, s.radius_edge);
+          ranked[e] = {s.radius_edge, e};
+        }
+        return p;
+      },
+      [](Partial a, const Partial& b) {
+        a.min_angle = std::min(a.min_angle, b.min_angle);
+        a.max_angle = std::max(a.max_angle, b.max_angle);
+        a.min_radius_edge = std::min(a.min_radius_edge, b.min_radius_edge);
+        a.max_radius_edge = std::max(a.max_radius_edge, b.max_radius_edge);
+        a.covered_max_radius_edge = std::max(a.covered_max_radius_edge, b.covered_max_radius_edge);
+        a.meeting_bound += b.meeting_bound;
+        a.covered += b.covered;
+        a.covered_meeting_bound += b.covered_meeting_bound;
+        for (std::size_t i = 0; i < a.min_angle_histogram.counts.size(); ++i)
+          a.min_angle_histogram.counts[i] += b.min_angle_histogram.counts[i];
+        for (std::size_t i = 0; i < a.radius_edge_histogram.counts.size(); ++i)
+          a.radius_edge_histogram.counts[i] += b.radius_edge_histogram.counts[i];
+        return a;
+      });
+  r.min_angle = all.min_angle;
+  r.max_angle = all.max_angle;
+  r.min_radius_edge = all.min_radius_edge;
+  r.max_radius_edge = all.max_radius_edge;
+  r.covered_max_radius_edge = all.covered_max_radius_edge;
+  r.meeting_bound = all.meeting_bound;
+  r.covered = all.covered;
+  r.covered_meeting_bound = all.covered_meeting_bound;
+  r.min_angle_histogram = all.min_angle_histogram;
+  r.radius_edge_histogram = all.radius_edge_histogram;
   if (elements.empty()) r.min_angle = r.min_radius_edge = 0;
   const std::size_t k = std::min(worst_count, ranked.size());
   std::partial_sort(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(k), ranked.end(),

@@ -12,6 +12,8 @@
 #include <unordered_set>
 #include <utility>
 
+#include <tbb/parallel_invoke.h>
+
 #include "shoremesh/engine/predicates.hpp"
 
 namespace shoremesh {
@@ -356,36 +358,44 @@ struct ShoreRefinement::Impl {
   void build(std::span<const Point2> loose) {
     std::size_t vertices = 0;
     for (const Ring& ring : rings.rings) vertices += ring.points.size();
-    ring_vertex.reserve(vertices);
-    edge_of.reserve(vertices);
-    std::vector<Point2> all;
-    all.reserve(vertices + loose.size());
-    for (std::size_t r = 0; r < rings.rings.size(); ++r) {
-      const Ring& ring = rings.rings[r];
-      add_ring_vertices(r, ring, 0, ring.points.size());
-      all.insert(all.end(), ring.points.begin(), ring.points.end());
-    }
-    all.insert(all.end(), loose.begin(), loose.end());
-    std::sort(all.begin(), all.end());  // a vertex that rings share is one point
-    all.erase(std::unique(all.begin(), all.end()), all.end());
-    std::vector<BPoint> tree_points;
-    tree_points.reserve(all.size());
-    for (const Point2& p : all) tree_points.push_back(bpoint(p));
-    points = PointTree(tree_points.begin(), tree_points.end());  // packed bulk load
+    // Three parts that share nothing, made at the same time: the ring vertices' neighbours, the tree of
+    // the points, and the edges with the tree of their first nodes.
     std::vector<Node> work;
-    for (const Ring& ring : rings.rings)
-      for (std::size_t k = 0; k < ring.segment_count(); ++k) {
-        const Point2& p = ring.points[k];
-        const Point2& q = ring.points[(k + 1) % ring.points.size()];
-        if (p == q || edge_of.count(edge_key(p, q))) continue;
-        work.push_back({new_edge(p, q, ring.closed(), false), 0, 1});
-      }
-    // The edges' first nodes loaded at once (packed), not inserted one by one: the closure is the least
-    // fixed point of the rule, whatever order the tree gives the leaves in.
-    std::vector<DiskEntry> first_nodes;
-    first_nodes.reserve(work.size());
-    for (const Node& n : work) first_nodes.emplace_back(disk_box(n), n);
-    disks = DiskTree(first_nodes.begin(), first_nodes.end());
+    auto neighbours = [&] {
+      ring_vertex.reserve(vertices);
+      for (std::size_t r = 0; r < rings.rings.size(); ++r) add_ring_vertices(r, rings.rings[r], 0, rings.rings[r].points.size());
+    };
+    auto point_tree = [&] {
+      std::vector<Point2> all;
+      all.reserve(vertices + loose.size());
+      for (const Ring& ring : rings.rings) all.insert(all.end(), ring.points.begin(), ring.points.end());
+      all.insert(all.end(), loose.begin(), loose.end());
+      std::sort(all.begin(), all.end());  // a vertex that rings share is one point
+      all.erase(std::unique(all.begin(), all.end()), all.end());
+      std::vector<BPoint> tree_points;
+      tree_points.reserve(all.size());
+      for (const Point2& p : all) tree_points.push_back(bpoint(p));
+      all = {};
+      points = PointTree(tree_points.begin(), tree_points.end());  // packed bulk load
+    };
+    auto edge_tree = [&] {
+      edge_of.reserve(vertices);
+      edges.reserve(vertices);
+      for (const Ring& ring : rings.rings)
+        for (std::size_t k = 0; k < ring.segment_count(); ++k) {
+          const Point2& p = ring.points[k];
+          const Point2& q = ring.points[(k + 1) % ring.points.size()];
+          if (p == q || edge_of.count(edge_key(p, q))) continue;
+          work.push_back({new_edge(p, q, ring.closed(), false), 0, 1});
+        }
+      // The edges' first nodes loaded at once (packed), not inserted one by one: the closure is the least
+      // fixed point of the rule, whatever order the tree gives the leaves in.
+      std::vector<DiskEntry> first_nodes;
+      first_nodes.reserve(work.size());
+      for (const Node& n : work) first_nodes.emplace_back(disk_box(n), n);
+      disks = DiskTree(first_nodes.begin(), first_nodes.end());
+    };
+    tbb::parallel_invoke(neighbours, point_tree, edge_tree);
     close(std::move(work));
     made.clear();
   }

@@ -3,7 +3,13 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <charconv>
 #include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "shoremesh/io/ring_file.hpp"
 
 #include "io_test_names.hpp"
 
@@ -157,4 +163,68 @@ TEST(ReadInput, ASpacingThatWouldCreateMoreThanTheCapIsRefusedWithTheCount) {
   tiny.poly.spacing = 1e-300;
   EXPECT_THAT(expect_input_error([&] { read_input(dir.path("sq.poly"), tiny); }).message(),
               HasSubstr("into 5e+301 points, more than the 10000000 allowed"));
+}
+
+// A ring file of a few megabytes is read in pieces on every thread: the rings, their points and each
+// vertex's line are those of a reading line by line (comments, blank lines and "\r\n" endings across the
+// pieces' ends), and of two malformed lines the error names the first in the file, with its line; a ring
+// of two points before it is reported first, as a reading line by line meets it first.
+TEST(ReadInput, LargeRingFileReadInPiecesAsLineByLine) {
+  constexpr int kRings = 40, kPoints = 4000;
+  std::string text = "# rings\n";
+  std::size_t line = 1;
+  std::vector<std::vector<Point2>> points;
+  std::vector<std::vector<std::size_t>> lines;
+  auto number = [](double x) {
+    char buf[32];
+    return std::string(buf, std::to_chars(buf, buf + sizeof buf, x).ptr);
+  };
+  for (int r = 0; r < kRings; ++r) {
+    text += r % 3 ? "\n" : "# ring\r\n";
+    ++line;
+    points.emplace_back();
+    lines.emplace_back();
+    for (int k = 0; k <= kPoints; ++k) {  // the last repeats the first
+      const double a = 2 * std::numbers::pi * (k % kPoints) / kPoints;
+      const Point2 p{100.0 * r + 10 * std::cos(a), 10 * std::sin(a)};
+      text += number(p[0]) + (k % 2 ? "," : " , ") + number(p[1]) + (k % 5 ? "\n" : "\r\n");
+      ++line;
+      if (k == kPoints) continue;
+      points.back().push_back(p);
+      lines.back().push_back(line);
+    }
+  }
+  ASSERT_GT(text.size(), std::size_t(3) << 20);
+  const RingFile rf = parse_ring_file_text(text, "big.csv");
+  EXPECT_EQ(rf.rings, points);
+  EXPECT_EQ(rf.lines, lines);
+  const auto once = parse_ring_file_if_rings(text, "big.csv");
+  ASSERT_TRUE(once.has_value());
+  EXPECT_EQ(once->rings, points);
+  EXPECT_EQ(once->lines, lines);
+  EXPECT_TRUE(looks_like_ring_file(text));
+
+  // Line `at` (1-based) replaced by `with`.
+  auto replaced = [&](std::string t, std::size_t at, const std::string& with) {
+    std::size_t begin = 0;
+    for (std::size_t l = 1; l < at; ++l) begin = t.find('\n', begin) + 1;
+    const std::size_t end = t.find('\n', begin);
+    return t.replace(begin, end - begin, with);
+  };
+  const std::size_t early = lines[7][100], late = lines[33][2500];
+  const std::string bad = replaced(replaced(text, late, "1,2,3"), early, "1,abc");
+  auto e = expect_input_error([&] { parse_ring_file_text(bad, "big.csv"); });
+  EXPECT_EQ(e.file(), "big.csv");
+  EXPECT_EQ(e.line(), early);
+  EXPECT_THAT(e.message(), HasSubstr("\"abc\" is not a number"));
+  e = expect_input_error([&] { parse_ring_file_text(replaced(text, late, "1,2,3"), "big.csv"); });
+  EXPECT_EQ(e.line(), late);
+  EXPECT_THAT(e.message(), HasSubstr("expected 2 numbers, found 3 columns"));
+  EXPECT_FALSE(parse_ring_file_if_rings(bad, "big.csv").has_value());
+  EXPECT_FALSE(looks_like_ring_file(bad));
+  // Ring 12 cut to two points (a blank line after its second): reported before the bad line after it.
+  const std::string short_ring = replaced(replaced(text, late, "1,abc"), lines[12][2], "");
+  e = expect_input_error([&] { parse_ring_file_text(short_ring, "big.csv"); });
+  EXPECT_EQ(e.line(), lines[12][0]);
+  EXPECT_THAT(e.message(), HasSubstr("a ring needs at least three points, this one has 2"));
 }

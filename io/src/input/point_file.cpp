@@ -14,10 +14,23 @@ namespace detail {
 std::string read_text_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("cannot open file", path);
-  std::ostringstream ss;
-  ss << in.rdbuf();
+  // A file of known size read in one piece (not copied through a growing stream buffer); the rest, if it
+  // grew or has no size (a pipe), as it comes.
+  std::string text;
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  in.seekg(0, std::ios::beg);
+  if (size > 0 && in) {
+    text.resize(static_cast<std::size_t>(size));
+    in.read(text.data(), size);
+    text.resize(static_cast<std::size_t>(in.gcount()));
+  }
+  in.clear();
+  std::ostringstream rest;
+  rest << in.rdbuf();
   if (in.bad()) throw InputError("cannot read file", path);
-  return ss.str();
+  if (rest.tellp() > 0) text += rest.str();
+  return text;
 }
 
 }  // namespace detail

@@ -8,7 +8,12 @@
 
 #include <proj.h>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <mutex>
@@ -225,16 +230,35 @@ std::string Projection::wkt() const {
 
 Projection Projection::choose(const std::vector<LonLat>& data, ProjectionChoice choice, const std::string& file) {
   if (data.empty()) throw InputError("no points to choose a projection from", file);
-  // Centre: mean of the unit vectors (robust across the antimeridian and over a pole).
+  // Centre: mean of the unit vectors (robust across the antimeridian and over a pole). Each point's vector
+  // on every thread, summed in the data's order; the error is the first invalid point's.
+  std::vector<std::array<double, 3>> unit(data.size());
+  std::atomic<std::size_t> first_invalid{data.size()};
+  auto lower_to = [](std::atomic<std::size_t>& first, std::size_t i) {
+    std::size_t seen = first.load();
+    while (i < seen && !first.compare_exchange_weak(seen, i)) {
+    }
+  };
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, data.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const LonLat& p = data[i];
+      if (!std::isfinite(p.lon) || !std::isfinite(p.lat) || std::abs(p.lat) > 90 || std::abs(p.lon) > 540) {
+        lower_to(first_invalid, i);
+        return;
+      }
+      const double phi = p.lat * GeographicLib::Math::degree(), lam = p.lon * GeographicLib::Math::degree();
+      unit[i] = {std::cos(phi) * std::cos(lam), std::cos(phi) * std::sin(lam), std::sin(phi)};
+    }
+  });
+  if (const std::size_t i = first_invalid.load(); i < data.size())
+    throw InputError("not a valid lon/lat: " + fmt("%.9g", data[i].lon) + ", " + fmt("%.9g", data[i].lat), file);
   double sx = 0, sy = 0, sz = 0;
-  for (const auto& p : data) {
-    if (!std::isfinite(p.lon) || !std::isfinite(p.lat) || std::abs(p.lat) > 90 || std::abs(p.lon) > 540)
-      throw InputError("not a valid lon/lat: " + fmt("%.9g", p.lon) + ", " + fmt("%.9g", p.lat), file);
-    const double phi = p.lat * GeographicLib::Math::degree(), lam = p.lon * GeographicLib::Math::degree();
-    sx += std::cos(phi) * std::cos(lam);
-    sy += std::cos(phi) * std::sin(lam);
-    sz += std::sin(phi);
+  for (const auto& u : unit) {
+    sx += u[0];
+    sy += u[1];
+    sz += u[2];
   }
+  unit = {};
   const double norm = std::sqrt(sx * sx + sy * sy + sz * sz) / static_cast<double>(data.size());
   if (norm < 0.5)
     throw InputError("the lon/lat data is spread over too much of the globe for one map projection", file);
@@ -248,7 +272,19 @@ Projection Projection::choose(const std::vector<LonLat>& data, ProjectionChoice 
   } else {
     proj = local_transverse_mercator(lon_c, lat_c);
   }
-  for (std::size_t i = 0; i < data.size(); ++i) {
+  // Every point projects (on every thread; the error is the first failing point's, as in order).
+  std::atomic<std::size_t> first_failing{data.size()};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, data.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      try {
+        (void)proj.forward(data[i]);
+      } catch (const std::domain_error&) {
+        lower_to(first_failing, i);
+        return;
+      }
+    }
+  });
+  if (const std::size_t i = first_failing.load(); i < data.size()) {
     try {
       (void)proj.forward(data[i]);
     } catch (const std::domain_error& e) {

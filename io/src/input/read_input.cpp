@@ -110,7 +110,14 @@ InputSet read_input(const std::string& path, const InputOptions& options) {
   if (!format) {
     if (!is_text_extension(path)) detect_input_format(path);  // throws the unknown-format error
     text = detail::read_text_file(path);
-    format = text_format(text);
+    // text_format's choice, the text parsed once when it is rings.
+    if (csv_header_has_lat_lon(text)) {
+      format = InputFormat::TrackCsv;
+    } else if (auto rings = parse_ring_file_if_rings(text, path)) {
+      return ring_file_to_input(*rings, path, options.lonlat, projection, choice, options.ring_spacing);
+    } else {
+      format = InputFormat::PointFile;
+    }
   }
   switch (*format) {
     case InputFormat::Image: {

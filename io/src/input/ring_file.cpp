@@ -17,34 +17,107 @@ namespace shoremesh::io {
 
 namespace {
 
-// Groups of (point, line) separated by blank lines; throws on malformed lines when `strict`.
+// The text in pieces that end at a line's end, each read on its own thread into a list of what its lines
+// are (a point, a break between groups, or the first malformed line), then joined in the file's order:
+// on_group(points, lines) for each group of points separated by blank lines (and comments, GMT segment
+// headers), in the file's order, then InputError at the first malformed line, in turn: as a reading line
+// by line calls and throws.
 template <class F>
 void for_each_group(std::string_view text, const std::string& name, F&& on_group) {
+  text = detail::strip_bom(text);
+  struct Item {
+    Point2 p{};
+    std::size_t line = 0;  // within the piece, 1-based
+    bool point = false;    // otherwise a break between groups
+  };
+  struct Piece {
+    std::string_view text;
+    std::vector<Item> items;
+    std::size_t line_count = 0;
+    std::string error;  // the first malformed line's message (items stop there), at items.back().line
+  };
+  constexpr std::size_t kPieceSize = 1 << 18;
+  std::vector<Piece> pieces;
+  for (std::size_t at = 0; at < text.size();) {
+    std::size_t end = std::min(text.size(), at + kPieceSize);
+    if (end < text.size()) {
+      const std::size_t nl = text.find('\n', end - 1);
+      end = nl == std::string_view::npos ? text.size() : nl + 1;
+    }
+    pieces.push_back({text.substr(at, end - at), {}, 0, {}});
+    at = end;
+  }
+  tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t k) {
+    Piece& piece = pieces[k];
+    piece.items.reserve(piece.text.size() / 16);
+    std::string_view rest = piece.text;
+    std::size_t line = 0;
+    while (!rest.empty() && piece.error.empty()) {
+      ++line;
+      const auto nl = rest.find('\n');
+      std::string_view raw = rest.substr(0, nl);
+      rest.remove_prefix(nl == std::string_view::npos ? rest.size() : nl + 1);
+      if (!raw.empty() && raw.back() == '\r') raw.remove_suffix(1);
+      const auto trimmed = detail::trim(raw);
+      // Comments and GMT segment headers end a group as a blank line does.
+      if (trimmed.empty() || trimmed.front() == '#' || trimmed.front() == '>') {
+        piece.items.push_back({{}, line, false});
+        continue;
+      }
+      const auto fields = detail::split_fields(detail::strip_comment(trimmed));
+      Item item{{}, line, true};
+      if (fields.size() != 2) {
+        piece.error = "expected 2 numbers, found " + std::to_string(fields.size()) + " columns";
+      } else {
+        for (std::size_t c = 0; c < 2 && piece.error.empty(); ++c) {
+          const auto st = detail::parse_double(fields[c], item.p[c]);
+          if (st != detail::NumberStatus::Ok)
+            piece.error = "column " + std::to_string(c + 1) + ": " + detail::quoted(fields[c]) +
+                          (st == detail::NumberStatus::NotFinite ? " is not a finite number" : " is not a number");
+        }
+      }
+      piece.items.push_back(item);
+    }
+    piece.line_count = line;
+  });
   std::vector<Point2> pts;
   std::vector<std::size_t> lines;
   auto flush = [&] {
-    if (!pts.empty()) on_group(pts, lines);
+    if (pts.empty()) return;
+    on_group(std::move(pts), std::move(lines));
     pts.clear();
     lines.clear();
   };
-  detail::for_each_line(text, [&](std::string_view raw, std::size_t line) {
-    const auto trimmed = detail::trim(raw);
-    if (trimmed.empty()) return flush();
-    if (trimmed.front() == '#' || trimmed.front() == '>') return flush();  // comments and GMT segment headers
-    const auto fields = detail::split_fields(detail::strip_comment(trimmed));
-    if (fields.size() != 2) throw InputError("expected 2 numbers, found " + std::to_string(fields.size()) + " columns", name, line);
-    Point2 p{};
-    for (std::size_t c = 0; c < 2; ++c) {
-      const auto st = detail::parse_double(fields[c], p[c]);
-      if (st != detail::NumberStatus::Ok)
-        throw InputError("column " + std::to_string(c + 1) + ": " + detail::quoted(fields[c]) +
-                             (st == detail::NumberStatus::NotFinite ? " is not a finite number" : " is not a number"),
-                         name, line);
+  std::size_t offset = 0;  // lines in the pieces before
+  for (Piece& piece : pieces) {
+    for (std::size_t i = 0; i < piece.items.size(); ++i) {
+      const Item& item = piece.items[i];
+      if (!piece.error.empty() && i + 1 == piece.items.size()) throw InputError(piece.error, name, offset + item.line);
+      if (!item.point) {
+        flush();
+        continue;
+      }
+      pts.push_back(item.p);
+      lines.push_back(offset + item.line);
     }
-    pts.push_back(p);
-    lines.push_back(line);
-  });
+    offset += piece.line_count;
+    piece.items = {};
+  }
   flush();
+}
+
+bool closed_group(const std::vector<Point2>& pts) { return pts.size() >= 4 && pts.front() == pts.back(); }
+
+// Adds a group to `out` as a ring (without its closing point); throws for fewer than three points.
+void add_ring(RingFile& out, std::vector<Point2> pts, std::vector<std::size_t> lines, const std::string& name) {
+  if (pts.size() >= 2 && pts.front() == pts.back()) {
+    pts.pop_back();
+    lines.pop_back();
+  }
+  if (pts.size() < 3)
+    throw InputError("a ring needs at least three points, this one has " + std::to_string(pts.size()), name, lines.front());
+  out.rings.push_back(std::move(pts));
+  out.lines.push_back(std::move(lines));
 }
 
 }  // namespace
@@ -52,15 +125,27 @@ void for_each_group(std::string_view text, const std::string& name, F&& on_group
 RingFile parse_ring_file_text(std::string_view text, const std::string& name) {
   RingFile out;
   for_each_group(text, name, [&](std::vector<Point2> pts, std::vector<std::size_t> lines) {
-    if (pts.size() >= 2 && pts.front() == pts.back()) {
-      pts.pop_back();
-      lines.pop_back();
-    }
-    if (pts.size() < 3)
-      throw InputError("a ring needs at least three points, this one has " + std::to_string(pts.size()), name, lines.front());
-    out.rings.push_back(std::move(pts));
-    out.lines.push_back(std::move(lines));
+    add_ring(out, std::move(pts), std::move(lines), name);
   });
+  if (out.rings.empty()) throw InputError("no points", name);
+  return out;
+}
+
+std::optional<RingFile> parse_ring_file_if_rings(std::string_view text, const std::string& name) {
+  // Well formed with a closed group, the text is a ring file, whose errors are then only the rings'.
+  std::vector<std::pair<std::vector<Point2>, std::vector<std::size_t>>> groups;
+  bool closed = false;
+  try {
+    for_each_group(text, name, [&](std::vector<Point2> pts, std::vector<std::size_t> lines) {
+      closed = closed || closed_group(pts);
+      groups.emplace_back(std::move(pts), std::move(lines));
+    });
+  } catch (const InputError&) {
+    return std::nullopt;
+  }
+  if (!closed) return std::nullopt;
+  RingFile out;
+  for (auto& [pts, lines] : groups) add_ring(out, std::move(pts), std::move(lines), name);
   if (out.rings.empty()) throw InputError("no points", name);
   return out;
 }
@@ -68,15 +153,15 @@ RingFile parse_ring_file_text(std::string_view text, const std::string& name) {
 RingFile read_ring_file(const std::string& path) { return parse_ring_file_text(detail::read_text_file(path), path); }
 
 bool looks_like_ring_file(std::string_view text) {
-  bool closed_group = false;
+  bool closed = false;
   try {
     for_each_group(text, "", [&](const std::vector<Point2>& pts, const std::vector<std::size_t>&) {
-      if (pts.size() >= 4 && pts.front() == pts.back()) closed_group = true;
+      closed = closed || closed_group(pts);
     });
   } catch (const InputError&) {
     return false;
   }
-  return closed_group;
+  return closed;
 }
 
 InputSet ring_file_to_input(const RingFile& rf, const std::string& file, bool lonlat,

@@ -30,6 +30,8 @@ void write_ring_file(const std::filesystem::path& path, const Domain2& domain);
 // True when the text looks like a ring file: blank-line separated groups of 2-column lines, and at least
 // one group of four or more lines ends with its first point (no header).
 bool looks_like_ring_file(std::string_view text);
+// parse_ring_file_text(text, name) when looks_like_ring_file(text), else nothing: the text read once.
+std::optional<RingFile> parse_ring_file_if_rings(std::string_view text, const std::string& name);
 
 // Rings to an InputSet. `lonlat`: the columns are lon, lat in degrees (projected with `projection`, or one
 // chosen by `choice`); otherwise map units. `spacing` > 0: points are inserted along every ring segment
