@@ -242,31 +242,37 @@ using BBox = bg::model::box<BPoint>;
 static void shore_quality(const Mesh<2>& mesh, std::span<const Element<2>> elements, double rho, const UserFrame& frame,
                           const Domain2* input_rings, QualityNumbers& q) {
   // Elements below the bound: those the shore's constraints made (their circumcircle holds a mesh point
-  // hidden behind the shore, so they are not Delaunay) and the others. The points in a grid (made at
-  // the first element below the bound): a fine mesh near a detailed shore has thousands of them, each
-  // checked against a million points otherwise.
-  std::optional<bgi::rtree<BPoint, bgi::quadratic<16>>> index;
+  // hidden behind the shore, so they are not Delaunay) and the others.
   std::vector<std::pair<ElementCorners<2>, ElementShape<2>>> below;  // the elements below the bound
   for (const auto& e : elements) {
     const ElementCorners<2> c{mesh.points()[e[0]], mesh.points()[e[1]], mesh.points()[e[2]]};
     if (radius_edge<2>(c) <= rho) continue;  // the shape's ratio, without its angles
-    const ElementShape<2> shape = element_shape<2>(c);
-    below.emplace_back(c, shape);
-    if (!index) {
-      std::vector<BPoint> all;
-      all.reserve(mesh.points().size());
-      for (const Point2& p : mesh.points()) all.emplace_back(p[0], p[1]);
-      index.emplace(all.begin(), all.end());
-    }
-    const double radius = std::hypot(c[0][0] - shape.circumcentre[0], c[0][1] - shape.circumcentre[1]);
-    const Point2& o = shape.circumcentre;
-    // Strictly inside the circle (by more than its rounding): such a point is in the box about it.
-    bool hides = false;
-    for (auto it = index->qbegin(bgi::intersects(BBox(BPoint(o[0] - radius, o[1] - radius), BPoint(o[0] + radius, o[1] + radius))));
-         it != index->qend() && !hides; ++it)
-      hides = std::hypot(bg::get<0>(*it) - o[0], bg::get<1>(*it) - o[1]) < radius * (1 - 1e-9);
-    ++(hides ? q.shore_below_bound : q.interior_below_bound);
+    below.emplace_back(c, element_shape<2>(c));
   }
+  // A point strictly inside a circle (by more than its rounding) lies in the box about it. The boxes in
+  // an R-tree and each mesh point looked up there once: an index of the few circles (a fine mesh near a
+  // detailed shore has thousands) instead of one of the million points, which at Superior held 40 MB at
+  // the summary's top while the writing ran beside it.
+  std::vector<double> radius(below.size());
+  std::vector<bool> hides(below.size());
+  if (!below.empty()) {
+    std::vector<std::pair<BBox, std::size_t>> boxes;
+    boxes.reserve(below.size());
+    for (std::size_t k = 0; k < below.size(); ++k) {
+      const auto& [c, shape] = below[k];
+      const Point2& o = shape.circumcentre;
+      radius[k] = std::hypot(c[0][0] - o[0], c[0][1] - o[1]);
+      boxes.emplace_back(BBox(BPoint(o[0] - radius[k], o[1] - radius[k]), BPoint(o[0] + radius[k], o[1] + radius[k])), k);
+    }
+    const bgi::rtree<std::pair<BBox, std::size_t>, bgi::quadratic<16>> index(boxes.begin(), boxes.end());
+    for (const Point2& p : mesh.points())
+      for (auto it = index.qbegin(bgi::intersects(BPoint(p[0], p[1]))); it != index.qend(); ++it) {
+        const std::size_t k = it->second;
+        const Point2& o = below[k].second.circumcentre;
+        if (!hides[k] && std::hypot(p[0] - o[0], p[1] - o[1]) < radius[k] * (1 - 1e-9)) hides[k] = true;
+      }
+  }
+  for (std::size_t k = 0; k < below.size(); ++k) ++(hides[k] ? q.shore_below_bound : q.interior_below_bound);
   // Those near an input corner sharper than 60 degrees (core: sharp_corners, docs/conforming.md "Where
   // the bound may fail"), from the input's segments: the refined rings' would give the splits' pieces.
   const std::vector<SharpCorner> corners = sharp_corners(input_rings ? *input_rings : mesh.domain());
