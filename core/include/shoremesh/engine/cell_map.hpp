@@ -66,9 +66,9 @@ inline std::uint64_t next_generation() {
 }
 
 // Linear probing at most half full, backward-shift deletion; key 0 marks an empty slot. Any number of
-// slots (a hash's low 32 bits scaled to it picks the first): a build reserves what its cells need, not
-// the next power of two, which left Superior's table (591,396 cells) at 2^21 slots of 16 bytes, 28 %
-// full (33.6 MB; now 1.48 million slots of 12 bytes, 17.7 MB).
+// slots (a hash's low 32 bits scaled to it picks the first): a build reserves what its cells need. At
+// Superior (591,396 cells) 1.48 million slots of 12 bytes, 17.7 MB, where the next power of two of
+// 16-byte slots took 33.6 MB.
 template <class Key>
 class CellTable {
  public:
@@ -132,8 +132,8 @@ class CellTable {
   }
 
   // Room for `count` keys without a rehash on the way (a build that knows its size up front), and for
-  // `spare` more after those: 40 % full then (half full costs a neighbour search a few percent more
-  // probes, most of them in the same cache line).
+  // `spare` more after those: 40 % full then (the look-ups of cells that do not exist, which every
+  // neighbour search makes, probe further in a fuller table).
   void reserve(std::size_t count, std::size_t spare) {
     const std::size_t capacity = 5 * (count + spare) / 2;
     if (capacity > slots_.size()) rehash(capacity);
