@@ -95,6 +95,9 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
                          (D == 2 ? "triangle (give at least 3 points not on one line)"
                                  : "tetrahedron (give at least 4 points not on one plane)"),
                      opt.output);
+  // The mesh holds its own copy of the points: only a point-set output reads the engine's again.
+  const std::size_t point_count = result.points.size();
+  if (!point_set) std::vector<Point<D>>().swap(result.points);
 
   // The outputs and the summary only read the finished mesh: they are made at the same time (each output
   // to its staged file, committed together once all are written).
@@ -129,7 +132,7 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
   progress.finish();
 
   // The engine's Steiner points fill its whole box; the mesh keeps those its elements use (the water).
-  std::cerr << "shoremesh: " << result.input_count << " input points, " << result.points.size() - result.input_count
+  std::cerr << "shoremesh: " << result.input_count << " input points, " << point_count - result.input_count
             << " Steiner points in the box (" << quality.steiner_points << " of them in the mesh) -> " << opt.output
             << '\n';
   std::cout << describe_input(set);

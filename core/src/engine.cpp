@@ -142,7 +142,7 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(s
     filter_keys_ = ids;
     vertex_ops_.resize(input_count_);
   }
-  tree_.build(positions_, ids);
+  tree_.build(positions_, ids, for_updates);
   for (NodeId n = 0; n < tree_.node_capacity(); ++n) {
     const auto& nd = tree_.node(n);
     if (nd.level < 0 || !nd.is_leaf()) continue;

@@ -111,6 +111,7 @@ template <int D>
 void Quadtree<D>::make_root() {
   nodes_.assign(kChildren, Record{});
   search_.assign(kChildren, SearchEntry{});
+  if (editable_) inputs_.assign(kChildren, Inputs{});
   nodes_[0].level = 0;
 }
 
@@ -128,9 +129,11 @@ NodeId Quadtree<D>::allocate_children() {
     const std::size_t capacity = nodes_.size() + std::max<std::size_t>(nodes_.size() / 4, 64 * kChildren);
     nodes_.reserve(capacity);
     search_.reserve(capacity);
+    inputs_.reserve(capacity);
   }
   nodes_.resize(nodes_.size() + kChildren);
   search_.resize(nodes_.size());
+  inputs_.resize(nodes_.size());
   return first;
 }
 
@@ -151,9 +154,10 @@ void Quadtree<D>::split(NodeId n, std::vector<NodeId>* created) {
     ch.set_coords(cc);
     search_[first + NodeId(k)] = SearchEntry{};
     search_[first + NodeId(k)].parent = n;
+    inputs_[first + NodeId(k)] = Inputs{};
     if (created) created->push_back(first + NodeId(k));
   }
-  const VertexId input = nodes_[n].input_vertex;
+  const VertexId input = inputs_[n].vertex;
   // By index: a child's block may move the pool, the parent's block stays where it is until cleared.
   for (std::uint32_t j = 0; j < search_[n].occupied_or_size; ++j) {
     const LeafVertex<D> e = pool_[search_[n].vertices + j];
@@ -162,12 +166,11 @@ void Quadtree<D>::split(NodeId n, std::vector<NodeId>* created) {
     for (int i = 0; i < D; ++i) k |= int(c[i] & 1u) << i;
     leaf_push(first + NodeId(k), e);
     if (e.id == input) {
-      nodes_[first + NodeId(k)].input_vertex = e.id;
-      nodes_[first + NodeId(k)].input_count = 1;
+      inputs_[first + NodeId(k)] = Inputs{1, e.id};
     }
   }
   leaf_clear(n);
-  nodes_[n].input_vertex = kNoVertex;
+  inputs_[n].vertex = kNoVertex;
   search_[n].first_child = first;
   map_.insert<D>(level - 1, pc, first);
   leaf_count_ += kChildren - 1;
@@ -194,10 +197,10 @@ void Quadtree<D>::merge(NodeId n, std::vector<NodeId>* removed) {
     std::copy_n(pool_.begin() + search_[c].vertices, search_[c].occupied_or_size, pool_.begin() + e.vertices + e.occupied_or_size);
     e.occupied_or_size += search_[c].occupied_or_size;
     leaf_clear(c);
-    Record& ch = nodes_[c];
-    if (ch.input_vertex != kNoVertex) nodes_[n].input_vertex = ch.input_vertex;
-    ch = Record{};  // level -1: a free slot
+    if (inputs_[c].vertex != kNoVertex) inputs_[n].vertex = inputs_[c].vertex;
+    nodes_[c] = Record{};  // level -1: a free slot
     search_[c] = SearchEntry{};
+    inputs_[c] = Inputs{};
     if (removed) removed->push_back(c);
   }
   map_.erase<D>(nodes_[n].level, nodes_[n].coords());
@@ -319,10 +322,11 @@ std::uint32_t Quadtree<D>::inputs_in_cell(int level, const Coords& c, std::span<
   if (level > kMaxLevel) throw PointInputError("input points closer than the engine's resolution (2^-40 of the box side)", {});
   const NodeId n = deepest_containing(level, c);
   const Record& nd = nodes_[n];
-  if (nd.level == level) return nd.input_count;
+  if (nd.level == level) return inputs_[n].count;
   // A leaf above the cell: its (single) input point may or may not lie in the cell.
-  if (nd.input_vertex == kNoVertex) return 0;
-  return cell_of(positions[nd.input_vertex], level) == c ? 1u : 0u;
+  const VertexId v = inputs_[n].vertex;
+  if (v == kNoVertex) return 0;
+  return cell_of(positions[v], level) == c ? 1u : 0u;
 }
 
 // The crowding rule, written once for the build (counts by Morton ranges) and for updates (counts from
@@ -357,7 +361,7 @@ bool Quadtree<D>::crowded_by(int level, const Coords& c, std::uint32_t own, Coun
 template <int D>
 bool Quadtree<D>::crowded(NodeId n, std::span<const Point<D>> positions) const {
   const Record& nd = nodes_[n];
-  return crowded_by(nd.level, nd.coords(), nd.input_count,
+  return crowded_by(nd.level, nd.coords(), inputs_[n].count,
                     [&](int level, const Coords& q) { return inputs_in_cell(level, q, positions); });
 }
 
@@ -517,9 +521,12 @@ std::array<std::uint64_t, D> deinterleave(CellKey code) {
 // The result is the same minimal fixed point as splitting and balance_around (tests/engine compares the
 // build with a tree made by add_input one point at a time).
 template <int D>
-void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const VertexId> ids) {
+void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const VertexId> ids, bool editable) {
+  editable_ = editable;
   nodes_.clear();
   search_.clear();
+  inputs_.clear();
+  if (!editable) inputs_.shrink_to_fit();
   free_blocks_.clear();
   pool_.clear();
   pool_.shrink_to_fit();
@@ -691,10 +698,13 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
   // 3. Nodes, depth first, each internal node's children allocated when it is visited.
   std::size_t compact_cells = 0;
   for (int level = 0; level <= std::min(deepest, kCompactLevels<D>); ++level) compact_cells += internal[std::size_t(level)].size();
-  map_.reserve(compact_cells, internal_count - compact_cells);
+  map_.reserve(compact_cells, internal_count - compact_cells, editable_);
   const std::size_t node_count = kChildren * (1 + internal_count);
-  nodes_.reserve(node_count + node_count / 16);
-  search_.reserve(node_count + node_count / 16);
+  // An editable tree gets a sixteenth more, room for the edits that follow.
+  const std::size_t room = editable_ ? node_count + node_count / 16 : node_count;
+  nodes_.reserve(room);
+  search_.reserve(room);
+  if (editable_) inputs_.reserve(room);
   make_root();
   pool_.reserve(n);
   std::array<std::size_t, kMaxLevel + 1> next{};  // per level: the next internal cell in Morton order
@@ -708,13 +718,13 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
     const Visit t = visits.back();
     visits.pop_back();
     const int level = nodes_[t.node].level;
-    nodes_[t.node].input_count = t.e - t.b;
+    if (editable_) inputs_[t.node].count = t.e - t.b;
     const std::vector<CellKey>& cells = internal[std::size_t(level)];
     std::size_t& at_level = next[std::size_t(level)];
     if (at_level == cells.size() || cells[at_level] != t.key) {
       if (t.e > t.b) {
         const VertexId v = ids[order[t.b]];
-        nodes_[t.node].input_vertex = v;
+        if (editable_) inputs_[t.node].vertex = v;
         leaf_push(t.node, {inputs[order[t.b]], 0, v});
       }
       continue;
@@ -723,6 +733,7 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
     const NodeId first = NodeId(nodes_.size());
     nodes_.resize(nodes_.size() + kChildren);
     search_.resize(nodes_.size());
+    if (editable_) inputs_.resize(nodes_.size());
     search_[t.node].first_child = first;
     const Coords pc = nodes_[t.node].coords();
     map_.insert<D>(level, pc, first);
@@ -747,20 +758,21 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
 
 template <int D>
 typename Quadtree<D>::Change Quadtree<D>::add_input(VertexId id, std::span<const Point<D>> positions) {
+  if (!editable_) throw std::logic_error("quadtree add_input on a one-shot tree");
   Change change;
   const Point<D>& p = positions[id];
   NodeId leaf = locate(p);
-  for (NodeId a = leaf; a != kNoNode; a = search_[a].parent) ++nodes_[a].input_count;
+  for (NodeId a = leaf; a != kNoNode; a = search_[a].parent) ++inputs_[a].count;
   leaf_push(leaf, {p, 0, id});
   if (search_[leaf].occupied_or_size == 1) mark_occupied(leaf);
   // The one input that may now share a leaf with `id`; every other leaf keeps at most one input.
-  const VertexId neighbour = nodes_[leaf].input_vertex;
-  if (neighbour == kNoVertex) nodes_[leaf].input_vertex = id;
+  const VertexId neighbour = inputs_[leaf].vertex;
+  if (neighbour == kNoVertex) inputs_[leaf].vertex = id;
 
   // Leaves whose 3^D block contains p may have become crowded: at every level, the cells around p's.
   std::vector<NodeId> work;
   for_each_node_near(p, [&](NodeId n) {
-    if (n != leaf && is_leaf(n) && nodes_[n].input_count > 0) work.push_back(n);
+    if (n != leaf && is_leaf(n) && inputs_[n].count > 0) work.push_back(n);
   });
   // p's own leaf first (the stack is LIFO): until it is split down, it may hold two inputs, and counts
   // in the crowding test of its neighbours see only one of them.
@@ -773,21 +785,20 @@ typename Quadtree<D>::Change Quadtree<D>::add_input(VertexId id, std::span<const
     change.removed_leaves.push_back(n);
     created.clear();
     // The leaf of `id` may hold two inputs: hand both down (split itself knows only input_vertex).
-    const VertexId own = nodes_[n].input_vertex;
+    const VertexId own = inputs_[n].vertex;
     auto is_input = [&](VertexId v) { return v == id || v == neighbour || v == own; };
     split(n, &created);
     for (NodeId ch : created) {
-      Record& c = nodes_[ch];
-      c.input_count = 0;
-      c.input_vertex = kNoVertex;
+      Inputs& c = inputs_[ch];
+      c = Inputs{};
       for (const LeafVertex<D>& e : leaf_vertices(ch))
         if (is_input(e.id)) {
-          ++c.input_count;
-          c.input_vertex = e.id;
+          ++c.count;
+          c.vertex = e.id;
         }
       change.new_leaves.push_back(ch);
       balance_work.push_back(ch);
-      if (c.input_count > 0) work.push_back(ch);
+      if (c.count > 0) work.push_back(ch);
     }
   }
   std::vector<NodeId> more_created, more_split;
@@ -807,19 +818,20 @@ typename Quadtree<D>::Change Quadtree<D>::add_input(VertexId id, std::span<const
 
 template <int D>
 typename Quadtree<D>::Change Quadtree<D>::remove_input(VertexId id, std::span<const Point<D>> positions) {
+  if (!editable_) throw std::logic_error("quadtree remove_input on a one-shot tree");
   Change change;
   const Point<D>& p = positions[id];
   const NodeId leaf = locate(p);
   const auto vs = leaf_vertices(leaf);
   auto it = std::find_if(vs.begin(), vs.end(), [&](const LeafVertex<D>& e) { return e.id == id; });
-  if (it == vs.end() || nodes_[leaf].input_vertex != id)
+  if (it == vs.end() || inputs_[leaf].vertex != id)
     throw std::logic_error("quadtree remove_input: vertex is not an input of its leaf");
   // The others keep their order (a fresh array would list them in the same order).
   std::copy(it + 1, vs.end(), it);
   leaf_erase(leaf, vs.size() - 1);
-  nodes_[leaf].input_vertex = kNoVertex;
+  inputs_[leaf].vertex = kNoVertex;
   if (search_[leaf].occupied_or_size == 0) mark_vacated(leaf);
-  for (NodeId a = leaf; a != kNoNode; a = search_[a].parent) --nodes_[a].input_count;
+  for (NodeId a = leaf; a != kNoNode; a = search_[a].parent) --inputs_[a].count;
 
   // Internal nodes whose block contained p may no longer be crowded; merging one can release its
   // level-1 neighbours (they were kept split by its children). Finest level first.
@@ -875,7 +887,7 @@ void Quadtree<D>::rename_vertices(std::span<const VertexId> new_id) {
   for (NodeId n = 0; n < nodes_.size(); ++n) {
     Record& nd = nodes_[n];
     if (nd.level < 0) continue;  // a free slot
-    if (nd.input_vertex != kNoVertex) nd.input_vertex = new_id[nd.input_vertex];
+    if (editable_ && inputs_[n].vertex != kNoVertex) inputs_[n].vertex = new_id[inputs_[n].vertex];
     if (!is_leaf(n)) continue;
     SearchEntry& e = search_[n];
     for (std::uint32_t j = 0; j < e.occupied_or_size; ++j) {
@@ -914,7 +926,8 @@ std::vector<std::pair<int, typename Quadtree<D>::Coords>> Quadtree<D>::leaf_cell
 
 template <int D>
 std::size_t Quadtree<D>::memory_bytes() const {
-  std::size_t bytes = nodes_.capacity() * sizeof(Record) + search_.capacity() * sizeof(SearchEntry) + map_.memory_bytes() +
+  std::size_t bytes = nodes_.capacity() * sizeof(Record) + search_.capacity() * sizeof(SearchEntry) +
+                      inputs_.capacity() * sizeof(Inputs) + map_.memory_bytes() +
                       free_blocks_.capacity() * sizeof(NodeId) + pool_.capacity() * sizeof(LeafVertex<D>);
   for (const auto& free : free_arrays_) bytes += free.capacity() * sizeof(std::uint32_t);
   return bytes;
@@ -923,7 +936,26 @@ std::size_t Quadtree<D>::memory_bytes() const {
 template <int D>
 void Quadtree<D>::check_valid(std::span<const Point<D>> positions) const {
   auto fail = [](const std::string& what) { throw std::logic_error("quadtree invalid: " + what); };
-  if (nodes_.size() != search_.size() || nodes_.size() % kChildren != 0) fail("node arrays");
+  if (!editable_) {
+    // The counts a one-shot tree leaves out, from its leaves (inputs have tag 0; a build numbers every
+    // node after its parent), then the checks of an editable tree.
+    Quadtree<D> full = *this;
+    full.editable_ = true;
+    full.inputs_.assign(nodes_.size(), Inputs{});
+    for (NodeId n = NodeId(nodes_.size()); n-- > 0;) {
+      if (nodes_[n].level < 0) continue;
+      if (is_leaf(n))
+        for (const LeafVertex<D>& e : leaf_vertices(search_[n]))
+          if (e.tag == 0) full.inputs_[n] = Inputs{full.inputs_[n].count + 1, e.id};
+      if (search_[n].parent != kNoNode) {
+        if (search_[n].parent >= n) fail("a one-shot tree's node numbered before its parent");
+        full.inputs_[search_[n].parent].count += full.inputs_[n].count;
+      }
+    }
+    full.check_valid(positions);
+    return;
+  }
+  if (nodes_.size() != search_.size() || nodes_.size() % kChildren != 0 || inputs_.size() != nodes_.size()) fail("node arrays");
   std::size_t leaves = 0;
   // Every pool slot lies in exactly one block: a leaf's or a free one.
   std::vector<std::pair<std::size_t, std::size_t>> blocks;  // (offset, capacity)
@@ -954,9 +986,9 @@ void Quadtree<D>::check_valid(std::span<const Point<D>> positions) const {
       for (const LeafVertex<D>& e : leaf_vertices(se)) {
         if (e.position != positions[e.id]) fail("leaf's copy of a vertex position");
         if (cell_of(e.position, nd.level) != nd.coords()) fail("vertex outside its leaf");
-        if (e.id == nd.input_vertex) ++inputs;
+        if (e.id == inputs_[n].vertex) ++inputs;
       }
-      if (inputs != nd.input_count || nd.input_count > 1) fail("leaf input count");
+      if (inputs != inputs_[n].count || inputs_[n].count > 1) fail("leaf input count");
       if (crowded(n, positions)) fail("crowded leaf at level " + std::to_string(nd.level));
       // Balance: touching leaves differ by at most one level.
       if (nd.level >= 2)
@@ -973,12 +1005,12 @@ void Quadtree<D>::check_valid(std::span<const Point<D>> positions) const {
       for (int k = 0; k < kChildren; ++k) {
         const NodeId c = se.first_child + NodeId(k);
         if (search_[c].parent != n || nodes_[c].level != nd.level + 1) fail("child links");
-        sum += nodes_[c].input_count;
+        sum += inputs_[c].count;
         if (search_[c].occupied_or_size != 0) occupied |= 1u << k;
       }
       // Leaves' sizes are their arrays', so this checks every mask by induction.
       if (se.occupied_or_size != occupied) fail("occupied mask of internal node " + std::to_string(n));
-      if (sum != nd.input_count) fail("subtree input count node " + std::to_string(n) + " level " + std::to_string(nd.level) + " count " + std::to_string(nd.input_count) + " sum " + std::to_string(sum));
+      if (sum != inputs_[n].count) fail("subtree input count node " + std::to_string(n) + " level " + std::to_string(nd.level) + " count " + std::to_string(inputs_[n].count) + " sum " + std::to_string(sum));
       if (!required_split(n, positions)) fail("split not required (tree not minimal) at level " + std::to_string(nd.level));
     }
   }

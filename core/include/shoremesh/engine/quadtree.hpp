@@ -93,8 +93,10 @@ class Quadtree {
     NodeId first_child = kNoNode;        // the 2^D children are contiguous; kNoNode for a leaf
     int level = -1;
     Coords coords{};                     // cell index at its level
-    std::uint32_t input_count = 0;       // input points in the subtree
-    VertexId input_vertex = kNoVertex;   // leaves: the input vertex inside, if any
+    // Input points in the subtree, and a leaf's input vertex (kNoVertex: none). A one-shot tree keeps no
+    // counts: there a leaf reports the vertex of tag 0 it holds (the input's) and an internal node 0.
+    std::uint32_t input_count = 0;
+    VertexId input_vertex = kNoVertex;
     std::span<const LeafVertex<D>> vertices;  // leaves: every vertex inside (input and Steiner)
     bool is_leaf() const { return first_child == kNoNode; }
   };
@@ -119,7 +121,10 @@ class Quadtree {
 
   // Builds the canonical tree of `inputs` (ids[i] is the vertex id of inputs[i]). Throws
   // PointInputError when two inputs are closer than the tree's resolution (2^-40 of the box).
-  void build(std::span<const Point<D>> inputs, std::span<const VertexId> ids);
+  // `editable` false: a one-shot tree, which takes Steiner vertices (insert_vertex, erase_vertex) but
+  // no input edits. It keeps no per-node input counts (only the crowding rule of an edit reads them:
+  // 8 bytes fewer per node) and no room for more nodes.
+  void build(std::span<const Point<D>> inputs, std::span<const VertexId> ids, bool editable = true);
 
   // Adds an input vertex at `position` (ids index `positions`). Returns the structural change.
   Change add_input(VertexId id, std::span<const Point<D>> positions);
@@ -142,9 +147,15 @@ class Quadtree {
     out.first_child = e.first_child;
     out.level = r.level;
     out.coords = r.coords();
-    out.input_count = r.input_count;
-    out.input_vertex = r.input_vertex;
     if (e.first_child == kNoNode) out.vertices = leaf_vertices(e);
+    if (editable_) {
+      out.input_count = inputs_[n].count;
+      out.input_vertex = inputs_[n].vertex;
+    } else {
+      for (const LeafVertex<D>& v : out.vertices)
+        if (v.tag == 0) out.input_vertex = v.id;
+      out.input_count = out.input_vertex != kNoVertex;
+    }
     return out;
   }
   std::size_t node_capacity() const { return nodes_.size(); }
@@ -221,11 +232,9 @@ class Quadtree {
   }
 
  private:
-  // What only edits read of a node (the search reads SearchEntry): 20 bytes in 2D, 28 in 3D. The cell
-  // index is at most 40 bits per axis, kept as a low 32-bit word and a high byte.
+  // The rest of a node (the search reads SearchEntry): 12 bytes in 2D, 20 in 3D. The cell index is at
+  // most 40 bits per axis, kept as a low 32-bit word and a high byte.
   struct Record {
-    std::uint32_t input_count = 0;      // input points in the subtree
-    VertexId input_vertex = kNoVertex;  // leaves: the input vertex inside, if any
     std::array<std::uint32_t, D> coords_low{};
     std::int8_t level = -1;             // -1: a free slot
     std::uint8_t size_class = 0;        // leaf: its pool block holds 2^(size_class - 1) vertices; 0: none
@@ -256,6 +265,12 @@ class Quadtree {
     std::uint32_t occupied_or_size = 0;
     std::uint32_t vertices = 0;    // leaf: where its array starts in pool_
     NodeId parent = kNoNode;
+  };
+  // What only an edit's crowding rule reads of a node, in its own array (same ids), which a one-shot
+  // tree leaves empty.
+  struct Inputs {
+    std::uint32_t count = 0;        // input points in the subtree
+    VertexId vertex = kNoVertex;    // leaves: the input vertex inside, if any
   };
   template <class T>
   struct LineAligned {
@@ -331,6 +346,8 @@ class Quadtree {
 
   std::vector<Record> nodes_;
   std::vector<SearchEntry, LineAligned<SearchEntry>> search_;
+  std::vector<Inputs> inputs_;           // empty in a one-shot tree
+  bool editable_ = true;
   std::vector<NodeId> free_blocks_;      // first ids of freed blocks of 2^D children
   std::vector<LeafVertex<D>> pool_;
   static constexpr int kSizeClasses = 33;
