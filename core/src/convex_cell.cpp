@@ -51,7 +51,7 @@ void plane_of(const Constraint<D>& c, const Point<D>& v, std::array<NT, D>& n, N
 // same bounds, rounded the same way. d = w - v is [RD(w - v), RU(w - v)], which never holds zero inside
 // (a difference of doubles is rounded to zero only when it is zero), so d * d is [RD(a a), RU(c c)] with
 // a, c the ends of smaller and larger magnitude; the sum's lower end is kept negated, as the interval
-// type keeps it, and rounded up (the caller holds a RoundingGuard).
+// type keeps it, and rounded up (the caller holds a RoundingGuard): RU(-(a a)) = -RD(a a).
 template <>
 void plane_of<Interval, 3>(const Constraint<3>& c, const Point<3>& v, std::array<Interval, 3>& n, Interval& b) {
   using Kind = Constraint<3>::Kind;
@@ -72,9 +72,10 @@ void plane_of<Interval, 3>(const Constraint<3>& c, const Point<3>& v, std::array
           return;
         }
         n[i] = Interval(d_lo + d_lo, d_hi + d_hi);
-        const double small = d_lo >= 0 ? d_lo : d_hi, large = d_lo >= 0 ? d_hi : d_lo;
-        minus_lo += -small * small;
-        hi += large * large;
+        // The ends have one sign: the larger square is the upper end's, the smaller the lower's
+        // (chosen by max, not by a branch on the sign, which goes either way).
+        minus_lo += std::max(-d_lo * d_lo, -d_hi * d_hi);
+        hi += std::max(d_lo * d_lo, d_hi * d_hi);
       }
       b = Interval(-minus_lo, hi);
       break;
