@@ -61,7 +61,7 @@ void plane_of<Interval, 3>(const Constraint<3>& c, const Point<3>& v, std::array
       double minus_lo = 0, hi = 0;
       for (int i = 0; i < 3; ++i) {
         const double d_lo = -(v[i] - c.other_point[i]), d_hi = c.other_point[i] - v[i];
-        if (d_lo < 0 && d_hi > 0) {  // not met (see above); the interval product then
+        if (std::max(d_lo, -d_hi) < 0) {  // both d_lo < 0 < d_hi: not met (see above); the interval product then
           Interval s(0);
           for (int k = 0; k < 3; ++k) {
             const Interval d = Interval(c.other_point[k]) - Interval(v[k]);
