@@ -47,52 +47,6 @@ void plane_of(const Constraint<D>& c, const Point<D>& v, std::array<NT, D>& n, N
   }
 }
 
-// 3D planes in intervals, the bisector (a plane per candidate clipped) without interval products: the
-// same bounds, rounded the same way. d = w - v is [RD(w - v), RU(w - v)], which never holds zero inside
-// (a difference of doubles is rounded to zero only when it is zero), so d * d is [RD(a a), RU(c c)] with
-// a, c the ends of smaller and larger magnitude; the sum's lower end is kept negated, as the interval
-// type keeps it, and rounded up (the caller holds a RoundingGuard): RU(-(a a)) = -RD(a a).
-template <>
-void plane_of<Interval, 3>(const Constraint<3>& c, const Point<3>& v, std::array<Interval, 3>& n, Interval& b) {
-  using Kind = Constraint<3>::Kind;
-  for (int i = 0; i < 3; ++i) n[i] = Interval(0);
-  switch (c.kind) {
-    case Kind::Bisector: {
-      double minus_lo = 0, hi = 0;
-      for (int i = 0; i < 3; ++i) {
-        const double d_lo = -(v[i] - c.other_point[i]), d_hi = c.other_point[i] - v[i];
-        if (std::max(d_lo, -d_hi) < 0) {  // both d_lo < 0 < d_hi: not met (see above); the interval product then
-          Interval s(0);
-          for (int k = 0; k < 3; ++k) {
-            const Interval d = Interval(c.other_point[k]) - Interval(v[k]);
-            n[k] = d + d;
-            s += d * d;
-          }
-          b = s;
-          return;
-        }
-        n[i] = Interval(d_lo + d_lo, d_hi + d_hi);
-        // The ends have one sign: the larger square is the upper end's, the smaller the lower's
-        // (chosen by max, not by a branch on the sign, which goes either way).
-        minus_lo += std::max(-d_lo * d_lo, -d_hi * d_hi);
-        hi += std::max(d_lo * d_lo, d_hi * d_hi);
-      }
-      b = Interval(-minus_lo, hi);
-      break;
-    }
-    case Kind::AxisMax:
-      n[c.axis] = Interval(1);
-      b = Interval(c.value) - Interval(v[c.axis]);
-      break;
-    case Kind::AxisMin:
-      n[c.axis] = Interval(-1);
-      b = Interval(v[c.axis]) - Interval(c.value);
-      break;
-    case Kind::Through:
-      break;
-  }
-}
-
 // A nonnegative double whose difference is a sum: Cramer's rule evaluated in it is the permanent of the
 // magnitudes, every term counted positive, which bounds what rounding does to the determinant.
 struct Magnitude {
