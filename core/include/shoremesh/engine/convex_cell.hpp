@@ -110,8 +110,8 @@ class ConvexCell {
     // The constraints that define it. 2D: its incoming, then its outgoing edge. 3D: its three planes
     // counter-clockwise seen from outside the cell (the dual triangle's orientation).
     std::array<std::uint16_t, D> planes{};
+    double r2 = 0;                          // an upper bound on |y|^2 (in the planes' padding)
     std::array<Interval, D> y{};            // its position relative to v, enclosed
-    double r2 = 0;                          // an upper bound on |y|^2
     std::int32_t exact = -1;                // index into exact_ once computed
     // 3D: a point on four or more planes is several dual triangles (a cut that met a kept vertex exactly
     // made a new one at the same point). `place` names the first vertex made at its point, by `serial`:
