@@ -1130,6 +1130,7 @@ std::vector<Element<D>> Mesh<D>::elements() const {
   std::vector<Element<D>> out;
   const auto& t = *triangulation_;
   if (t.triangulation.dimension() < D) return out;
+  out.reserve(element_count_);  // no doubling's slack: a list of the whole mesh's elements is large
   Cgal<D>::for_each_finite_face(t.triangulation, [&](auto f) {
     if (t.kept(f)) out.push_back(t.element(f));
   });

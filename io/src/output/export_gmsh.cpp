@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <iterator>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -22,16 +23,20 @@ namespace {
 
 enum : int { kLine = 1, kTriangle = 2, kTetrahedron = 4 };
 
-// One entity's elements, flat (`arity` node indices each, 0-based): a vector per element cost 40 bytes
-// and an allocation for each of a 600k-triangle mesh.
+// One entity's elements: its own flat list (`arity` node indices each, 0-based; a vector per element cost
+// 40 bytes and an allocation for each of a 600k-triangle mesh), or the view's elements read in place
+// (the top entity's: a copy of them held another 8 MB at Lake Superior while the summary ran beside).
+template <int D>
 struct Block {
   int dim = 0, entity = 0, physical = 0, type = 0;
   std::size_t arity = 0;
-  std::vector<std::uint32_t> nodes;
-  std::size_t size() const { return nodes.size() / arity; }
+  std::vector<std::uint32_t> own;
+  std::span<const Element<D>> elements;  // when not empty, the block's elements (arity D + 1)
+  std::size_t size() const { return elements.empty() ? own.size() / arity : elements.size(); }
+  std::uint32_t node(std::size_t k, std::size_t j) const { return elements.empty() ? own[k * arity + j] : elements[k][j]; }
   template <class Nodes>
   void push(const Nodes& e) {
-    nodes.insert(nodes.end(), std::begin(e), std::end(e));
+    own.insert(own.end(), std::begin(e), std::end(e));
   }
 };
 
@@ -39,13 +44,16 @@ struct Block {
 constexpr std::size_t kFlushBytes = std::size_t(1) << 20;
 
 template <int D>
-std::string bounding_box(const MeshView<D>& view, const std::vector<std::uint32_t>& nodes) {
+std::string bounding_box(const MeshView<D>& view, const Block<D>& b) {
   std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
-  if (!nodes.empty()) {
+  if (b.size() != 0) {
     // The coordinates the nodes have: a 2D mesh without heights lies at z = 0, whose box is 0 .. 0.
     for (int i = 0; i < 3; ++i) lo[i] = std::numeric_limits<double>::infinity(), hi[i] = -lo[i];
-    for (auto n : nodes)
-      for (int i = 0; i < 3; ++i) lo[i] = std::min(lo[i], node_coordinate(view, n, i)), hi[i] = std::max(hi[i], node_coordinate(view, n, i));
+    for (std::size_t k = 0; k < b.size(); ++k)
+      for (std::size_t j = 0; j < b.arity; ++j) {
+        const std::uint32_t n = b.node(k, j);
+        for (int i = 0; i < 3; ++i) lo[i] = std::min(lo[i], node_coordinate(view, n, i)), hi[i] = std::max(hi[i], node_coordinate(view, n, i));
+      }
   }
   std::string s;
   for (double x : lo) append_number(s, x), s += ' ';
@@ -58,7 +66,7 @@ std::string bounding_box(const MeshView<D>& view, const std::vector<std::uint32_
 template <int D>
 void write_gmsh(const std::filesystem::path& path, const MeshView<D>& view) {
   // Physical tags are per dimension; names make them readable in Gmsh and meshio's cell_sets.
-  std::vector<Block> blocks;
+  std::vector<Block<D>> blocks;
   std::vector<std::string> physical_names;
   if constexpr (D == 2) {
     const bool shore = std::any_of(view.boundary.begin(), view.boundary.end(), [](auto& l) { return l.role == RingRole::Shore; });
@@ -68,25 +76,19 @@ void write_gmsh(const std::filesystem::path& path, const MeshView<D>& view) {
     physical_names.push_back("2 3 \"water\"");
     int curve = 0;
     for (const BoundaryLoop& loop : view.boundary) {
-      Block b{1, ++curve, loop.role == RingRole::Shore ? 1 : 2, kLine, 2, {}};
+      Block<D> b{1, ++curve, loop.role == RingRole::Shore ? 1 : 2, kLine, 2, {}, {}};
       for (std::size_t i = 0; i < loop.nodes.size(); ++i)
         b.push(std::array<std::uint32_t, 2>{loop.nodes[i], loop.nodes[(i + 1) % loop.nodes.size()]});
       blocks.push_back(std::move(b));
     }
-    Block water{2, 1, 3, kTriangle, 3, {}};
-    water.nodes.reserve(view.elements.size() * 3);
-    for (const auto& e : view.elements) water.push(e);
-    blocks.push_back(std::move(water));
+    blocks.push_back(Block<D>{2, 1, 3, kTriangle, 3, {}, view.elements});
   } else {
     physical_names.push_back("2 1 \"boundary\"");
     physical_names.push_back("3 2 \"domain\"");
-    Block boundary{2, 1, 1, kTriangle, 3, {}};
+    Block<D> boundary{2, 1, 1, kTriangle, 3, {}, {}};
     for (const auto& f : boundary_faces(view.elements)) boundary.push(f);
     blocks.push_back(std::move(boundary));
-    Block domain{3, 1, 2, kTetrahedron, 4, {}};
-    domain.nodes.reserve(view.elements.size() * 4);
-    for (const auto& e : view.elements) domain.push(e);
-    blocks.push_back(std::move(domain));
+    blocks.push_back(Block<D>{3, 1, 2, kTetrahedron, 4, {}, view.elements});
   }
 
   write_atomically(path, [&](std::ostream& out) {
@@ -96,19 +98,19 @@ void write_gmsh(const std::filesystem::path& path, const MeshView<D>& view) {
     s += "$EndPhysicalNames\n$Entities\n";
     // Entity counts: points, curves, surfaces, volumes.
     std::array<int, 4> count{0, 0, 0, 0};
-    for (const Block& b : blocks) ++count[b.dim];
+    for (const Block<D>& b : blocks) ++count[b.dim];
     append(s, "0 ", count[1], ' ', count[2], ' ', count[3], '\n');
     for (int dim = 1; dim <= 3; ++dim)
-      for (const Block& b : blocks) {
+      for (const Block<D>& b : blocks) {
         if (b.dim != dim) continue;
-        append(s, b.entity, ' ', bounding_box<D>(view, b.nodes), "1 ", b.physical);
+        append(s, b.entity, ' ', bounding_box<D>(view, b), "1 ", b.physical);
         if (dim == 1) {
           s += " 0\n";  // closed loops: no bounding points
         } else {
           // The bounding entities of the top entity: every entity one dimension lower.
           std::string bounds;
           int n = 0;
-          for (const Block& c : blocks)
+          for (const Block<D>& c : blocks)
             if (c.dim == dim - 1) ++n, append(bounds, ' ', c.entity);
           append(s, ' ', n, bounds, '\n');
         }
@@ -132,14 +134,14 @@ void write_gmsh(const std::filesystem::path& path, const MeshView<D>& view) {
     }
     s += "$EndNodes\n$Elements\n";
     std::size_t total = 0;
-    for (const Block& b : blocks) total += b.size();
+    for (const Block<D>& b : blocks) total += b.size();
     append(s, blocks.size(), ' ', total, " 1 ", total, '\n');
     std::size_t tag = 0;
-    for (const Block& b : blocks) {
+    for (const Block<D>& b : blocks) {
       append(s, b.dim, ' ', b.entity, ' ', b.type, ' ', b.size(), '\n');
-      for (std::size_t k = 0; k < b.nodes.size(); k += b.arity) {
+      for (std::size_t k = 0; k < b.size(); ++k) {
         append(s, ++tag);
-        for (std::size_t j = k; j < k + b.arity; ++j) append(s, ' ', b.nodes[j] + 1);
+        for (std::size_t j = 0; j < b.arity; ++j) append(s, ' ', b.node(k, j) + 1);
         s += '\n';
         flush(kFlushBytes);
       }
