@@ -400,6 +400,53 @@ bool ConvexCell<D>::clip_through_site(const Point<D>& x, int side) {
   }
 }
 
+namespace {
+// A plane's bounds on n.y - b for a vertex's interval box y, as side() would compute them (the caller holds
+// a RoundingGuard, so each product's largest corner and the sum are rounded upward): the upper end of
+// side()'s interval, at a quarter of its cost. The largest corner of n_k y_k lies at y_k's upper end where
+// n_k >= 0 (both ends of n_k's interval), at its lower end where n_k <= 0: two products per coordinate
+// instead of four, the same maximum (the products are rounded upward, which keeps their order). An n_k
+// whose interval holds zero inside (none: it is twice a difference of doubles, rounded outward) takes all
+// four. A vertex nearer to v than half of |w - v| lies strictly inside a bisector's half-space
+// (2 d.y <= 2 |d| |y| < |d|^2): no predicate needed. b encloses |d|^2 for a bisector; the axis planes of
+// the initial box are never offered again.
+template <int D>
+struct SideBounds {
+  struct Parts {
+    std::array<double, D> n0, n1;
+    std::array<bool, D> upper_end;
+    bool by_sign = true;
+    double inside_below = 0;
+  } p;
+  double minus_b;
+  explicit SideBounds(const Constraint<D>& c) : minus_b(-c.b.inf()) {
+    p.inside_below = c.kind == Constraint<D>::Kind::Bisector ? 0.25 * c.b.inf() : 0.0;
+    for (int i = 0; i < D; ++i) {
+      p.n0[i] = c.n[i].inf();
+      p.n1[i] = c.n[i].sup();
+      p.upper_end[i] = p.n0[i] >= 0;
+      p.by_sign = p.by_sign && (p.n0[i] >= 0 || p.n1[i] <= 0);
+    }
+  }
+  const Parts& parts() const { return p; }
+  double upper(const std::array<Interval, D>& y) const {
+    double s = minus_b;
+    if (p.by_sign) {
+      for (int k = 0; k < D; ++k) {
+        const double yk = p.upper_end[k] ? y[k].sup() : y[k].inf();
+        s += std::max(p.n0[k] * yk, p.n1[k] * yk);
+      }
+    } else {
+      for (int k = 0; k < D; ++k) {
+        const double y0 = y[k].inf(), y1 = y[k].sup();
+        s += std::max(std::max(p.n0[k] * y0, p.n0[k] * y1), std::max(p.n1[k] * y0, p.n1[k] * y1));
+      }
+    }
+    return s;
+  }
+};
+}  // namespace
+
 // signs_[i]: the side of vertex i; whether any lies strictly outside. The plane's coefficients and the
 // counters are read into locals first: a store to signs_ (bytes) may alias anything, and would make the
 // compiler read them again for every vertex.
@@ -409,48 +456,16 @@ bool ConvexCell<D>::mark_sides(std::uint16_t plane) {
   signs_.resize(m);
   std::int8_t* const signs = signs_.data();
   bool any_outside = false, on_plane = false;
-  // A vertex nearer to v than half of |w - v| lies strictly inside the bisector's half-space
-  // (2 d.y <= 2 |d| |y| < |d|^2): no predicate needed. b encloses |d|^2 for a bisector; the axis
-  // planes of the initial box are never offered again.
-  const Constraint<D>& c = constraints_[plane];
-  const double inside_below = c.kind == Constraint<D>::Kind::Bisector ? 0.25 * c.b.inf() : 0.0;
-  // The largest corner of n_k y_k lies at y_k's upper end where n_k >= 0 (both ends of n_k's interval),
-  // at its lower end where n_k <= 0: two products per coordinate instead of four, the same maximum (the
-  // products are rounded upward, which keeps their order). An n_k whose interval holds zero inside (none:
-  // it is twice a difference of doubles, rounded outward) would take all four.
-  std::array<double, D> n0, n1;
-  std::array<bool, D> upper_end;
-  bool by_sign = true;
-  for (int i = 0; i < D; ++i) {
-    n0[i] = c.n[i].inf();
-    n1[i] = c.n[i].sup();
-    upper_end[i] = n0[i] >= 0;
-    by_sign = by_sign && (n0[i] >= 0 || n1[i] <= 0);
-  }
-  const double minus_b = -c.b.inf();
+  const SideBounds<D> bound(constraints_[plane]);
   std::uint64_t bounded = 0;  // decided by the upper bound: counted as the interval filter's calls
   for (std::size_t i = 0; i < m; ++i) {
     Vertex& vtx = verts_[i];
-    if (vtx.r2 < inside_below) {
+    if (vtx.r2 < bound.p.inside_below) {
       signs[i] = -1;
       continue;
     }
-    // An upper bound on n.y - b (the caller holds a RoundingGuard, so each product's largest corner and
-    // the sum are rounded upward): when it is negative, the vertex is strictly inside, which is what most
-    // vertices are. The bound is the upper end of the interval side() computes, at a quarter of the cost.
-    double s = minus_b;
-    if (by_sign) {
-      for (int k = 0; k < D; ++k) {
-        const double yk = upper_end[k] ? vtx.y[k].sup() : vtx.y[k].inf();
-        s += std::max(n0[k] * yk, n1[k] * yk);
-      }
-    } else {
-      for (int k = 0; k < D; ++k) {
-        const double y0 = vtx.y[k].inf(), y1 = vtx.y[k].sup();
-        s += std::max(std::max(n0[k] * y0, n0[k] * y1), std::max(n1[k] * y0, n1[k] * y1));
-      }
-    }
-    if (s < 0) {
+    // When the upper bound is negative, the vertex is strictly inside, which is what most vertices are.
+    if (bound.upper(vtx.y) < 0) {
       ++bounded;
       signs[i] = -1;
       continue;
@@ -477,18 +492,9 @@ bool ConvexCell<3>::mark_sides(std::uint16_t plane) {
   signs_.resize(m);
   std::int8_t* const signs = signs_.data();
   bool any_outside = false, on_plane = false;
-  const Constraint<D>& c = constraints_[plane];
-  const double inside_below = c.kind == Constraint<D>::Kind::Bisector ? 0.25 * c.b.inf() : 0.0;
-  std::array<double, D> n0, n1;
-  std::array<bool, D> upper_end;
-  bool by_sign = true;
-  for (int i = 0; i < D; ++i) {
-    n0[i] = c.n[i].inf();
-    n1[i] = c.n[i].sup();
-    upper_end[i] = n0[i] >= 0;
-    by_sign = by_sign && (n0[i] >= 0 || n1[i] <= 0);
-  }
-  const double minus_b = -c.b.inf(), b_sup = c.b.sup();
+  const SideBounds<D> bound(constraints_[plane]);
+  const double b_sup = constraints_[plane].b.sup();
+  const auto& [n0, n1, upper_end, by_sign, inside_below] = bound.parts();
   std::uint64_t bounded = 0;  // decided by a bound: counted as the interval filter's calls
   // Most vertices lie inside the ball test (a clip that cuts nothing is two in three): a first pass
   // without branches lists the others, in chunks, and only those are bounded (a branch per vertex on
@@ -506,13 +512,8 @@ bool ConvexCell<3>::mark_sides(std::uint16_t plane) {
     for (std::size_t j = 0; j < count; ++j) {
       const std::size_t i = first + open[j];
       Vertex& vtx = verts_[i];
-      double s = minus_b;
       if (by_sign) {
-        for (int k = 0; k < D; ++k) {
-          const double yk = upper_end[k] ? vtx.y[k].sup() : vtx.y[k].inf();
-          s += std::max(n0[k] * yk, n1[k] * yk);
-        }
-        if (s < 0) {
+        if (bound.upper(vtx.y) < 0) {
           ++bounded;
           continue;
         }
@@ -527,15 +528,9 @@ bool ConvexCell<3>::mark_sides(std::uint16_t plane) {
           any_outside = true;
           continue;
         }
-      } else {
-        for (int k = 0; k < D; ++k) {
-          const double y0 = vtx.y[k].inf(), y1 = vtx.y[k].sup();
-          s += std::max(std::max(n0[k] * y0, n0[k] * y1), std::max(n1[k] * y0, n1[k] * y1));
-        }
-        if (s < 0) {
-          ++bounded;
-          continue;
-        }
+      } else if (bound.upper(vtx.y) < 0) {
+        ++bounded;
+        continue;
       }
       const int sign = side(vtx, plane);
       signs[i] = std::int8_t(sign);
