@@ -98,6 +98,7 @@ int run_mesh(const MeshOptions& opt, const io::InputSet& set, Progress& progress
   // The mesh holds its own copy of the points: only a point-set output reads the engine's again.
   const std::size_t point_count = result.points.size();
   if (!point_set) std::vector<Point<D>>().swap(result.points);
+  timings.time("purge", [] { release_free_memory(); });  // the mesh build's, before the outputs' and summary's
 
   // The outputs and the summary only read the finished mesh: they are made at the same time (each output
   // to its staged file, committed together once all are written).
