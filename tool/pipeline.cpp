@@ -161,7 +161,7 @@ void rethrow_with_origin(const PointInputError& e, const io::InputSet& set) {
 template <int D>
 void export_mesh_file(const Mesh<D>& mesh, const std::filesystem::path& path, std::optional<io::ExportFormat> format,
                       const UserFrame& frame, std::span<const Point<D>> order) {
-  const io::MeshSnapshot<D> snapshot(mesh, order);
+  const io::MeshSnapshot<D> snapshot(mesh, order, /*in_place=*/true);  // the mesh outlives this call
   io::MeshView<D> view = snapshot.view();
   if (D == 2 && !frame.projection.is_none()) {
     const io::Projection projection = frame.projection;

@@ -85,22 +85,34 @@ Element<D> canonical(Element<D> e) {
   return e;
 }
 
+// Whether the elements use each of `count` points.
 template <int D>
-MeshSnapshot<D> snapshot_of(const Mesh<D>& mesh, std::span<const Point<D>> order) {
-  std::vector<Point<D>> points = mesh.points();
-  std::vector<Element<D>> elements = mesh.elements();
-  std::vector<PointKind> kinds = mesh.kinds();
-  if (!order.empty()) renumber_to<D>(points, elements, kinds, order);
-  for (auto& e : elements) e = canonical<D>(e);
-  std::sort(elements.begin(), elements.end());
-  drop_unused_points<D>(points, elements, kinds);
-  return MeshSnapshot<D>(std::move(points), std::move(elements), std::move(kinds));
+bool every_point_used(std::size_t count, const std::vector<Element<D>>& elements) {
+  std::vector<bool> used(count, false);
+  for (const auto& e : elements)
+    for (auto i : e) used[i] = true;
+  return std::find(used.begin(), used.end(), false) == used.end();
 }
 }  // namespace
 
 template <int D>
-MeshSnapshot<D>::MeshSnapshot(const Mesh<D>& mesh, std::span<const Point<D>> order)
-    : MeshSnapshot(snapshot_of<D>(mesh, order)) {}
+MeshSnapshot<D>::MeshSnapshot(const Mesh<D>& mesh, std::span<const Point<D>> order, bool in_place)
+    : elements_(mesh.elements()) {
+  // Every point kept where it is (a mesh of the water alone, written without an edit session's order).
+  in_place = in_place && order.empty() && !elements_.empty() && every_point_used<D>(mesh.points().size(), elements_);
+  if (in_place) {
+    mesh_points_ = &mesh.points();
+    mesh_kinds_ = &mesh.kinds();
+  } else {
+    points_ = mesh.points();
+    kinds_ = mesh.kinds();
+    if (!order.empty()) renumber_to<D>(points_, elements_, kinds_, order);
+  }
+  for (auto& e : elements_) e = canonical<D>(e);
+  std::sort(elements_.begin(), elements_.end());
+  if (!in_place) drop_unused_points<D>(points_, elements_, kinds_);
+  if constexpr (D == 2) boundary_ = boundary_loops(points(), elements_);
+}
 
 template <int D>
 MeshSnapshot<D>::MeshSnapshot(std::vector<Point<D>> points, std::vector<Element<D>> elements,
@@ -112,9 +124,9 @@ MeshSnapshot<D>::MeshSnapshot(std::vector<Point<D>> points, std::vector<Element<
 template <int D>
 MeshView<D> MeshSnapshot<D>::view() const {
   MeshView<D> v;
-  v.points = points_;
+  v.points = points();
   v.elements = elements_;
-  v.kinds = kinds_;
+  v.kinds = kinds();
   v.boundary = boundary_;
   return v;
 }
