@@ -412,37 +412,45 @@ namespace {
 // the initial box are never offered again.
 template <int D>
 struct SideBounds {
-  struct Parts {
-    std::array<double, D> n0, n1;
-    std::array<bool, D> upper_end;
-    bool by_sign = true;
-    double inside_below = 0;
-  } p;
-  double minus_b;
-  explicit SideBounds(const Constraint<D>& c) : minus_b(-c.b.inf()) {
-    p.inside_below = c.kind == Constraint<D>::Kind::Bisector ? 0.25 * c.b.inf() : 0.0;
+  std::array<double, D> n0, n1;
+  std::array<bool, D> upper_end;
+  bool by_sign = true;
+  double inside_below = 0;
+  double minus_b, b_sup;
+  explicit SideBounds(const Constraint<D>& c) : minus_b(-c.b.inf()), b_sup(c.b.sup()) {
+    inside_below = c.kind == Constraint<D>::Kind::Bisector ? 0.25 * c.b.inf() : 0.0;
     for (int i = 0; i < D; ++i) {
-      p.n0[i] = c.n[i].inf();
-      p.n1[i] = c.n[i].sup();
-      p.upper_end[i] = p.n0[i] >= 0;
-      p.by_sign = p.by_sign && (p.n0[i] >= 0 || p.n1[i] <= 0);
+      n0[i] = c.n[i].inf();
+      n1[i] = c.n[i].sup();
+      upper_end[i] = n0[i] >= 0;
+      by_sign = by_sign && (n0[i] >= 0 || n1[i] <= 0);
     }
   }
-  const Parts& parts() const { return p; }
+  // An upper bound on n.y - b: the upper end of side()'s interval.
   double upper(const std::array<Interval, D>& y) const {
     double s = minus_b;
-    if (p.by_sign) {
+    if (by_sign) {
       for (int k = 0; k < D; ++k) {
-        const double yk = p.upper_end[k] ? y[k].sup() : y[k].inf();
-        s += std::max(p.n0[k] * yk, p.n1[k] * yk);
+        const double yk = upper_end[k] ? y[k].sup() : y[k].inf();
+        s += std::max(n0[k] * yk, n1[k] * yk);
       }
     } else {
       for (int k = 0; k < D; ++k) {
         const double y0 = y[k].inf(), y1 = y[k].sup();
-        s += std::max(std::max(p.n0[k] * y0, p.n0[k] * y1), std::max(p.n1[k] * y0, p.n1[k] * y1));
+        s += std::max(std::max(n0[k] * y0, n0[k] * y1), std::max(n1[k] * y0, n1[k] * y1));
       }
     }
     return s;
+  }
+  // By sign only: an upper bound on b - n.y, the negated lower end of side()'s interval (each product's
+  // smallest corner and the sum, negated so that upward rounding rounds the lower end down).
+  double upper_of_negation(const std::array<Interval, D>& y) const {
+    double t = b_sup;
+    for (int k = 0; k < D; ++k) {
+      const double yk = upper_end[k] ? y[k].inf() : y[k].sup();
+      t += std::max(-n0[k] * yk, -n1[k] * yk);
+    }
+    return t;
   }
 };
 }  // namespace
@@ -460,7 +468,7 @@ bool ConvexCell<D>::mark_sides(std::uint16_t plane) {
   std::uint64_t bounded = 0;  // decided by the upper bound: counted as the interval filter's calls
   for (std::size_t i = 0; i < m; ++i) {
     Vertex& vtx = verts_[i];
-    if (vtx.r2 < bound.p.inside_below) {
+    if (vtx.r2 < bound.inside_below) {
       signs[i] = -1;
       continue;
     }
@@ -493,8 +501,6 @@ bool ConvexCell<3>::mark_sides(std::uint16_t plane) {
   std::int8_t* const signs = signs_.data();
   bool any_outside = false, on_plane = false;
   const SideBounds<D> bound(constraints_[plane]);
-  const double b_sup = constraints_[plane].b.sup();
-  const auto& [n0, n1, upper_end, by_sign, inside_below] = bound.parts();
   std::uint64_t bounded = 0;  // decided by a bound: counted as the interval filter's calls
   // Most vertices lie inside the ball test (a clip that cuts nothing is two in three): a first pass
   // without branches lists the others, in chunks, and only those are bounded (a branch per vertex on
@@ -507,22 +513,17 @@ bool ConvexCell<3>::mark_sides(std::uint16_t plane) {
     for (std::size_t i = first; i < last; ++i) {
       signs[i] = -1;
       open[count] = std::uint16_t(i - first);
-      count += verts_[i].r2 < inside_below ? 0 : 1;
+      count += verts_[i].r2 < bound.inside_below ? 0 : 1;
     }
     for (std::size_t j = 0; j < count; ++j) {
       const std::size_t i = first + open[j];
       Vertex& vtx = verts_[i];
-      if (by_sign) {
+      if (bound.by_sign) {
         if (bound.upper(vtx.y) < 0) {
           ++bounded;
           continue;
         }
-        double t = b_sup;  // an upper bound on b - n.y
-        for (int k = 0; k < D; ++k) {
-          const double yk = upper_end[k] ? vtx.y[k].inf() : vtx.y[k].sup();
-          t += std::max(-n0[k] * yk, -n1[k] * yk);
-        }
-        if (t < 0) {
+        if (bound.upper_of_negation(vtx.y) < 0) {
           ++bounded;
           signs[i] = 1;
           any_outside = true;
