@@ -2,6 +2,7 @@
 // coordinates to vertex handles so that the points a dynamic update names are found in O(1).
 // All of CGAL's heavy templates live in this translation unit.
 #include "shoremesh/mesh.hpp"
+#include "shoremesh/mesh_point_map.hpp"
 #include "shoremesh/point_table.hpp"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
@@ -308,9 +309,9 @@ class MeshTriangulation {
   Triangulation triangulation;
 
   // Each vertex by its exact coordinates, for the updates, which name points. Made at the first call: a
-  // mesh built once and exported never looks a point up (the map took 30 MB at Superior's 480k points,
-  // beside CGAL's 100 MB of faces).
-  std::unordered_map<Point<D>, Vertex, PointHash<D>>& vertex_of() const {
+  // mesh built once and exported never looks a point up (the map would take 25 MB at Superior's 480k
+  // points, beside CGAL's 100 MB of faces).
+  PointMap<D, Vertex>& vertex_of() const {
     if (!vertex_map_made_) {
       vertex_map_.reserve(triangulation.number_of_vertices());
       for (Vertex v : triangulation.finite_vertex_handles()) vertex_map_.emplace(C::from_cgal(v->point()), v);
@@ -605,9 +606,10 @@ class MeshTriangulation {
     requires(D == 2)
   {
     for (const auto& [a, b] : segments) {
-      const auto ia = vertex_of().find(a), ib = vertex_of().find(b);
-      if (ia == vertex_of().end() || ib == vertex_of().end()) continue;  // a removed point takes it along
-      const std::vector<Vertex> chain = constrained_chain(ia->second, ib->second);
+      const Vertex* ia = vertex_of().find(a);
+      const Vertex* ib = vertex_of().find(b);
+      if (!ia || !ib) continue;  // a removed point takes it along
+      const std::vector<Vertex> chain = constrained_chain(*ia, *ib);
       for (std::size_t k = 0; k + 1 < chain.size(); ++k) {
         Face f;
         int i;
@@ -622,9 +624,10 @@ class MeshTriangulation {
     requires(D == 2)
   {
     for (const auto& [a, b] : segments) {
-      const auto ia = vertex_of().find(a), ib = vertex_of().find(b);
-      if (ia == vertex_of().end() || ib == vertex_of().end()) continue;  // as in build
-      constrain(ia->second, ib->second, acc);
+      const Vertex* ia = vertex_of().find(a);
+      const Vertex* ib = vertex_of().find(b);
+      if (!ia || !ib) continue;  // as in build
+      constrain(*ia, *ib, acc);
     }
   }
 
@@ -660,9 +663,9 @@ class MeshTriangulation {
       for (int i = 0; i < 3; ++i) stack.emplace_back(f, i);
     };
     for (const Key& k : keys) {
-      const auto it = vertex_of().find(k[0]);
-      if (it == vertex_of().end()) continue;
-      C::for_each_incident_finite_face(triangulation, it->second, [&](Face f) {
+      const Vertex* at = vertex_of().find(k[0]);
+      if (!at) continue;
+      C::for_each_incident_finite_face(triangulation, *at, [&](Face f) {
         if (kept(f) && key(f) == k) push_face(f);
       });
     }
@@ -1003,7 +1006,7 @@ class MeshTriangulation {
           box.hi[k] = std::max(box.hi[k], (*p)[k]);
         }
         // A mesh point to start the walk from, where there is one.
-        if (!box.seeded && vertex_of().count(*p)) box.seed = *p, box.seeded = true;
+        if (!box.seeded && vertex_of().contains(*p)) box.seed = *p, box.seeded = true;
       }
     }
     // Walked in the order of the boxes' corners.
@@ -1069,7 +1072,7 @@ class MeshTriangulation {
   std::vector<Face> todo_;  // sweep's stack, kept between calls
   bool deferring_ = false;   // defer_classification
   std::vector<Face> pending_;  // faces marked kPending, to classify (classify_pending), kept between calls
-  mutable std::unordered_map<Point<D>, Vertex, PointHash<D>> vertex_map_;  // vertex_of()
+  mutable PointMap<D, Vertex> vertex_map_;  // vertex_of()
   mutable bool vertex_map_made_ = false;
 };
 
@@ -1220,19 +1223,20 @@ MeshDelta<D> Mesh<D>::apply_with_water(const PointChange<D>& change, const Domai
   // Validate everything first, so that a bad change leaves the mesh as it was.
   if (change.added_input_count > change.added.size())
     throw InputError("added_input_count exceeds the number of added points");
-  std::unordered_map<Point<D>, std::size_t, PointHash<D>> removed;
+  PointMap<D, bool> removed, added;  // the points named so far (true)
+  removed.reserve(change.removed.size());
+  added.reserve(change.added.size());
   for (std::size_t i = 0; i < change.removed.size(); ++i) {
     const Point<D>& p = change.removed[i];
-    if (!t.vertex_of().count(p)) throw InputError("removed point " + describe<D>(p) + " is not in the mesh", {}, i + 1);
-    if (!removed.emplace(p, i).second) throw InputError("removed point " + describe<D>(p) + " is given twice", {}, i + 1);
+    if (!t.vertex_of().contains(p)) throw InputError("removed point " + describe<D>(p) + " is not in the mesh", {}, i + 1);
+    if (!removed.emplace(p, true)) throw InputError("removed point " + describe<D>(p) + " is given twice", {}, i + 1);
   }
-  std::unordered_map<Point<D>, std::size_t, PointHash<D>> added;
   for (std::size_t i = 0; i < change.added.size(); ++i) {
     const Point<D>& p = change.added[i];
     if (!finite<D>(p)) throw InputError("added point " + std::to_string(i) + " is not finite", {}, i + 1);
-    if (t.vertex_of().count(p) && !removed.count(p))
+    if (t.vertex_of().contains(p) && !removed.contains(p))
       throw InputError("added point " + describe<D>(p) + " is already in the mesh", {}, i + 1);
-    if (!added.emplace(p, i).second) throw InputError("added point " + describe<D>(p) + " is given twice", {}, i + 1);
+    if (!added.emplace(p, true)) throw InputError("added point " + describe<D>(p) + " is given twice", {}, i + 1);
   }
 
   if (points_.size() + change.added.size() - change.removed.size() >= MeshTriangulation<D>::kMaxPoints)
@@ -1365,8 +1369,8 @@ ShorelineReport Mesh<D>::shoreline_crossings() const
   if (!t.has_vertex_map()) ring_vertex = t.vertices_at(domain);
   auto vertex_at = [&](const Point2& p) {
     if (!t.has_vertex_map()) return ring_vertex.at(p);
-    const auto it = t.vertex_of().find(p);
-    return it == t.vertex_of().end() ? C::Vertex() : it->second;
+    const C::Vertex* v = t.vertex_of().find(p);
+    return v ? *v : C::Vertex();
   };
   // Each segment on its own (the walks only read the triangulation), on every thread; the issues in the
   // rings' order, the counts summed, whatever the split.
