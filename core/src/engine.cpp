@@ -37,8 +37,9 @@ void room_for_one(std::vector<T>& items) {
 template <int D>
 WellSpacedEngine<D>::WellSpacedEngine(const Parameters<D>& parameters)
     : params_(DerivedParameters<D>::derive(parameters)), ranks_(params_) {
-  // An Op keeps its rank and colour in 16 bits each.
-  if (ranks_.min_rank() < std::numeric_limits<std::int16_t>::min() || ranks_.max_rank() > std::numeric_limits<std::int16_t>::max() ||
+  // An Op keeps its rank and colour in 16 bits each; the lowest rank is kept free so that no time key
+  // is 0, the inputs' birth.
+  if (ranks_.min_rank() <= std::numeric_limits<std::int16_t>::min() || ranks_.max_rank() > std::numeric_limits<std::int16_t>::max() ||
       ranks_.color_count() >= std::numeric_limits<std::uint16_t>::max())
     throw std::invalid_argument("parameters give over 2^15 ranks or 2^16 colours (rho too near 1 or kappa too large)");
 }

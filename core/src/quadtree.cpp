@@ -867,7 +867,7 @@ typename Quadtree<D>::Change Quadtree<D>::remove_input(VertexId id, std::span<co
 }
 
 template <int D>
-NodeId Quadtree<D>::insert_vertex(VertexId id, const Point<D>& p, std::uint64_t tag, NodeId hint) {
+NodeId Quadtree<D>::insert_vertex(VertexId id, const Point<D>& p, std::uint32_t tag, NodeId hint) {
   const NodeId leaf = locate(p, hint);
   leaf_push(leaf, {p, tag, id});
   if (search_[leaf].occupied_or_size == 1) mark_occupied(leaf);
@@ -878,11 +878,15 @@ template <int D>
 void Quadtree<D>::rename_vertices(std::span<const VertexId> new_id) {
   // The pool is packed afresh, the leaves' arrays in node order (nodes are numbered along the curve)
   // with no free block between them: Steiner vertices grew the arrays at the times they arrived, so
-  // neighbouring leaves' arrays lay far apart.
+  // neighbouring leaves' arrays lay far apart. With room for an eighth more, as the engine's other
+  // arrays after a build: packed full, the first leaf an update grew made the pool grow by half
+  // (pool_allocate), 16 bytes per output vertex at 2D n = 1e6.
   std::size_t slots = 0;
   for (NodeId n = 0; n < nodes_.size(); ++n)
     if (nodes_[n].level >= 0 && is_leaf(n)) slots += class_capacity(size_class_for(search_[n].occupied_or_size));
-  std::vector<LeafVertex<D>> packed(slots);
+  std::vector<LeafVertex<D>> packed;
+  packed.reserve(slots + slots / 8 + 1024);
+  packed.resize(slots);
   std::size_t next = 0;
   for (NodeId n = 0; n < nodes_.size(); ++n) {
     Record& nd = nodes_[n];

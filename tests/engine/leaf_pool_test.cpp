@@ -19,7 +19,7 @@ namespace {
 template <int D>
 struct Model {
   std::vector<Point<D>> positions;
-  std::vector<std::uint64_t> tag;
+  std::vector<std::uint32_t> tag;
   std::vector<bool> is_input;
   std::vector<VertexId> live_inputs, dead_inputs, live_steiner, dead_steiner;
 };

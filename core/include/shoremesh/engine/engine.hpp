@@ -254,8 +254,9 @@ class WellSpacedEngine {
   // time: its creator's time, 0 for inputs (before everything). An operation at time t sees only the
   // vertices born before t, the output M_t of the paper: during a propagation the tree still holds
   // vertices of later operations from the previous run, which a from-scratch run would not have yet.
-  static std::uint64_t time_key(int rank, std::uint32_t color) {
-    return (std::uint64_t(std::uint32_t(rank) ^ 0x80000000u) << 32) | color;
+  // Ranks fit 16 bits above -2^15 and colours 16 bits (checked at construction): 32 bits, never 0.
+  static std::uint32_t time_key(int rank, std::uint32_t color) {
+    return (std::uint32_t(std::uint16_t(rank) ^ 0x8000u) << 16) | color;
   }
   void reset();
   // build(): `own`, when given, holds unit_points and becomes positions_.
