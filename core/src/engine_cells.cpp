@@ -394,9 +394,11 @@ bool WellSpacedEngine<D>::compute_cell(OpId o, VertexId v, bool fill, Worker& w)
   // v's cell computed earlier in this propagation, if any: taken as it is when it still holds, else
   // the vertices its entry lists spare the search (gather_from_tree).
   const CachedCell* earlier = caching_ ? cached_neighbourhood(v, p) : nullptr;
-  if (earlier && may_idle && now < earlier->valid_until &&
-      ranks_.rank_below(p, positions_[earlier->nearest], op_at(o).rank, w.cell.counters())) {
-    w.hood.nearest = earlier->nearest;  // still v's nearest neighbour: nothing came within its reach
+  // The entry's nearest neighbour was born before the entry's time, so it is still in M_t (cell_cache.cpp),
+  // stale entry or not: nearer v than rho^rank, it makes the fill idle whatever came nearer since, and the
+  // fill depends on it alone (record_idle_fill), as on a nearest neighbour.
+  if (earlier && may_idle && ranks_.rank_below(p, positions_[earlier->nearest], op_at(o).rank, w.cell.counters())) {
+    w.hood.nearest = earlier->nearest;
     record_idle_fill(o, v, w);
     return false;
   }
