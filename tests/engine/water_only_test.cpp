@@ -367,3 +367,77 @@ TEST(ShoreCells, WaterVerticesAreWellSpacedInTheirWaterWedges) {
   std::size_t whole_checked = 0;
   EXPECT_GT(water_vertices_not_well_spaced(unit, *engine.water(), whole_checked), 0u);
 }
+
+namespace {
+// The same rings twice: `gridded` as assign leaves them (the grid of cell parities), `by_ray` after an edit
+// that takes one edge out and in again (an edit drops the grid: every parity from a ray).
+struct TwoWaters {
+  engine::WaterRings gridded, by_ray;
+  explicit TwoWaters(const std::vector<std::vector<Point2>>& rings) {
+    gridded.assign(rings);
+    by_ray.assign(rings);
+    const std::vector<Point2> edge{rings[0][0], rings[0][1]};
+    Point2 lo{1, 1}, hi{0, 0};
+    EXPECT_TRUE(by_ray.apply({edge, edge, false}, lo, hi));
+  }
+};
+}  // namespace
+
+// The grid decides a point's parity in its cell; where that is not clear-cut (a segment from the cell's
+// centre through an edge's end, a centre on an edge) the ray does. Both must give the same water
+// everywhere: random points, the cells' centres and corners, points on the rings and beside them, on rings
+// with vertices at cell centres and edges along the centres' rows and columns (128 x 128 cells here).
+TEST(WaterRings, GridParityEqualsTheRayEverywhere) {
+  std::vector<std::vector<Point2>> rings;
+  rings.push_back(polygon({0.5, 0.5}, 0.35, 3000, 0.1, 0.3));
+  rings.push_back(polygon({0.45, 0.55}, 0.05, 200, 0.2, 1.0));
+  constexpr double g = 128;
+  auto centre = [&](double i) { return (i + 0.5) / g; };
+  // A square island with its corners at centres (its edges along centre rows and columns), and a triangle
+  // with a vertex at a centre and a slanted edge through two.
+  rings.push_back({{centre(70), centre(40)}, {centre(80), centre(40)}, {centre(80), centre(50)}, {centre(70), centre(50)}});
+  rings.push_back({{centre(60), centre(80)}, {centre(66), centre(86)}, {centre(60), centre(90)}});
+  TwoWaters w(rings);
+  std::vector<Point2> probes;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int k = 0; k < 40000; ++k) probes.push_back({unit(rng), unit(rng)});
+  for (int i = 0; i < 128; ++i)
+    for (int j = 0; j < 128; ++j) {
+      probes.push_back({centre(i), centre(j)});
+      probes.push_back({i / g, j / g});
+      probes.push_back({centre(i), j / g});
+    }
+  for (const auto& ring : rings)
+    for (std::size_t k = 0; k < ring.size(); ++k) {
+      const Point2& a = ring[k];
+      const Point2& b = ring[(k + 1) % ring.size()];
+      probes.push_back(a);
+      probes.push_back({0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])});
+      probes.push_back({a[0], std::nextafter(a[1], 2.0)});
+      probes.push_back({std::nextafter(a[0], -1.0), a[1]});
+      probes.push_back({a[0] + 1e-4, a[1]});
+      probes.push_back({a[0], a[1] - 1e-4});
+    }
+  std::size_t water = 0;
+  engine::PredicateCounters pc;
+  for (const Point2& p : probes) {
+    const bool in = w.gridded.in_closed_water(p, pc);
+    ASSERT_EQ(in, w.by_ray.in_closed_water(p, pc)) << "at (" << p[0] << ", " << p[1] << ")";
+    water += in;
+  }
+  EXPECT_GT(water, probes.size() / 5);
+  EXPECT_LT(water, probes.size() * 4 / 5);
+}
+
+// A point of a cell no edge meets takes the cell's parity without a predicate; the ray from it crosses the shore.
+TEST(WaterRings, GridDecidesACellWithoutEdgesAlone) {
+  TwoWaters w({polygon({0.5, 0.5}, 0.35, 3000, 0.1, 0.3)});
+  engine::PredicateCounters gridded, by_ray;
+  EXPECT_TRUE(w.gridded.in_closed_water({0.5, 0.5}, gridded));
+  EXPECT_TRUE(w.by_ray.in_closed_water({0.5, 0.5}, by_ray));
+  EXPECT_EQ(gridded.calls, 0u);
+  EXPECT_GT(by_ray.calls, 0u);
+  EXPECT_FALSE(w.gridded.in_closed_water({0.02, 0.03}, gridded));
+  EXPECT_EQ(gridded.calls, 0u);
+}
