@@ -147,6 +147,55 @@ bool solve_semi_static(const std::array<const Constraint<D>*, D>& planes, std::a
   return true;
 }
 
+// 3D: the same rule on a double and its Magnitude side by side, the two lanes of one SSE2 register
+// (x86-64's baseline): each lane rounds as the scalar operation would (a difference is the sum with the
+// negated operand, which IEEE 754 defines it to be; the magnitude lane adds), so the bits are those of
+// the two scalar evaluations above, at half the instructions.
+using Lanes = double __attribute__((vector_size(16)));
+using LaneBits = std::uint64_t __attribute__((vector_size(16)));
+struct ValueAndMagnitude {
+  Lanes x;
+  friend ValueAndMagnitude operator*(ValueAndMagnitude a, ValueAndMagnitude b) { return {a.x * b.x}; }
+  friend ValueAndMagnitude operator+(ValueAndMagnitude a, ValueAndMagnitude b) { return {a.x + b.x}; }
+  friend ValueAndMagnitude operator-(ValueAndMagnitude a, ValueAndMagnitude b) {
+    const LaneBits value_sign = {std::uint64_t(1) << 63, 0};
+    return {a.x + Lanes(LaneBits(b.x) ^ value_sign)};
+  }
+};
+
+template <>
+bool solve_semi_static<3>(const std::array<const Constraint<3>*, 3>& planes, std::array<Interval, 3>& y) {
+  constexpr int D = 3;
+  std::array<std::array<ValueAndMagnitude, D>, D> n;
+  std::array<ValueAndMagnitude, D> b;
+  for (int k = 0; k < D; ++k) {
+    const Constraint<D>& c = *planes[k];
+    if (!c.narrow) return false;
+    for (int i = 0; i < D; ++i) n[k][i].x = Lanes{c.n[i].inf(), c.n_magnitude[i]};
+    b[k].x = Lanes{c.b.inf(), c.b_magnitude};
+  }
+  ValueAndMagnitude det_pair;
+  std::array<ValueAndMagnitude, D> num;
+  cramer(n, b, det_pair, num);
+  const double det = det_pair.x[0], det_bound = det_pair.x[1];
+  constexpr double gamma = 2e-14, tiny = 1e-200;
+  const double det_error = gamma * det_bound;
+  if (!(det_bound > tiny) || !(std::abs(det) > 2 * det_error) || !std::isfinite(det_bound)) return false;
+  for (int i = 0; i < D; ++i)
+    if (num[i].x[1] != 0 && !(num[i].x[1] > tiny)) return false;
+  const double below = -(det_error - std::abs(det));  // at most |det| - det_error (rounding is upward)
+  // Coordinates 0 and 1 in one register, 2 alone: the same operations per coordinate as in 2D.
+  const Lanes yv = Lanes{num[0].x[0], num[1].x[0]} / det;
+  const LaneBits magnitude_bits = {~(std::uint64_t(1) << 63), ~(std::uint64_t(1) << 63)};
+  const Lanes av = Lanes(LaneBits(yv) & magnitude_bits);
+  const Lanes ev = (gamma * Lanes{num[0].x[1], num[1].x[1]} + av * det_error * (1 + 0x1p-50)) / below + 0x1p-51 * av;
+  for (int i = 0; i < 2; ++i) y[i] = Interval(-(ev[i] - yv[i]), yv[i] + ev[i]);
+  const double y2 = num[2].x[0] / det, a2 = std::abs(y2);
+  const double e2 = (gamma * num[2].x[1] + a2 * det_error * (1 + 0x1p-50)) / below + 0x1p-51 * a2;
+  y[2] = Interval(-(e2 - y2), y2 + e2);
+  return true;
+}
+
 double midpoint(const Interval& x) { return 0.5 * (x.inf() + x.sup()); }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <vector>
 
 #include "shoremesh/engine/convex_cell.hpp"
@@ -248,6 +249,37 @@ TEST(ConvexCell, OutOfOrderCutsEqualDistanceOrder2D) {
 
 TEST(ConvexCell, OutOfOrderCutsEqualDistanceOrder3D) {
   for (std::uint64_t seed : {1, 2, 3, 4, 5}) out_of_order_cuts_equal_distance_order<3>(seed);
+}
+
+// The bits of every vertex box of random 3D cells, pinned: they fix the Steiner points (the farthest
+// vertex's midpoint), so any other enclosure, however valid, changes the output. The vertex solve pairs
+// each value with its error bound's magnitude in one register; these are the bits the scalar solve gave.
+TEST(ConvexCell, VertexBoxBitsArePinned3D) {
+  RoundingGuard guard;
+  std::uint64_t hash = 1469598103934665603ull;
+  for (std::uint64_t seed : {1, 2, 3, 4, 5, 6, 7, 8}) {
+    Uniform01 rnd{seed};
+    const Point<3> v{0.3 + 0.4 * rnd(), 0.3 + 0.4 * rnd(), 0.3 + 0.4 * rnd()};
+    std::vector<std::pair<double, Point<3>>> sites;
+    for (int k = 0; k < 120; ++k) {
+      const Point<3> w{v[0] + 0.2 * (rnd() - 0.5), v[1] + 0.2 * (rnd() - 0.5), v[2] + 0.2 * (rnd() - 0.5)};
+      sites.push_back({squared_distance<double, 3>(w, v), w});
+    }
+    std::sort(sites.begin(), sites.end());
+    ConvexCell<3> cell;
+    cell.reset(v, {v[0] - 0.08, v[1] - 0.08, v[2] - 0.08}, {v[0] + 0.08, v[1] + 0.08, v[2] + 0.08});
+    VertexId id = 0;
+    for (const auto& [d2, w] : sites) cell.clip(id++, w, d2);
+    std::vector<std::array<double, 6>> boxes;  // sorted: the vertices' order is no part of the cell
+    cell.for_each_vertex_box([&](const std::array<Interval, 3>& y) {
+      boxes.push_back({y[0].inf(), y[0].sup(), y[1].inf(), y[1].sup(), y[2].inf(), y[2].sup()});
+    });
+    std::sort(boxes.begin(), boxes.end());
+    for (const auto& b : boxes)
+      for (double x : b) hash = (hash ^ std::bit_cast<std::uint64_t>(x)) * 1099511628211ull;
+    hash = (hash ^ boxes.size()) * 1099511628211ull;
+  }
+  EXPECT_EQ(hash, 0x77a6d463f0aaccf9ull);
 }
 
 }  // namespace

@@ -408,7 +408,15 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
   auto report = [&](NodeId n) {
     if (count == found.size()) found.resize(2 * count + 16);
     found[count++] = n;
-    __builtin_prefetch(pool_.data() + search_[n].vertices);
+    // The array's first and last bytes: a 3D leaf's two 40-byte vertices mostly span two lines.
+    const LeafVertex<D>* array = pool_.data() + search_[n].vertices;
+    __builtin_prefetch(array);
+    __builtin_prefetch(reinterpret_cast<const char*>(array + search_[n].occupied_or_size) - 1);
+  };
+  // A block of children: one line in 2D, two in 3D (children 4 to 7 in the second).
+  auto prefetch_block = [&](NodeId children) {
+    __builtin_prefetch(&search_[children]);
+    if constexpr (D == 3) __builtin_prefetch(&search_[children + 4]);
   };
   // The nodes to expand, first in first out: a node's children's block, prefetched when it was queued,
   // is read only after the nodes queued before it (a stack reads it at once, and the descent waits on
@@ -485,7 +493,7 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
     starts[start_count++] = Item{top_node, top_level, ci};
   });
   for (int t = 0; t < start_count; ++t)
-    if (const NodeId children = search_[starts[t].node].first_child; children != kNoNode) __builtin_prefetch(&search_[children]);
+    if (const NodeId children = search_[starts[t].node].first_child; children != kNoNode) prefetch_block(children);
   for (int t = 0; t < start_count; ++t) enqueue(starts[t]);
   for (std::size_t head = 0; head < queued; ++head) {
     const Item it = queue[head];
@@ -522,7 +530,7 @@ std::size_t Quadtree<D>::for_each_occupied_leaf(const Box& box, const Box& seen,
       } else if (!inside_seen(rc, cc)) {  // one inside `seen` would only be dropped when dequeued
         // Its children's block is read when it leaves the queue: fetched meanwhile, and for its
         // siblings in parallel (the descent's time goes mostly to these misses).
-        __builtin_prefetch(&search_[grandchildren]);
+        prefetch_block(grandchildren);
         enqueue(Item{child_node, it.level + 1, cc});
       }
     }
