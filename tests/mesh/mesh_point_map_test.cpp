@@ -29,7 +29,9 @@ TEST(PointMap, AgreesWithStdMapUnderPutsAndErases) {
       const int* v = map.find(p);
       const auto it = reference.find(p);
       ASSERT_EQ(v != nullptr, it != reference.end());
-      if (v) ASSERT_EQ(*v, it->second);
+      if (v) {
+        ASSERT_EQ(*v, it->second);
+      }
     }
     ASSERT_EQ(map.size(), reference.size());
   }
