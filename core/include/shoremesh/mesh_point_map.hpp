@@ -90,8 +90,8 @@ class PointMap {
   };
 
   std::size_t home(const Point<D>& p) const {
-    std::uint64_t h = 0;
-    for (double x : p) h = (h ^ std::bit_cast<std::uint64_t>(x + 0.0)) * 0x9E3779B97F4A7C15ull;  // -0 as +0
+    // The points' own hash (-0 as +0), mixed so that its high bits, the slot, depend on every bit.
+    const std::uint64_t h = PointHash<D>{}(p);
     return static_cast<std::size_t>((h ^ (h >> 29)) * 0xBF58476D1CE4E5B9ull >> shift_);
   }
 
