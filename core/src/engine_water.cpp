@@ -68,15 +68,46 @@ struct WaterGrid {
   void clear() { *this = WaterGrid{}; }
   std::size_t side() const { return std::size_t(1) << bits; }
   double centre(std::size_t i) const { return (double(i) + 0.5) / double(side()); }
-  // The cells whose closed extent along one axis meets [lo, hi] (scaling by 2^bits and floor, ceil: exact).
+  // The cells whose closed extent along one axis meets [lo, hi] (scaling by 2^bits and floor, ceil: exact);
+  // for a range beyond the unit box, the nearest border cell (which then holds every edge it meets: none).
   std::pair<std::size_t, std::size_t> meeting(double lo, double hi) const {
     const double g = double(side());
-    const double from = std::max(0.0, std::ceil(lo * g) - 1), to = std::min(g - 1, std::floor(hi * g));
+    const double from = std::clamp(std::ceil(lo * g) - 1, 0.0, g - 1), to = std::min(g - 1, std::floor(hi * g));
     return {std::size_t(from), std::size_t(std::max(from, to))};
   }
   void build(std::vector<Edge> all, PredicateCounters& pc);
   // p's parity, or -1 when the ray must decide.
   int parity(const Point2& p, PredicateCounters& pc) const;
+  // Calls f(edge) once for every edge whose closed box meets the closed box [lo, hi] (the R-tree's set),
+  // until f returns true; returns whether one did. Each edge is listed in every cell its box meets, so the
+  // cells meeting [lo, hi] hold them all; an edge is taken only in the first of those cells (lowest row,
+  // then column) that lists it, the corner of the two cell ranges. false, f not called: the box spans more
+  // than kMostCells cells (the R-tree skips open water faster) or there is no grid.
+  static constexpr std::size_t kMostCells = 16;
+  template <class F>
+  bool for_each_edge_meeting(const Point2& lo, const Point2& hi, bool& done, F&& f) const {
+    done = false;
+    if (empty()) return false;
+    const auto [x0, x1] = meeting(lo[0], hi[0]);
+    const auto [y0, y1] = meeting(lo[1], hi[1]);
+    if ((x1 - x0 + 1) * (y1 - y0 + 1) > kMostCells) return false;
+    done = true;
+    const std::size_t g = side();
+    for (std::size_t y = y0; y <= y1; ++y)
+      for (std::size_t x = x0; x <= x1; ++x) {
+        const std::uint32_t cell = cells[y * g + x];
+        if ((cell >> 2) == 0) continue;
+        const std::size_t m = (cell >> 2) - 1;
+        for (std::uint32_t j = first[m]; j < first[m + 1]; ++j) {
+          const Edge& e = listed[j];
+          const double elo0 = std::min(e[0], e[2]), elo1 = std::min(e[1], e[3]);
+          if (std::max(e[0], e[2]) < lo[0] || elo0 > hi[0] || std::max(e[1], e[3]) < lo[1] || elo1 > hi[1]) continue;
+          if ((x != x0 && meeting(elo0, elo0).first != x) || (y != y0 && meeting(elo1, elo1).first != y)) continue;
+          if (f(e)) return true;
+        }
+      }
+    return false;
+  }
 };
 
 struct WaterRings::Tree {
@@ -278,6 +309,10 @@ bool WaterRings::odd_crossings(const Point2& p, PredicateCounters& pc) const {
 }
 
 bool WaterRings::may_meet_water(const Point2& inside, const Point2& lo, const Point2& hi, PredicateCounters& pc) const {
+  bool done = false;
+  if (tree_->grid.for_each_edge_meeting(lo, hi, done, [&](const Edge& e) { return segment_meets_box(e, lo, hi, pc); }))
+    return true;
+  if (done) return odd_crossings(inside, pc);
   const BBox box(Corner(lo[0], lo[1]), Corner(hi[0], hi[1]));
   for (auto it = tree_->tree.qbegin(bgi::intersects(box)); it != tree_->tree.qend(); ++it)
     if (segment_meets_box(it->second, lo, hi, pc)) return true;
@@ -286,6 +321,12 @@ bool WaterRings::may_meet_water(const Point2& inside, const Point2& lo, const Po
 
 void WaterRings::edges_meeting(const Point2& lo, const Point2& hi, PredicateCounters& pc,
                                std::vector<std::array<Point2, 2>>& out) const {
+  bool done = false;
+  tree_->grid.for_each_edge_meeting(lo, hi, done, [&](const Edge& e) {
+    if (segment_meets_box(e, lo, hi, pc)) out.push_back({Point2{e[0], e[1]}, Point2{e[2], e[3]}});
+    return false;
+  });
+  if (done) return;
   const BBox box(Corner(lo[0], lo[1]), Corner(hi[0], hi[1]));
   for (auto it = tree_->tree.qbegin(bgi::intersects(box)); it != tree_->tree.qend(); ++it)
     if (segment_meets_box(it->second, lo, hi, pc)) {

@@ -441,3 +441,51 @@ TEST(WaterRings, GridDecidesACellWithoutEdgesAlone) {
   EXPECT_FALSE(w.gridded.in_closed_water({0.02, 0.03}, gridded));
   EXPECT_EQ(gridded.calls, 0u);
 }
+
+// Boxes against the shore by the grid's cell lists (each edge taken once, in the first cell of the box
+// that lists it) must find the R-tree's edges: every one, none twice. Random boxes from a point to a few
+// cells wide (about the grid's limit), boxes with their sides on cell borders, point boxes at ring
+// vertices, boxes reaching past the unit box beside rings that touch its sides, and boxes too large for
+// the grid (the R-tree answers both).
+TEST(WaterRings, GridEdgesMeetingEqualTheTreesEdges) {
+  std::vector<std::vector<Point2>> rings;
+  rings.push_back(polygon({0.5, 0.5}, 0.35, 3000, 0.1, 0.3));
+  rings.push_back(polygon({0.45, 0.55}, 0.05, 200, 0.2, 1.0));
+  rings.push_back({{0.0, 0.2}, {0.03, 0.25}, {0.0, 0.3}});      // on the left side of the unit box
+  rings.push_back({{0.6, 1.0}, {0.65, 0.97}, {0.7, 1.0}});      // on the top side
+  rings.push_back({{1.0, 0.0}, {1.0, 0.04}, {0.96, 0.0}});      // in the corner (1, 0)
+  TwoWaters w(rings);
+  constexpr double g = 128;  // the grid of 3,406 edges
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-0.02, 1.02), width(0, 3 / g);
+  std::uniform_int_distribution<int> cell(-1, 129), cells(0, 4);
+  std::vector<std::pair<Point2, Point2>> boxes;
+  for (int k = 0; k < 20000; ++k) {
+    const Point2 lo{unit(rng), unit(rng)};
+    boxes.push_back({lo, {lo[0] + width(rng), lo[1] + width(rng)}});
+    const Point2 on{cell(rng) / g, cell(rng) / g};  // sides on cell borders
+    boxes.push_back({on, {on[0] + cells(rng) / g, on[1] + cells(rng) / g}});
+    boxes.push_back({lo, {lo[0] + 0.2, lo[1] + 0.1}});  // too many cells
+  }
+  for (const auto& ring : rings)
+    for (const Point2& a : ring) {
+      boxes.push_back({a, a});
+      boxes.push_back({{a[0] - 0x1p-48, a[1] - 0x1p-48}, {a[0] + 0x1p-48, a[1] + 0x1p-48}});
+    }
+  boxes.push_back({{-1, -1}, {-0.5, 2}});
+  boxes.push_back({{1, 1}, {1, 1}});
+  engine::PredicateCounters pc;
+  std::size_t met = 0;
+  for (const auto& [lo, hi] : boxes) {
+    std::vector<std::array<Point2, 2>> by_grid, by_tree;
+    w.gridded.edges_meeting(lo, hi, pc, by_grid);
+    w.by_ray.edges_meeting(lo, hi, pc, by_tree);
+    std::sort(by_grid.begin(), by_grid.end());
+    std::sort(by_tree.begin(), by_tree.end());
+    ASSERT_EQ(by_grid, by_tree) << "box (" << lo[0] << ", " << lo[1] << ") - (" << hi[0] << ", " << hi[1] << ")";
+    const Point2 inside{0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])};
+    ASSERT_EQ(w.gridded.may_meet_water(inside, lo, hi, pc), w.by_ray.may_meet_water(inside, lo, hi, pc));
+    met += !by_tree.empty();
+  }
+  EXPECT_GT(met, boxes.size() / 10);
+}
