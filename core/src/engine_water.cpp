@@ -319,6 +319,8 @@ bool WaterRings::may_meet_water(const Point2& inside, const Point2& lo, const Po
   return odd_crossings(inside, pc);
 }
 
+// The edges come in the grid's or the R-tree's order, which an edit may change: the callers (shore_wedge)
+// decide on the set alone.
 void WaterRings::edges_meeting(const Point2& lo, const Point2& hi, PredicateCounters& pc,
                                std::vector<std::array<Point2, 2>>& out) const {
   bool done = false;
