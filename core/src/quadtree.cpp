@@ -869,9 +869,14 @@ typename Quadtree<D>::Change Quadtree<D>::remove_input(VertexId id, std::span<co
 template <int D>
 NodeId Quadtree<D>::insert_vertex(VertexId id, const Point<D>& p, std::uint32_t tag, NodeId hint) {
   const NodeId leaf = locate(p, hint);
+  insert_vertex_at(leaf, id, p, tag);
+  return leaf;
+}
+
+template <int D>
+void Quadtree<D>::insert_vertex_at(NodeId leaf, VertexId id, const Point<D>& p, std::uint32_t tag) {
   leaf_push(leaf, {p, tag, id});
   if (search_[leaf].occupied_or_size == 1) mark_occupied(leaf);
-  return leaf;
 }
 
 template <int D>
