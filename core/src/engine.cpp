@@ -9,6 +9,9 @@
 #include <string>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "shoremesh/error.hpp"
 #include "engine_internal.hpp"
 
@@ -367,12 +370,20 @@ void WellSpacedEngine<D>::sort_batch_by_place() {
   const std::size_t m = batch_.size();
   batch_keys_.resize(m);
   batch_keys_scratch_.resize(m);
+  // The keys read each operation's vertex, scattered over memory: a build's large batches (all fresh,
+  // nothing else runs meanwhile) fetch them on every thread.
+  auto key_at = [&](std::size_t k) {
+    batch_keys_[k] = {engine::z_order_key<D>(positions_[op_at(batch_[k]).vertex]), batch_[k]};
+  };
+  if (!dynamic_ && m >= kParallelBatch && engine::thread_count() > 1)
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m, 1024), [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t k = range.begin(); k != range.end(); ++k) key_at(k);
+    });
+  else
+    for (std::size_t k = 0; k < m; ++k) key_at(k);
   std::vector<std::uint32_t> counts(kDigits * kRadix, 0);
-  for (std::size_t k = 0; k < m; ++k) {
-    const std::uint64_t key = engine::z_order_key<D>(positions_[op_at(batch_[k]).vertex]);
-    batch_keys_[k] = {key, batch_[k]};
+  for (const auto& [key, o] : batch_keys_)
     for (int d = 0; d < kDigits; ++d) ++counts[std::size_t(d) * kRadix + (key >> (d * kDigitBits) & (kRadix - 1))];
-  }
   for (int d = 0; d < kDigits; ++d) {
     std::uint32_t* c = counts.data() + std::size_t(d) * kRadix;
     const std::uint64_t first_digit = batch_keys_[0].first >> (d * kDigitBits) & (kRadix - 1);

@@ -320,7 +320,7 @@ void WellSpacedEngine<D>::compute_fill(OpId o, Worker& w, Outcome& out) {
     const Point<D> q = pick_steiner(v, w, in_wedge ? &aim : nullptr);
     // Fact 1 puts q's rank above op's; the max only guards the table's rounding for a rho other than
     // sqrt(2) (for sqrt(2) the table is exact and it never applies).
-    out.steiner.push_back({q, std::max(ranks_.rank_of(q, p, pc), op_rank + 1)});
+    out.steiner.push_back({q, std::max(ranks_.rank_of(q, p, pc), op_rank + 1), tree_.locate(q, vertices_[v].leaf)});
     double d2 = 0;
     for (int i = 0; i < D; ++i) {
       const double d = p[i] - q[i];
@@ -352,7 +352,7 @@ void WellSpacedEngine<D>::commit_fill(OpId o, Outcome& out) {
     op_at(o).flags &= std::uint8_t(~kStashed);
   }
   new_children_.clear();
-  for (const auto& [q, rank] : out.steiner) {
+  for (const auto& [q, rank, leaf] : out.steiner) {
     auto again = std::find_if(stash_.begin(), stash_.end(), [&](OpId d) { return positions_[op_at(d).vertex] == q; });
     if (again != stash_.end()) {
       // The same Steiner point as before: keep the vertex and its dispatch, nothing changes around it.
@@ -363,7 +363,8 @@ void WellSpacedEngine<D>::commit_fill(OpId o, Outcome& out) {
     }
     const VertexId id = new_vertex(q);
     if (recording_) vertex_ops_[id].creator = o;
-    vertices_[id].leaf = tree_.insert_vertex(id, q, time_key(op_rank, op_color), vertices_[v].leaf);
+    vertices_[id].leaf = leaf;
+    tree_.insert_vertex_at(leaf, id, q, time_key(op_rank, op_color));
     ++counters_.steiner_points;
     if (dynamic_) mark_readers_at(id, q, vertices_[id].leaf, VertexChange::Inserted, op_rank, op_color);
     if (caching_) vertex_arrived(id, q, time_key(op_rank, op_color));

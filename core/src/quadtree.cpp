@@ -6,6 +6,9 @@
 #include <stdexcept>
 #include <string>
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
 #include "shoremesh/error.hpp"
 
 namespace shoremesh::engine {
@@ -590,14 +593,14 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
   // 1. Crowding. A cell with one input (sorted index b) is crowded when another input's cell two levels
   // finer lies within one such cell of the cell's block: such an input lies in a neighbour cell q, found
   // by binary search within the range of the common ancestor of the cell and q (held on the path).
-  std::array<std::pair<std::uint32_t, std::uint32_t>, kMaxLevel + 1> path;
+  using Path = std::array<std::pair<std::uint32_t, std::uint32_t>, kMaxLevel + 1>;
   auto fine_cell = [&](std::uint32_t sorted, int fine) {
     if (fine > kMaxLevel) return cell_of(inputs[order[sorted]], fine);
     Coords c = deinterleave<D>(codes[sorted]);
     for (int i = 0; i < D; ++i) c[i] >>= (kMaxLevel - fine);
     return c;
   };
-  auto ring_crowded = [&](int level, const Coords& c) {
+  auto ring_crowded = [&](const Path& path, int level, const Coords& c) {
     const int fine = level + kCrowdingMargin;
     const std::int64_t s = std::int64_t(1) << kCrowdingMargin;
     bool found = false;
@@ -640,23 +643,55 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
       std::uint32_t b, e;
       int level;
     };
-    std::vector<Task> tasks{{Coords{}, 0, 0, std::uint32_t(n), 0}};
-    while (!tasks.empty()) {
-      const Task t = tasks.back();
-      tasks.pop_back();
-      path[std::size_t(t.level)] = {t.b, t.e};
-      const std::uint32_t count = t.e - t.b;
-      if (count == 0 || (count == 1 && !ring_crowded(t.level, t.c))) continue;
-      if (t.level >= kMaxLevel)
-        throw PointInputError("input points are closer than the engine's resolution (2^-40 of the box side)", {});
-      internal[std::size_t(t.level)].push_back(t.key);
-      const auto at = child_ranges(t.level, t.key, t.b, t.e);
-      // Child 0 popped first: each level's cells come out in Morton order.
-      for (int k = kChildren; k-- > 0;) {
-        Coords cc;
-        for (int i = 0; i < D; ++i) cc[i] = 2 * t.c[i] + ((k >> i) & 1);
-        tasks.push_back({cc, (t.key << D) | CellKey(k), at[std::size_t(k)], at[std::size_t(k + 1)], t.level + 1});
+    // The cells of the subtree of `first` in depth-first order, children of the cells of `stop_level`
+    // left for later (`deferred`, with the path to them). Child 0 is popped first: each level's cells
+    // come out in Morton order.
+    struct Subtree {
+      Task first;
+      Path path;
+    };
+    auto expand = [&](const Subtree& from, std::vector<std::vector<CellKey>>& out, int stop_level,
+                      std::vector<Subtree>* deferred) {
+      Path path = from.path;
+      std::vector<Task> tasks{from.first};
+      while (!tasks.empty()) {
+        const Task t = tasks.back();
+        tasks.pop_back();
+        path[std::size_t(t.level)] = {t.b, t.e};
+        const std::uint32_t count = t.e - t.b;
+        if (count == 0 || (count == 1 && !ring_crowded(path, t.level, t.c))) continue;
+        if (t.level == stop_level) {
+          deferred->push_back({t, path});
+          continue;
+        }
+        if (t.level >= kMaxLevel)
+          throw PointInputError("input points are closer than the engine's resolution (2^-40 of the box side)", {});
+        out[std::size_t(t.level)].push_back(t.key);
+        const auto at = child_ranges(t.level, t.key, t.b, t.e);
+        for (int k = kChildren; k-- > 0;) {
+          Coords cc;
+          for (int i = 0; i < D; ++i) cc[i] = 2 * t.c[i] + ((k >> i) & 1);
+          tasks.push_back({cc, (t.key << D) | CellKey(k), at[std::size_t(k)], at[std::size_t(k + 1)], t.level + 1});
+        }
       }
+    };
+    // The coarse levels on this thread; the subtrees of the internal cells of level kSplit (a few hundred
+    // at most) on every thread, their lists joined in Morton order: the same lists as one pass.
+    constexpr int kSplit = D == 2 ? 4 : 3;
+    std::vector<Subtree> subtrees;
+    expand({{Coords{}, 0, 0, std::uint32_t(n), 0}, Path{}}, internal, kSplit, &subtrees);
+    std::vector<std::vector<std::vector<CellKey>>> parts(subtrees.size());
+    tbb::parallel_for(std::size_t(0), subtrees.size(), [&](std::size_t k) {
+      parts[k].resize(kMaxLevel + 1);
+      expand(subtrees[k], parts[k], -1, nullptr);
+    });
+    for (int level = kSplit; level <= kMaxLevel; ++level) {
+      std::size_t size = 0;
+      for (const auto& part : parts) size += part[std::size_t(level)].size();
+      internal[std::size_t(level)].reserve(size);
+      for (const auto& part : parts)
+        internal[std::size_t(level)].insert(internal[std::size_t(level)].end(), part[std::size_t(level)].begin(),
+                                            part[std::size_t(level)].end());
     }
   }
 
@@ -690,7 +725,8 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
         cells.push_back(key);
       });
     }
-    std::sort(cells.begin(), cells.end());
+    // Equal keys are the same cell: any sort gives the same list, on every thread.
+    tbb::parallel_sort(cells.begin(), cells.end());
     cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
     internal_count += cells.size();
   }
@@ -714,6 +750,16 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
     std::uint32_t b, e;
   };
   std::vector<Visit> visits{{root(), 0, 0, std::uint32_t(n)}};
+  // The map's slots are scattered over a table larger than the caches: each cell's is fetched while the
+  // next few cells are visited, and the cells are inserted in the order visited (the same table).
+  constexpr std::size_t kMapAhead = 16;
+  struct MapEntry {
+    int level;
+    Coords c;
+    NodeId first;
+  };
+  std::array<MapEntry, kMapAhead> map_pending;
+  std::size_t map_count = 0;
   while (!visits.empty()) {
     const Visit t = visits.back();
     visits.pop_back();
@@ -736,7 +782,10 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
     if (editable_) inputs_.resize(nodes_.size());
     search_[t.node].first_child = first;
     const Coords pc = nodes_[t.node].coords();
-    map_.insert<D>(level, pc, first);
+    map_.prefetch<D>(level, pc);
+    MapEntry& entry = map_pending[map_count++ % kMapAhead];
+    if (map_count > kMapAhead) map_.insert<D>(entry.level, entry.c, entry.first);
+    entry = {level, pc, first};
     leaf_count_ += kChildren - 1;
     const auto at = child_ranges(level, t.key, t.b, t.e);
     for (int k = 0; k < kChildren; ++k) {
@@ -749,6 +798,10 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
     }
     for (int k = kChildren; k-- > 0;)
       visits.push_back({first + NodeId(k), (t.key << D) | CellKey(k), at[std::size_t(k)], at[std::size_t(k + 1)]});
+  }
+  for (std::size_t k = map_count > kMapAhead ? map_count - kMapAhead : 0; k < map_count; ++k) {
+    const MapEntry& entry = map_pending[k % kMapAhead];
+    map_.insert<D>(entry.level, entry.c, entry.first);
   }
   for (int level = 0; level <= kMaxLevel; ++level)
     if (next[std::size_t(level)] != internal[std::size_t(level)].size()) throw std::logic_error("quadtree build: an internal cell without a parent");
@@ -869,9 +922,14 @@ typename Quadtree<D>::Change Quadtree<D>::remove_input(VertexId id, std::span<co
 template <int D>
 NodeId Quadtree<D>::insert_vertex(VertexId id, const Point<D>& p, std::uint32_t tag, NodeId hint) {
   const NodeId leaf = locate(p, hint);
+  insert_vertex_at(leaf, id, p, tag);
+  return leaf;
+}
+
+template <int D>
+void Quadtree<D>::insert_vertex_at(NodeId leaf, VertexId id, const Point<D>& p, std::uint32_t tag) {
   leaf_push(leaf, {p, tag, id});
   if (search_[leaf].occupied_or_size == 1) mark_occupied(leaf);
-  return leaf;
 }
 
 template <int D>

@@ -104,6 +104,9 @@ class CellTable {
     return node;
   }
 
+  // Fetches the slot where key's probe starts (a table far larger than the caches).
+  void prefetch(Key key) const { __builtin_prefetch(&slots_[slot_of(key)], 1); }
+
   void insert(Key key, NodeId node) {
     changed();
     if (2 * (size_ + 1) > slots_.size()) rehash(2 * slots_.size());
@@ -211,6 +214,13 @@ class CellMap {
       compact_.insert(compact_cell_key<D>(level, coords), node);
     else
       deep_.insert(make_cell_key<D>(level, coords), node);
+  }
+  template <int D>
+  void prefetch(int level, const std::array<std::uint64_t, D>& coords) const {
+    if (level <= kCompactLevels<D>)
+      compact_.prefetch(compact_cell_key<D>(level, coords));
+    else
+      deep_.prefetch(make_cell_key<D>(level, coords));
   }
   template <int D>
   void erase(int level, const std::array<std::uint64_t, D>& coords) {

@@ -246,7 +246,15 @@ class WellSpacedEngine {
   // (Lemma 6.1: each sees only the vertices born before their time) and committed one after the other.
   struct Outcome {
     std::vector<std::pair<VertexId, int>> requests;  // a dispatch's fills to ask for: (vertex, rank)
-    std::vector<std::pair<Point<D>, int>> steiner;   // a fill's Steiner points and their dispatches' ranks
+    // A fill's Steiner points, their dispatches' ranks and their leaves: Steiner points leave the tree's
+    // shape as it is, so a leaf found while computing is the leaf at the commit, and the look-up runs on
+    // every thread instead of in the serial commit.
+    struct Steiner {
+      Point<D> at;
+      int rank;
+      NodeId leaf;
+    };
+    std::vector<Steiner> steiner;
     std::vector<NodeId> covering;                    // the nodes to register it as a reader of
   };
 

@@ -134,6 +134,8 @@ class Quadtree {
 
   // Steiner vertices: inserted into / removed from the leaf containing them. Inputs have tag 0.
   NodeId insert_vertex(VertexId id, const Point<D>& p, std::uint32_t tag, NodeId hint = kNoNode);
+  // The same into `leaf`, which locate(p) found (the tree's shape unchanged since).
+  void insert_vertex_at(NodeId leaf, VertexId id, const Point<D>& p, std::uint32_t tag);
   void erase_vertex(VertexId id, NodeId leaf);
 
   // Vertex v becomes new_id[v] everywhere in the tree (the owner renumbered its vertices); the leaves'
