@@ -234,7 +234,7 @@ void run(const Options& opt) {
       "update_cells=%.1f update_leaves_per_cell=%.1f update_candidates_per_cell=%.1f update_clips_per_cell=%.1f build_searches_per_cell=%.2f update_searches_per_cell=%.2f update_cells_reused=%.1f update_cells_from_lists=%.1f update_cells_updated=%.1f "
       "update_steiner_changes_median=%.0f%s update_median_cpu_seconds=%.6g update_p99_cpu_seconds=%.6g engine_memory_bytes=%zu engine_bytes_per_vertex=%.1f "
       "bytes_per_vertex_vertices=%.1f bytes_per_vertex_positions=%.1f bytes_per_vertex_operations=%.1f "
-      "bytes_per_vertex_children=%.1f bytes_per_vertex_reads=%.1f bytes_per_vertex_readers=%.1f "
+      "bytes_per_vertex_children=%.1f bytes_per_vertex_readers=%.1f "
       "bytes_per_vertex_tree=%.1f bytes_per_vertex_other=%.1f rss_bytes=%zu points=%s\n",
       D, n, opt.inputs, opt.changes, output / k, build_seconds / k, build_ops / k, unit_seconds / changes,
       unit_ops / changes, quantile(latencies, 0.5), quantile(latencies, 0.99), quantile(update_ops, 0.5),
@@ -247,7 +247,7 @@ void run(const Options& opt) {
       quantile(cpu_latencies, 0.99), memory.total(),
       double(memory.total()) / memory_output, double(memory.vertices) / memory_output,
       double(memory.positions) / memory_output, double(memory.operations) / memory_output,
-      double(memory.children) / memory_output, double(memory.reads) / memory_output,
+      double(memory.children) / memory_output,
       double(memory.readers) / memory_output, double(memory.tree) / memory_output,
       double(memory.other) / memory_output, resident_bytes(),
       opt.input.empty() ? "uniform" : opt.input.c_str());

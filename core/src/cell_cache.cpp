@@ -66,7 +66,8 @@ bool WellSpacedEngine<D>::reuse_cell(OpId o, const CachedCell& c, std::uint64_t 
   serial_.hood.nearest = c.nearest;
   serial_.hood.candidates = c.candidates;
   serial_.covering = c.covering;  // registered by its commit
-  recorded_ops_[o].depends2 = recorded_ops_[o].inserted_depends2 = c.depends2;
+  serial_.cover = c.cover;
+  recorded_ops_[o].set_depends2(c.depends2);
   recorded_ops_[o].reach = c.reach;
   return true;
 }
@@ -103,6 +104,7 @@ void WellSpacedEngine<D>::store_cell(OpId o, VertexId v, const Point<D>& p, doub
   c.depends2 = depends2;
   c.reach = recorded_ops_[o].reach;
   c.covering = serial_.covering;  // record_reads(o, p, searched) just left them there
+  c.cover = serial_.cover;
   c.nearest = serial_.hood.nearest;
   c.searched = searched;
   c.candidates = serial_.hood.candidates;

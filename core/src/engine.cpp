@@ -55,11 +55,9 @@ void WellSpacedEngine<D>::reset() {
   vertices_.clear();
   vertex_ops_.clear();
   positions_.clear();
-  filter_keys_.clear();
   lean_ops_.clear();
   recorded_ops_.clear();
   children_.clear();
-  reads_.clear();
   readers_.clear();
   for (auto& bucket : agenda_) bucket.clear();
   agenda_next_ = 0;
@@ -142,10 +140,7 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::build(s
     vertices_[v].alive = true;
     ids[v] = v;
   }
-  if (recording_) {
-    filter_keys_ = ids;
-    vertex_ops_.resize(input_count_);
-  }
+  if (recording_) vertex_ops_.resize(input_count_);
   tree_.build(positions_, ids, for_updates);
   for (NodeId n = 0; n < tree_.node_capacity(); ++n) {
     const auto& nd = tree_.node(n);
@@ -263,7 +258,7 @@ template <int D>
 void WellSpacedEngine<D>::mark_readers_at(VertexId w, const Point<D>& p, NodeId leaf, VertexChange change, int rank,
                                           std::uint32_t color) {
   const bool inserted = change == VertexChange::Inserted;
-  const auto bits = facet_bits(w);
+  const auto bits = facet_bits_at(p);
   // The lists of the coarse nodes hold hundreds of readers each, scattered over recorded_ops_ (an array too large
   // for the caches at 10^6 inputs): each one's Op is fetched a few entries ahead.
   constexpr std::size_t kAhead = 8;
@@ -283,7 +278,7 @@ void WellSpacedEngine<D>::mark_readers_at(VertexId w, const Point<D>& p, NodeId 
         d[i] = p[i] - c[i];
         d2 += d[i] * d[i];
       }
-      if (d2 > (inserted ? op.inserted_depends2 : op.depends2)) continue;
+      if (d2 > (inserted ? op.inserted_depends2() : double(op.depends2))) continue;
       if (inserted && !op.reach.may_be_cut_by(d)) continue;
       mark_redo(o);
     }
@@ -443,8 +438,11 @@ void WellSpacedEngine<D>::undo(OpId o) {
       if (stats_) stats_->steiner_removed.push_back(positions_[w]);
     }
   }
-  for (NodeId n : reads(o)) readers_.erase(n, o);
   RecordedOp& again = recorded_ops_[o];
+  if (again.reads_count != 0) {
+    tree_.cover_nodes(positions_[again.vertex], again.reads_cover, undone_reads_);
+    for (NodeId n : undone_reads_) readers_.erase(n, o);
+  }
   release_reads(again);
   if (!(again.flags & kStashed)) release_children(again);  // a stashed fill's go when it runs (fill)
   again.flags &= std::uint8_t(~kExecuted);
@@ -476,8 +474,7 @@ void WellSpacedEngine<D>::kill(OpId o) {
 
 template <int D>
 void WellSpacedEngine<D>::release_reads(RecordedOp& op) {
-  reads_.release(op.reads_begin, op.reads_count);
-  op.reads_begin = 0;
+  op.reads_cover = 0;
   op.reads_count = 0;
 }
 
@@ -496,9 +493,11 @@ void WellSpacedEngine<D>::store_children(OpId o) {
 }
 
 template <int D>
-void WellSpacedEngine<D>::register_reads(OpId o, std::span<const NodeId> nodes) {
-  recorded_ops_[o].reads_count = run_length(nodes.size());
-  recorded_ops_[o].reads_begin = reads_.allocate(nodes);
+void WellSpacedEngine<D>::register_reads(OpId o, std::span<const NodeId> nodes, std::uint32_t cover) {
+  // covering_nodes gives at most 2^D: more would not fit the count's bits.
+  if (nodes.size() > Op::kMaxReads) throw std::logic_error("an operation registered as a reader of over 15 nodes");
+  recorded_ops_[o].reads_count = std::uint8_t(nodes.size());
+  recorded_ops_[o].reads_cover = cover;
   for (NodeId n : nodes) readers_.push(n, o);
 }
 
@@ -512,27 +511,18 @@ typename WellSpacedEngine<D>::VertexId WellSpacedEngine<D>::new_vertex(const Poi
     free_vertices_.pop_back();
     vertices_[id] = vx;
     positions_[id] = p;
-    if (recording_) {
-      filter_keys_[id] = id;
-      vertex_ops_[id] = VertexOps{};
-    }
+    if (recording_) vertex_ops_[id] = VertexOps{};
     return id;
   }
   const VertexId id = VertexId(vertices_.size());
   if (!dynamic_) {
     room_for_one(vertices_);
     room_for_one(positions_);
-    if (recording_) {
-      room_for_one(filter_keys_);
-      room_for_one(vertex_ops_);
-    }
+    if (recording_) room_for_one(vertex_ops_);
   }
   vertices_.push_back(vx);
   positions_.push_back(p);
-  if (recording_) {
-    filter_keys_.push_back(id);
-    vertex_ops_.emplace_back();
-  }
+  if (recording_) vertex_ops_.emplace_back();
   return VertexId(vertices_.size() - 1);
 }
 
@@ -701,12 +691,10 @@ std::vector<std::tuple<Point<D>, int, std::uint32_t>> WellSpacedEngine<D>::opera
 template <int D>
 typename WellSpacedEngine<D>::MemoryBreakdown WellSpacedEngine<D>::memory_breakdown() const {
   MemoryBreakdown m;
-  m.vertices = vertices_.capacity() * sizeof(Vertex) + vertex_ops_.capacity() * sizeof(VertexOps) +
-               filter_keys_.capacity() * sizeof(std::uint32_t);
+  m.vertices = vertices_.capacity() * sizeof(Vertex) + vertex_ops_.capacity() * sizeof(VertexOps);
   m.positions = positions_.capacity() * sizeof(Point<D>);
   m.operations = lean_ops_.capacity() * sizeof(Op) + recorded_ops_.capacity() * sizeof(RecordedOp);
   m.children = children_.memory_bytes();
-  m.reads = reads_.memory_bytes();
   m.readers = readers_.memory_bytes();
   m.tree = tree_.memory_bytes();
   m.delaunay = delaunay_ ? delaunay_->memory_bytes() : 0;
@@ -759,7 +747,10 @@ void WellSpacedEngine<D>::check_valid() const {
              (vertices_[op.vertex].is_input ? " input" : " Steiner") + ") has deleted child " + std::to_string(c));
       if (recorded_ops_[c].rank < op.rank) fail("a child runs before its parent");
     }
-    for (NodeId n : reads(o)) {
+    // The nodes found again from its cover's code are those it registered on.
+    const std::vector<NodeId> read = reads(o);
+    if (read.size() != op.reads_count) fail("operation " + std::to_string(o) + " reads other nodes than it registered on");
+    for (NodeId n : read) {
       const auto rs = readers_.list(n);
       if (std::find(rs.begin(), rs.end(), o) == rs.end()) fail("read edge without reader entry");
     }
@@ -770,9 +761,7 @@ void WellSpacedEngine<D>::check_valid() const {
     for (OpId o : readers_.list(n))
       if (recorded_ops_[o].flags & kDead) fail("reader entry of a deleted operation");
   if (readers_.live_block_entries() + readers_.free_entries() != readers_.size()) fail("a reader block lost");
-  const PoolEntries live = live_pool_entries();
-  if (live.children + children_.free_entries() != children_.size()) fail("a children block lost");
-  if (live.reads + reads_.free_entries() != reads_.size()) fail("a reads block lost");
+  if (live_children_entries() + children_.free_entries() != children_.size()) fail("a children block lost");
 }
 
 template class WellSpacedEngine<2>;

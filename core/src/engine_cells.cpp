@@ -361,7 +361,7 @@ void WellSpacedEngine<D>::CellSearch::record_dependencies() {
   if (!e.recording_) return;  // a one-shot build: nobody reads the radii
   RecordedOp& op = e.recorded_ops_[o];
   const double reach2 = std::min(4 * w.cell.max_vertex_distance2(), cap2);
-  op.depends2 = op.inserted_depends2 = at_least(std::max(reach2, best_d2) * (1 + kRadiusMargin));
+  op.set_depends2(at_least(std::max(reach2, best_d2) * (1 + kRadiusMargin)));
   op.reach = engine::CellReach<D>::of([&](auto&& f) { w.cell.for_each_vertex_box(f); });
   if (e.caching_) e.store_cell(o, v, p, searched);
 }
@@ -371,7 +371,7 @@ template <int D>
 void WellSpacedEngine<D>::CellSearch::record_lone_vertex() {
   if (e.caching_) e.forget_cell(v);
   e.record_reads(w, p, half);
-  if (e.recording_) e.recorded_ops_[o].depends2 = e.recorded_ops_[o].inserted_depends2 = at_least(4.0 * D);
+  if (e.recording_) e.recorded_ops_[o].set_depends2(at_least(4.0 * D));
 }
 
 namespace {
@@ -454,8 +454,8 @@ void WellSpacedEngine<D>::record_idle_fill(OpId o, VertexId v, Worker& w) {
   record_reads(w, positions_[v], std::sqrt(nn2) * (1 + kRadiusMargin));
   if (recording_) {
     RecordedOp& op = recorded_ops_[o];
-    op.depends2 = at_least(nn2 * (1 + kRadiusMargin));
-    op.inserted_depends2 = 0;  // only a vertex exactly at v's place, which reruns it
+    op.set_depends2(at_least(nn2 * (1 + kRadiusMargin)));
+    op.set_inserted_depends2(0);  // only a vertex exactly at v's place, which reruns it
     op.facets = facet_bits(w.hood.nearest);
     op.reach = engine::CellReach<D>::unbounded();
   }
@@ -470,7 +470,7 @@ void WellSpacedEngine<D>::record_reads(Worker& w, const Point<D>& p, double h) c
     lo[i] = p[i] - h;
     hi[i] = p[i] + h;
   }
-  tree_.covering_nodes(lo, hi, w.covering);
+  w.cover = tree_.covering_nodes(p, lo, hi, w.covering);
 }
 
 template bool WellSpacedEngine<2>::compute_cell(OpId, VertexId, bool, Worker&);

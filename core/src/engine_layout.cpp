@@ -32,8 +32,8 @@ void with_room(std::vector<T>& items) {
 // there are times. An update reads those of one place at all times (marking readers loads every
 // reader's operation and its vertex's position): at n = 1e6 each such load was a cache miss. Numbered
 // by place instead (vertices along the curve, each vertex's operations in time order after it), they
-// share cache lines. The ids are internal: only the references change, and the facet filters hash each
-// vertex's filter key (filter_keys_), which moves with it.
+// share cache lines. The ids are internal: only the references change (the facet filters hash each
+// vertex's position, not its id).
 template <int D>
 std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::renumber_vertices_by_place() {
   const std::size_t count = vertices_.size();
@@ -51,7 +51,6 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::renumbe
     if (id == kNoVertex) id = next++;  // free slots last
   permute_in_place(vertices_, new_id);
   permute_in_place(positions_, new_id);
-  permute_in_place(filter_keys_, new_id);
   permute_in_place(vertex_ops_, new_id);
   for (RecordedOp& op : recorded_ops_)
     if (op.vertex != kNoVertex) op.vertex = new_id[op.vertex];
@@ -90,44 +89,35 @@ void WellSpacedEngine<D>::renumber_operations_by_place() {
     for (std::uint32_t k = op.children_begin; k < op.children_begin + op.children_count; ++k) children_[k] = new_id[children_[k]];
   readers_.rename([&](OpId o) { return new_id[o]; });
   for (OpId& o : free_ops_) o = new_id[o];
-  lay_out_pools();  // the children and reads pools in the new order too
+  lay_out_children();  // the children pool in the new order too
   // The arrays grew by doubling during the build: keep room for an eighth more (what an update adds
   // before the slots it frees come back), not up to twice as much.
   with_room(recorded_ops_);
   with_room(vertices_);
   with_room(positions_);
-  with_room(filter_keys_);
   with_room(vertex_ops_);
 }
 
-// Rewrites the children and reads pools with each operation's runs in operation order (after the
-// build has numbered the operations by place), with room for an eighth more. The free lists are empty
-// after a build, so the first updates append their runs, and a pool that grew in the middle of an
-// update copied itself whole (41 to 52 ms at 2D n = 1e6, bench/RESULTS.md); later updates mostly take
-// the blocks that earlier ones gave back. Room never written takes no physical memory.
+// Rewrites the children pool with each operation's run in operation order (after the build has
+// numbered the operations by place), with room for an eighth more. The free lists are empty after a
+// build, so the first updates append their runs, and a pool that grew in the middle of an update copied
+// itself whole (41 to 52 ms at 2D n = 1e6, bench/RESULTS.md); later updates mostly take the blocks that
+// earlier ones gave back. Room never written takes no physical memory.
 template <int D>
-void WellSpacedEngine<D>::lay_out_pools() {
-  const PoolEntries live = live_pool_entries();
-  engine::BlockPool children, reads;
-  children.reserve(live.children + live.children / 8 + 1024);
-  reads.reserve(live.reads + live.reads / 8 + 1024);
-  for (RecordedOp& op : recorded_ops_) {
+void WellSpacedEngine<D>::lay_out_children() {
+  const std::size_t live = live_children_entries();
+  engine::BlockPool children;
+  children.reserve(live + live / 8 + 1024);
+  for (RecordedOp& op : recorded_ops_)
     op.children_begin = children.allocate(children_.run(op.children_begin, op.children_begin + op.children_count));
-    op.reads_begin = reads.allocate(reads_.run(op.reads_begin, op.reads_begin + op.reads_count));
-  }
   children_ = std::move(children);
-  reads_ = std::move(reads);
 }
 
-// The pool entries that the live operations' runs take (their blocks, not just their lengths).
 template <int D>
-typename WellSpacedEngine<D>::PoolEntries WellSpacedEngine<D>::live_pool_entries() const {
-  PoolEntries live;
+std::size_t WellSpacedEngine<D>::live_children_entries() const {
+  std::size_t live = 0;
   for (const RecordedOp& op : recorded_ops_)
-    if (!(op.flags & kDead)) {
-      live.children += engine::BlockPool::block_size(op.children_count);
-      live.reads += engine::BlockPool::block_size(op.reads_count);
-    }
+    if (!(op.flags & kDead)) live += engine::BlockPool::block_size(op.children_count);
   return live;
 }
 
@@ -135,9 +125,9 @@ template std::vector<engine::VertexId> WellSpacedEngine<2>::renumber_vertices_by
 template std::vector<engine::VertexId> WellSpacedEngine<3>::renumber_vertices_by_place();
 template void WellSpacedEngine<2>::renumber_operations_by_place();
 template void WellSpacedEngine<3>::renumber_operations_by_place();
-template void WellSpacedEngine<2>::lay_out_pools();
-template void WellSpacedEngine<3>::lay_out_pools();
-template WellSpacedEngine<2>::PoolEntries WellSpacedEngine<2>::live_pool_entries() const;
-template WellSpacedEngine<3>::PoolEntries WellSpacedEngine<3>::live_pool_entries() const;
+template void WellSpacedEngine<2>::lay_out_children();
+template void WellSpacedEngine<3>::lay_out_children();
+template std::size_t WellSpacedEngine<2>::live_children_entries() const;
+template std::size_t WellSpacedEngine<3>::live_children_entries() const;
 
 }  // namespace shoremesh

@@ -70,12 +70,13 @@ void WellSpacedEngine<D>::compute(OpId o, Worker& w, Outcome& out) {
   if (op_at(o).kind == OpKind::Dispatch) compute_dispatch(o, w, out);
   else compute_fill(o, w, out);
   std::swap(out.covering, w.covering);
+  out.cover = w.cover;
 }
 
 template <int D>
 void WellSpacedEngine<D>::commit(OpId o, Outcome& out) {
   op_at(o).flags &= std::uint8_t(~(kFresh | kRedo));
-  if (recording_) register_reads(o, out.covering);
+  if (recording_) register_reads(o, out.covering, out.cover);
   if (op_at(o).kind == OpKind::Dispatch) commit_dispatch(o, out);
   else commit_fill(o, out);
   op_at(o).flags |= kExecuted;
@@ -333,7 +334,7 @@ void WellSpacedEngine<D>::compute_fill(OpId o, Worker& w, Outcome& out) {
   // as they are and can only shrink the cell, so v stays well-spaced and this fill does nothing again.
   // (Not a fill skipped on land: it keeps the whole cell's dependencies, as one that inserted.)
   if (recording_ && has_cell && out.steiner.empty() && !op_at(o).on_land && w.hood.nearest != kNoVertex) {
-    recorded_ops_[o].inserted_depends2 = at_least(squared_distance(v, w.hood.nearest) * (1 + kRadiusMargin));
+    recorded_ops_[o].set_inserted_depends2(at_least(squared_distance(v, w.hood.nearest) * (1 + kRadiusMargin)));
     w.cell.bisector_neighbours(w.neighbours);
     record_facets(o, w);
   }

@@ -114,7 +114,7 @@ template <int D>
 void Quadtree<D>::make_root() {
   nodes_.assign(kChildren, Record{});
   search_.assign(kChildren, SearchEntry{});
-  if (editable_) inputs_.assign(kChildren, Inputs{});
+  if (editable_) block_inputs_.assign(1, 0);
   nodes_[0].level = 0;
 }
 
@@ -132,11 +132,11 @@ NodeId Quadtree<D>::allocate_children() {
     const std::size_t capacity = nodes_.size() + std::max<std::size_t>(nodes_.size() / 4, 64 * kChildren);
     nodes_.reserve(capacity);
     search_.reserve(capacity);
-    inputs_.reserve(capacity);
+    if (editable_) block_inputs_.reserve(capacity / kChildren);
   }
   nodes_.resize(nodes_.size() + kChildren);
   search_.resize(nodes_.size());
-  inputs_.resize(nodes_.size());
+  if (editable_) block_inputs_.resize(nodes_.size() / kChildren);
   return first;
 }
 
@@ -157,10 +157,9 @@ void Quadtree<D>::split(NodeId n, std::vector<NodeId>* created) {
     ch.set_coords(cc);
     search_[first + NodeId(k)] = SearchEntry{};
     search_[first + NodeId(k)].parent = n;
-    inputs_[first + NodeId(k)] = Inputs{};
     if (created) created->push_back(first + NodeId(k));
   }
-  const VertexId input = inputs_[n].vertex;
+  if (editable_) block_inputs_[first / kChildren] = input_count(n);
   // By index: a child's block may move the pool, the parent's block stays where it is until cleared.
   for (std::uint32_t j = 0; j < search_[n].occupied_or_size; ++j) {
     const LeafVertex<D> e = pool_[search_[n].vertices + j];
@@ -168,12 +167,8 @@ void Quadtree<D>::split(NodeId n, std::vector<NodeId>* created) {
     int k = 0;
     for (int i = 0; i < D; ++i) k |= int(c[i] & 1u) << i;
     leaf_push(first + NodeId(k), e);
-    if (e.id == input) {
-      inputs_[first + NodeId(k)] = Inputs{1, e.id};
-    }
   }
   leaf_clear(n);
-  inputs_[n].vertex = kNoVertex;
   search_[n].first_child = first;
   map_.insert<D>(level - 1, pc, first);
   leaf_count_ += kChildren - 1;
@@ -200,10 +195,8 @@ void Quadtree<D>::merge(NodeId n, std::vector<NodeId>* removed) {
     std::copy_n(pool_.begin() + search_[c].vertices, search_[c].occupied_or_size, pool_.begin() + e.vertices + e.occupied_or_size);
     e.occupied_or_size += search_[c].occupied_or_size;
     leaf_clear(c);
-    if (inputs_[c].vertex != kNoVertex) inputs_[n].vertex = inputs_[c].vertex;
     nodes_[c] = Record{};  // level -1: a free slot
     search_[c] = SearchEntry{};
-    inputs_[c] = Inputs{};
     if (removed) removed->push_back(c);
   }
   map_.erase<D>(nodes_[n].level, nodes_[n].coords());
@@ -271,11 +264,44 @@ void Quadtree<D>::mark_vacated(NodeId leaf) {
 }
 
 template <int D>
-void Quadtree<D>::covering_nodes(const Point<D>& lo_in, const Point<D>& hi_in, std::vector<NodeId>& out) const {
-  out.clear();
+std::uint32_t Quadtree<D>::covering_nodes(const Point<D>& p, const Point<D>& lo_in, const Point<D>& hi_in,
+                                          std::vector<NodeId>& out) const {
   Point<D> lo, hi;
-  const int level = box_level(lo_in, hi_in, lo, hi);
-  const Coords first = cell_of(lo, level), last = cell_of(hi, level);
+  int level = box_level(lo_in, hi_in, lo, hi);
+  Coords first = cell_of(lo, level), last = cell_of(hi, level);
+  // At most two cells per axis, as an operation's count of reads assumes: box_level's log2 may round a
+  // width a hair above a cell's side down to that side's level, where the box can meet three.
+  auto wide = [&] {
+    for (int i = 0; i < D; ++i)
+      if (last[i] - first[i] > 1) return true;
+    return false;
+  };
+  while (level > 0 && wide()) {
+    --level;
+    first = cell_of(lo, level);
+    last = cell_of(hi, level);
+  }
+  const Coords own = cell_of(p, level);
+  std::uint32_t code = std::uint32_t(level);
+  for (int i = 0; i < D; ++i) {
+    if (first[i] > own[i] || last[i] < own[i]) throw std::logic_error("quadtree covering_nodes: the box does not hold p");
+    const std::uint32_t side = first[i] < own[i] ? 0 : last[i] > own[i] ? 2 : 1;
+    code |= side << (kLevelBits + 2 * i);
+  }
+  cover_nodes(p, code, out);
+  return code;
+}
+
+template <int D>
+void Quadtree<D>::cover_nodes(const Point<D>& p, std::uint32_t code, std::vector<NodeId>& out) const {
+  out.clear();
+  const int level = int(code & ((1u << kLevelBits) - 1));
+  Coords first = cell_of(p, level), last = first;
+  for (int i = 0; i < D; ++i) {
+    const std::uint32_t side = code >> (kLevelBits + 2 * i) & 3u;
+    if (side == 0) --first[i];
+    if (side == 2) ++last[i];
+  }
   for_each_index_in_box<D>(first, last, [&](const Coords& c) {
     const NodeId n = deepest_containing(level, c);
     if (std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
@@ -325,11 +351,12 @@ std::uint32_t Quadtree<D>::inputs_in_cell(int level, const Coords& c, std::span<
   if (level > kMaxLevel) throw PointInputError("input points closer than the engine's resolution (2^-40 of the box side)", {});
   const NodeId n = deepest_containing(level, c);
   const Record& nd = nodes_[n];
-  if (nd.level == level) return inputs_[n].count;
-  // A leaf above the cell: its (single) input point may or may not lie in the cell.
-  const VertexId v = inputs_[n].vertex;
-  if (v == kNoVertex) return 0;
-  return cell_of(positions[v], level) == c ? 1u : 0u;
+  if (nd.level == level) return input_count(n);
+  // A leaf above the cell: its input points (one but during add_input) may or may not lie in the cell.
+  std::uint32_t count = 0;
+  for (const LeafVertex<D>& e : leaf_vertices(search_[n]))
+    if (e.tag == 0 && cell_of(positions[e.id], level) == c) ++count;
+  return count;
 }
 
 // The crowding rule, written once for the build (counts by Morton ranges) and for updates (counts from
@@ -364,7 +391,7 @@ bool Quadtree<D>::crowded_by(int level, const Coords& c, std::uint32_t own, Coun
 template <int D>
 bool Quadtree<D>::crowded(NodeId n, std::span<const Point<D>> positions) const {
   const Record& nd = nodes_[n];
-  return crowded_by(nd.level, nd.coords(), inputs_[n].count,
+  return crowded_by(nd.level, nd.coords(), input_count(n),
                     [&](int level, const Coords& q) { return inputs_in_cell(level, q, positions); });
 }
 
@@ -528,8 +555,8 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
   editable_ = editable;
   nodes_.clear();
   search_.clear();
-  inputs_.clear();
-  if (!editable) inputs_.shrink_to_fit();
+  block_inputs_.clear();
+  if (!editable) block_inputs_.shrink_to_fit();
   free_blocks_.clear();
   pool_.clear();
   pool_.shrink_to_fit();
@@ -740,7 +767,7 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
   const std::size_t room = editable_ ? node_count + node_count / 16 : node_count;
   nodes_.reserve(room);
   search_.reserve(room);
-  if (editable_) inputs_.reserve(room);
+  if (editable_) block_inputs_.reserve(room / kChildren);
   make_root();
   pool_.reserve(n);
   std::array<std::size_t, kMaxLevel + 1> next{};  // per level: the next internal cell in Morton order
@@ -764,14 +791,11 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
     const Visit t = visits.back();
     visits.pop_back();
     const int level = nodes_[t.node].level;
-    if (editable_) inputs_[t.node].count = t.e - t.b;
     const std::vector<CellKey>& cells = internal[std::size_t(level)];
     std::size_t& at_level = next[std::size_t(level)];
     if (at_level == cells.size() || cells[at_level] != t.key) {
       if (t.e > t.b) {
-        const VertexId v = ids[order[t.b]];
-        if (editable_) inputs_[t.node].vertex = v;
-        leaf_push(t.node, {inputs[order[t.b]], 0, v});
+        leaf_push(t.node, {inputs[order[t.b]], 0, ids[order[t.b]]});
       }
       continue;
     }
@@ -779,7 +803,7 @@ void Quadtree<D>::build(std::span<const Point<D>> inputs, std::span<const Vertex
     const NodeId first = NodeId(nodes_.size());
     nodes_.resize(nodes_.size() + kChildren);
     search_.resize(nodes_.size());
-    if (editable_) inputs_.resize(nodes_.size());
+    if (editable_) block_inputs_.push_back(t.e - t.b);
     search_[t.node].first_child = first;
     const Coords pc = nodes_[t.node].coords();
     map_.prefetch<D>(level, pc);
@@ -815,17 +839,15 @@ typename Quadtree<D>::Change Quadtree<D>::add_input(VertexId id, std::span<const
   Change change;
   const Point<D>& p = positions[id];
   NodeId leaf = locate(p);
-  for (NodeId a = leaf; a != kNoNode; a = search_[a].parent) ++inputs_[a].count;
+  for (NodeId a = search_[leaf].parent; a != kNoNode; a = search_[a].parent) ++block_inputs_[search_[a].first_child / kChildren];
+  // The leaf may now hold two inputs (two vertices of tag 0); every other leaf keeps at most one.
   leaf_push(leaf, {p, 0, id});
   if (search_[leaf].occupied_or_size == 1) mark_occupied(leaf);
-  // The one input that may now share a leaf with `id`; every other leaf keeps at most one input.
-  const VertexId neighbour = inputs_[leaf].vertex;
-  if (neighbour == kNoVertex) inputs_[leaf].vertex = id;
 
   // Leaves whose 3^D block contains p may have become crowded: at every level, the cells around p's.
   std::vector<NodeId> work;
   for_each_node_near(p, [&](NodeId n) {
-    if (n != leaf && is_leaf(n) && inputs_[n].count > 0) work.push_back(n);
+    if (n != leaf && is_leaf(n) && input_count(n) > 0) work.push_back(n);
   });
   // p's own leaf first (the stack is LIFO): until it is split down, it may hold two inputs, and counts
   // in the crowding test of its neighbours see only one of them.
@@ -837,21 +859,11 @@ typename Quadtree<D>::Change Quadtree<D>::add_input(VertexId id, std::span<const
     if (!is_leaf(n) || !crowded(n, positions)) continue;
     change.removed_leaves.push_back(n);
     created.clear();
-    // The leaf of `id` may hold two inputs: hand both down (split itself knows only input_vertex).
-    const VertexId own = inputs_[n].vertex;
-    auto is_input = [&](VertexId v) { return v == id || v == neighbour || v == own; };
     split(n, &created);
     for (NodeId ch : created) {
-      Inputs& c = inputs_[ch];
-      c = Inputs{};
-      for (const LeafVertex<D>& e : leaf_vertices(ch))
-        if (is_input(e.id)) {
-          ++c.count;
-          c.vertex = e.id;
-        }
       change.new_leaves.push_back(ch);
       balance_work.push_back(ch);
-      if (c.count > 0) work.push_back(ch);
+      if (input_count(ch) > 0) work.push_back(ch);
     }
   }
   std::vector<NodeId> more_created, more_split;
@@ -877,14 +889,12 @@ typename Quadtree<D>::Change Quadtree<D>::remove_input(VertexId id, std::span<co
   const NodeId leaf = locate(p);
   const auto vs = leaf_vertices(leaf);
   auto it = std::find_if(vs.begin(), vs.end(), [&](const LeafVertex<D>& e) { return e.id == id; });
-  if (it == vs.end() || inputs_[leaf].vertex != id)
-    throw std::logic_error("quadtree remove_input: vertex is not an input of its leaf");
+  if (it == vs.end() || it->tag != 0) throw std::logic_error("quadtree remove_input: vertex is not an input of its leaf");
   // The others keep their order (a fresh array would list them in the same order).
   std::copy(it + 1, vs.end(), it);
   leaf_erase(leaf, vs.size() - 1);
-  inputs_[leaf].vertex = kNoVertex;
   if (search_[leaf].occupied_or_size == 0) mark_vacated(leaf);
-  for (NodeId a = leaf; a != kNoNode; a = search_[a].parent) --inputs_[a].count;
+  for (NodeId a = search_[leaf].parent; a != kNoNode; a = search_[a].parent) --block_inputs_[search_[a].first_child / kChildren];
 
   // Internal nodes whose block contained p may no longer be crowded; merging one can release its
   // level-1 neighbours (they were kept split by its children). Finest level first.
@@ -921,6 +931,7 @@ typename Quadtree<D>::Change Quadtree<D>::remove_input(VertexId id, std::span<co
 
 template <int D>
 NodeId Quadtree<D>::insert_vertex(VertexId id, const Point<D>& p, std::uint32_t tag, NodeId hint) {
+  if (tag == 0) throw std::logic_error("quadtree insert_vertex: tag 0 marks an input");
   const NodeId leaf = locate(p, hint);
   insert_vertex_at(leaf, id, p, tag);
   return leaf;
@@ -949,7 +960,6 @@ void Quadtree<D>::rename_vertices(std::span<const VertexId> new_id) {
   for (NodeId n = 0; n < nodes_.size(); ++n) {
     Record& nd = nodes_[n];
     if (nd.level < 0) continue;  // a free slot
-    if (editable_ && inputs_[n].vertex != kNoVertex) inputs_[n].vertex = new_id[inputs_[n].vertex];
     if (!is_leaf(n)) continue;
     SearchEntry& e = search_[n];
     for (std::uint32_t j = 0; j < e.occupied_or_size; ++j) {
@@ -989,7 +999,7 @@ std::vector<std::pair<int, typename Quadtree<D>::Coords>> Quadtree<D>::leaf_cell
 template <int D>
 std::size_t Quadtree<D>::memory_bytes() const {
   std::size_t bytes = nodes_.capacity() * sizeof(Record) + search_.capacity() * sizeof(SearchEntry) +
-                      inputs_.capacity() * sizeof(Inputs) + map_.memory_bytes() +
+                      block_inputs_.capacity() * sizeof(std::uint32_t) + map_.memory_bytes() +
                       free_blocks_.capacity() * sizeof(NodeId) + pool_.capacity() * sizeof(LeafVertex<D>);
   for (const auto& free : free_arrays_) bytes += free.capacity() * sizeof(std::uint32_t);
   return bytes;
@@ -1003,21 +1013,23 @@ void Quadtree<D>::check_valid(std::span<const Point<D>> positions) const {
     // node after its parent), then the checks of an editable tree.
     Quadtree<D> full = *this;
     full.editable_ = true;
-    full.inputs_.assign(nodes_.size(), Inputs{});
+    full.block_inputs_.assign(nodes_.size() / kChildren, 0);
+    std::vector<std::uint32_t> count(nodes_.size(), 0);
     for (NodeId n = NodeId(nodes_.size()); n-- > 0;) {
       if (nodes_[n].level < 0) continue;
       if (is_leaf(n))
-        for (const LeafVertex<D>& e : leaf_vertices(search_[n]))
-          if (e.tag == 0) full.inputs_[n] = Inputs{full.inputs_[n].count + 1, e.id};
+        count[n] = input_count(n);
+      else
+        full.block_inputs_[search_[n].first_child / kChildren] = count[n];
       if (search_[n].parent != kNoNode) {
         if (search_[n].parent >= n) fail("a one-shot tree's node numbered before its parent");
-        full.inputs_[search_[n].parent].count += full.inputs_[n].count;
+        count[search_[n].parent] += count[n];
       }
     }
     full.check_valid(positions);
     return;
   }
-  if (nodes_.size() != search_.size() || nodes_.size() % kChildren != 0 || inputs_.size() != nodes_.size()) fail("node arrays");
+  if (nodes_.size() != search_.size() || nodes_.size() % kChildren != 0 || block_inputs_.size() != nodes_.size() / kChildren) fail("node arrays");
   std::size_t leaves = 0;
   // Every pool slot lies in exactly one block: a leaf's or a free one.
   std::vector<std::pair<std::size_t, std::size_t>> blocks;  // (offset, capacity)
@@ -1044,13 +1056,11 @@ void Quadtree<D>::check_valid(std::span<const Point<D>> positions) const {
         if (se.vertices + capacity > pool_.size()) fail("leaf " + std::to_string(n) + "'s array outside the pool");
         blocks.emplace_back(se.vertices, capacity);
       }
-      std::uint32_t inputs = 0;
       for (const LeafVertex<D>& e : leaf_vertices(se)) {
         if (e.position != positions[e.id]) fail("leaf's copy of a vertex position");
         if (cell_of(e.position, nd.level) != nd.coords()) fail("vertex outside its leaf");
-        if (e.id == inputs_[n].vertex) ++inputs;
       }
-      if (inputs != inputs_[n].count || inputs_[n].count > 1) fail("leaf input count");
+      if (input_count(n) > 1) fail("leaf input count");
       if (crowded(n, positions)) fail("crowded leaf at level " + std::to_string(nd.level));
       // Balance: touching leaves differ by at most one level.
       if (nd.level >= 2)
@@ -1067,12 +1077,12 @@ void Quadtree<D>::check_valid(std::span<const Point<D>> positions) const {
       for (int k = 0; k < kChildren; ++k) {
         const NodeId c = se.first_child + NodeId(k);
         if (search_[c].parent != n || nodes_[c].level != nd.level + 1) fail("child links");
-        sum += inputs_[c].count;
+        sum += input_count(c);
         if (search_[c].occupied_or_size != 0) occupied |= 1u << k;
       }
       // Leaves' sizes are their arrays', so this checks every mask by induction.
       if (se.occupied_or_size != occupied) fail("occupied mask of internal node " + std::to_string(n));
-      if (sum != inputs_[n].count) fail("subtree input count node " + std::to_string(n) + " level " + std::to_string(nd.level) + " count " + std::to_string(inputs_[n].count) + " sum " + std::to_string(sum));
+      if (sum != input_count(n)) fail("subtree input count node " + std::to_string(n) + " level " + std::to_string(nd.level) + " count " + std::to_string(input_count(n)) + " sum " + std::to_string(sum));
       if (!required_split(n, positions)) fail("split not required (tree not minimal) at level " + std::to_string(nd.level));
     }
   }

@@ -81,7 +81,54 @@ void never_misses_a_cut_and_rarely_says_maybe(std::uint64_t seed) {
   EXPECT_LT(double(reach_false), 0.5 * double(radius_false)) << reach_false << " of " << radius_false;
 }
 
+// The same cells shrunk by 2^-300 about the origin: below the least unit the byte holds, whose coarser
+// unit must still bound every cut.
+template <int D>
+void tiny_cells_never_miss_a_cut(std::uint64_t seed) {
+  RoundingGuard guard;
+  Lcg rnd{seed};
+  const double s = std::ldexp(1.0, -300);
+  std::size_t cuts = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    ConvexCell<D> cell;
+    Point<D> v{}, lo, hi;
+    for (int i = 0; i < D; ++i) {
+      lo[i] = -0.2 * s;
+      hi[i] = 0.2 * s;
+    }
+    cell.reset(v, lo, hi);
+    VertexId id = 0;
+    for (int k = 0; k < 30 * D; ++k) {
+      Point<D> w;
+      double d2 = 0;
+      for (int i = 0; i < D; ++i) {
+        w[i] = 0.3 * s * (2 * rnd() - 1);
+        d2 += w[i] * w[i];
+      }
+      if (d2 > 0.01 * s * s) cell.clip(id++, w, d2);
+    }
+    const CellReach<D> reach = reach_of(cell);
+    for (int k = 0; k < 300; ++k) {
+      Point<D> d;
+      double d2 = 0;
+      for (int i = 0; i < D; ++i) {
+        d[i] = 0.6 * s * (2 * rnd() - 1);
+        d2 += d[i] * d[i];
+      }
+      ConvexCell<D> copy;
+      copy.assign_geometry(cell);
+      if (copy.clip(id, d, d2)) {
+        ++cuts;
+        ASSERT_TRUE(reach.may_be_cut_by(d)) << "trial " << trial << " offset " << k;
+      }
+    }
+  }
+  ASSERT_GT(cuts, 100u);
+}
+
 TEST(CellReach, NeverMissesACutAndRarelySaysMaybe2D) { never_misses_a_cut_and_rarely_says_maybe<2>(11); }
+TEST(CellReach, TinyCellsNeverMissACut2D) { tiny_cells_never_miss_a_cut<2>(13); }
+TEST(CellReach, TinyCellsNeverMissACut3D) { tiny_cells_never_miss_a_cut<3>(14); }
 TEST(CellReach, NeverMissesACutAndRarelySaysMaybe3D) { never_misses_a_cut_and_rarely_says_maybe<3>(12); }
 
 // A grid point's cell is a cube whose corners the diagonal neighbours' bisectors pass through exactly:

@@ -11,8 +11,9 @@
 //   d = (a1 - a2) s1 e_i1 + (a2 - a3) (s1 e_i1 + s2 e_i2) + a3 (s1 e_i1 + s2 e_i2 + s3 e_i3),
 // and h is sublinear (h(x + y) <= h(x) + h(y), h(l x) = l h(x) for l >= 0), so the same combination of
 // the kept values bounds h(d) from above. A round cell's bound is within about 8 % (2D) of h.
-// The values are stored in a byte each, rounded up in units of the largest, and the unit in 16 bits (a
-// float's upper half, rounded up): 10 bytes in 2D, 28 in 3D, kept in every operation.
+// The values are stored in a byte each, rounded up in units of the largest, and the unit as a power of two
+// in one byte (its exponent, rounded up: the largest value takes 128 to 254 units): 9 bytes in 2D, 27 in
+// 3D, kept in every operation.
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -75,13 +76,14 @@ class CellReach {
     double largest = 0;
     for (double x : h) largest = std::max(largest, x);
     if (!(largest > 0) || !std::isfinite(largest)) return r;  // no vertices or a degenerate cell
-    // One unit of the scale, rounded up (to a float, then to its upper half), and every value rounded
-    // up in it (upward rounding is on): at most 254 units.
-    float unit = float(largest / 254.0);
-    if (double(unit) * 254.0 < largest) unit = std::nextafter(unit, std::numeric_limits<float>::infinity());
-    const std::uint32_t bits = std::bit_cast<std::uint32_t>(unit);
-    r.unit_bits_ = std::uint16_t((bits >> 16) + ((bits & 0xFFFFu) != 0 ? 1 : 0));
-    const double u = double(r.unit());
+    // One unit of the scale: the least power of two at least largest / 254 (upward rounding is on), or
+    // the least the byte holds, coarser; every value rounded up in it: at most 254 units.
+    int exponent = 0;
+    const double mantissa = std::frexp(largest / 254.0, &exponent);  // largest / 254 = mantissa 2^exponent
+    if (mantissa == 0.5) --exponent;                                   // a power of two itself
+    if (exponent > kMaxExponent) return r;  // no cell in the unit box reaches this far
+    r.unit_code_ = std::uint8_t(std::max(exponent, kMinExponent) - kMinExponent);
+    const double u = r.unit();
     for (int k = 0; k < kCodes; ++k)
       if (k != kZeroCode)
         r.q_[slot(k)] = std::uint8_t(std::clamp(std::ceil(std::max(h[k], 0.0) / u), 0.0, 255.0));
@@ -91,7 +93,7 @@ class CellReach {
   // Whether the bisector of v and v + d may cut the cell (surely true when it does). Rounding in
   // doubles here errs far below the margin given.
   bool may_be_cut_by(const Point<D>& d) const {
-    if (unit_bits_ == kUnbounded) return true;
+    if (unit_code_ == kUnbounded) return true;
     std::array<int, D> axis;
     for (int i = 0; i < D; ++i) axis[i] = i;
     std::sort(axis.begin(), axis.end(), [&](int a, int b) { return std::fabs(d[a]) > std::fabs(d[b]); });
@@ -104,7 +106,7 @@ class CellReach {
       bound += (std::fabs(d[i]) - next) * double(q_[slot(code_of(u))]);
       d2 += d[i] * d[i];
     }
-    return bound * double(unit()) * (1 + 1e-6) >= 0.5 * d2;
+    return bound * unit() * (1 + 1e-6) >= 0.5 * d2;
   }
 
  private:
@@ -115,12 +117,17 @@ class CellReach {
   }
 
   static constexpr int slot(int code) { return code < kZeroCode ? code : code - 1; }
-  // The upper half of a float's bits: infinity's (unbounded) or the unit's, rounded up.
-  static constexpr std::uint16_t kUnbounded = 0x7F80;
-  float unit() const { return std::bit_cast<float>(std::uint32_t(unit_bits_) << 16); }
+  // The unit is 2^(kMinExponent + unit_code_), or kUnbounded: every vertex may cut. Units up to 16 cover
+  // any cell of the unit box (a support value is at most D); a cell too small for the least unit keeps
+  // it, coarser than its own, which only rounds its values up further.
+  static constexpr std::uint8_t kUnbounded = 255;
+  static constexpr int kMinExponent = -250;
+  static constexpr int kMaxExponent = kMinExponent + 254;
+  double unit() const { return std::bit_cast<double>(std::uint64_t(1023 + kMinExponent + unit_code_) << 52); }
 
   std::array<std::uint8_t, kCodes - 1> q_{};
-  std::uint16_t unit_bits_ = kUnbounded;
+  std::uint8_t unit_code_ = kUnbounded;
 };
+static_assert(sizeof(CellReach<2>) == 9 && sizeof(CellReach<3>) == 27);
 
 }  // namespace shoremesh::engine

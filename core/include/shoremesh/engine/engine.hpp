@@ -4,7 +4,9 @@
 // acting on one vertex at a time (rank, colour); operations run in time order. While it runs, the engine
 // records for every operation its children (the fills a dispatch asked for, the dispatches of the Steiner
 // vertices a fill inserted) and for every leaf the operations that read it: what PropagateWS replays.
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -93,28 +95,62 @@ class WellSpacedEngine {
     // A fill that looked for the shore at its vertex (its cell was not well-spaced, shore_cells on):
     // it read the rings there, so a ring edit nearby reruns it (docs/water_only.md).
     bool shore_read : 1 = false;
+    // How many tree nodes a build for updates registered it as a reader of (RecordedOp::reads_cover):
+    // the nodes covering one box, at most 2^D (Quadtree::covering_nodes). Here, in the flag byte's
+    // spare bits, it leaves RecordedOp 8 bytes smaller in 2D.
+    std::uint8_t reads_count : 4 = 0;
+    static constexpr std::size_t kMaxReads = 15;
   };
   static_assert(sizeof(Op) == 16, "Op packs to 16 bytes");
-  // An operation of a build for updates: 56 bytes in 2D, 80 in 3D. What marking readers reads of each
-  // reader it scans (rank to reach) lies in the first 42 bytes: a 2D one starts at any of eight offsets
-  // in a cache line, and these straddle two lines at three of them. Runs are counted in 16 bits
+  static_assert(Op::kMaxReads >= (1u << D), "an operation's reads count fits its bits");
+  // An operation of a build for updates: 48 bytes in 2D, 80 in 3D. What marking readers reads of each
+  // reader it scans (rank to reach) lies in the first 38 bytes: a 2D one starts at any of four offsets
+  // in a cache line, and these straddle two lines at two of them. Runs are counted in 16 bits
   // (checked where they are written).
   struct RecordedOp : Op {
     // Removing a vertex matters only if it bounds the cell (facet_filter.hpp); everything: any vertex.
     engine::FacetFilter<D> facets = engine::FacetFilter<D>::everything();
     // Its result depends only on the vertices within these squared distances: removing one within
-    // depends2, or inserting one within inserted_depends2 (smaller for a fill that found its vertex
+    // depends2, or inserting one within inserted_depends2() (smaller for a fill that found its vertex
     // well-spaced: a new vertex farther than NN only shrinks the cell, and it stays well-spaced).
-    // Floats rounded up (see at_least): a radius only ever errs on the side of a rerun.
+    // Rounded up (see at_least): a radius only ever errs on the side of a rerun.
     float depends2 = 0;
-    float inserted_depends2 = 0;
-    // Inserting a vertex within inserted_depends2 matters only if it can cut the cell (cell_reach.hpp).
+    // inserted_depends2() in 256ths of depends2, rounded up, 255 for all of it: one byte instead of a
+    // float's four. Decoding is exact (a float times a byte and a power of two), whatever the rounding.
+    std::uint8_t inserted_256ths = kWhole;
+    // Inserting a vertex within inserted_depends2() matters only if it can cut the cell (cell_reach.hpp).
     engine::CellReach<D> reach = engine::CellReach<D>::unbounded();
-    std::uint16_t children_count = 0, reads_count = 0;
+    std::uint16_t children_count = 0;
     std::uint32_t children_begin = 0;  // into children_, children_count of them
-    std::uint32_t reads_begin = 0;     // into reads_, reads_count of them
+    // The nodes it read, as Quadtree::covering_nodes coded them about its vertex: found again from the
+    // code when it is undone, not kept (21 M node ids at 2D n = 1e6). Should the tree's shape over them
+    // have changed meanwhile, the nodes split or merged away lost their reader lists with their readers
+    // marked (apply_tree_change), and the nodes found in their place never listed it.
+    std::uint32_t reads_cover = 0;
+
+    static constexpr std::uint8_t kWhole = 255;
+    static double fraction(std::uint8_t q) { return q == kWhole ? 1.0 : double(q) * 0x1p-8; }
+    double inserted_depends2() const { return double(depends2) * fraction(inserted_256ths); }
+    // Both radii the same.
+    void set_depends2(float both) {
+      depends2 = both;
+      inserted_256ths = kWhole;
+    }
+    // The insertion radius: the least fraction of depends2 at least `inserted` (all of depends2 when
+    // `inserted` is larger: depends2 then grows to it).
+    void set_inserted_depends2(float inserted) {
+      if (!(inserted < depends2)) {
+        set_depends2(std::max(depends2, inserted));
+        return;
+      }
+      auto holds = [&](int q) { return double(depends2) * fraction(std::uint8_t(q)) >= double(inserted); };
+      int q = std::clamp(int(std::ceil(double(inserted) / double(depends2) * 256)), 0, int(kWhole));
+      while (q < kWhole && !holds(q)) ++q;
+      while (q > 0 && holds(q - 1)) --q;
+      inserted_256ths = std::uint8_t(q);
+    }
   };
-  static_assert(sizeof(RecordedOp) == (D == 2 ? 56 : 80), "RecordedOp packs to 56 bytes in 2D and 80 in 3D");
+  static_assert(sizeof(RecordedOp) == (D == 2 ? 48 : 80), "RecordedOp packs to 48 bytes in 2D and 80 in 3D");
 
   // One edit for apply(): add a point (id returned) or remove an input vertex.
   struct InputEdit {
@@ -185,10 +221,11 @@ class WellSpacedEngine {
     const RecordedOp& op = recorded_ops_[o];
     return children_.run(op.children_begin, op.children_begin + op.children_count);
   }
-  std::span<const NodeId> reads(OpId o) const {
-    if (!recording_) return {};
-    const RecordedOp& op = recorded_ops_[o];
-    return reads_.run(op.reads_begin, op.reads_begin + op.reads_count);
+  std::vector<NodeId> reads(OpId o) const {
+    std::vector<NodeId> nodes;
+    if (recording_ && recorded_ops_[o].reads_count != 0)
+      tree_.cover_nodes(positions_[recorded_ops_[o].vertex], recorded_ops_[o].reads_cover, nodes);
+    return nodes;
   }
   const engine::Quadtree<D>& quadtree() const { return tree_; }
   const DerivedParameters<D>& parameters() const { return params_; }
@@ -196,12 +233,12 @@ class WellSpacedEngine {
   // Bytes held by the live structures, by capacity, part by part (bench_dynamic prints them per output
   // vertex): what an engine kept for updates costs, and where.
   struct MemoryBreakdown {
-    std::size_t vertices = 0, positions = 0, operations = 0, children = 0, reads = 0, readers = 0, tree = 0;
+    std::size_t vertices = 0, positions = 0, operations = 0, children = 0, readers = 0, tree = 0;
     std::size_t delaunay = 0;  // the one-shot build's triangulation of M_t, when it is the neighbour source
     std::size_t other = 0;     // the agenda, the free lists, the cell cache
     std::size_t scratch = 0;   // the batch's, and each thread's (its cell, candidates, outcomes)
     std::size_t total() const {
-      return vertices + positions + operations + children + reads + readers + tree + delaunay + other + scratch;
+      return vertices + positions + operations + children + readers + tree + delaunay + other + scratch;
     }
   };
   MemoryBreakdown memory_breakdown() const;
@@ -237,6 +274,7 @@ class WellSpacedEngine {
     std::vector<TimedVertex> unborn;      // vertices a search skipped as born at or after now
     std::vector<VertexId> neighbours;
     std::vector<NodeId> covering;         // the nodes the operation read (when recording)
+    std::uint32_t cover = 0;              // their code (Quadtree::covering_nodes)
     Counters counters;
     engine::ConvexCell<D> part;           // shore_cells: the cell restricted to a water half-plane
     std::vector<std::array<Point2, 2>> shore_edges;  // shore_cells: ring edges near the vertex
@@ -256,6 +294,7 @@ class WellSpacedEngine {
     };
     std::vector<Steiner> steiner;
     std::vector<NodeId> covering;                    // the nodes to register it as a reader of
+    std::uint32_t cover = 0;                         // their code
   };
 
   // A time (rank, colour) as one integer in the same order. A vertex's tag in its leaf is its birth
@@ -283,7 +322,7 @@ class WellSpacedEngine {
                        std::uint32_t color);
   // Dispatches and fills that insert nothing decide from v's nearest neighbour and the set of vertices
   // whose bisectors bound v's cell: removing any other vertex leaves the cell and the decision as they
-  // were. That set is kept as a Bloom filter of vertex ids (facet_filter.hpp): a false "maybe" only
+  // were. That set is kept as a Bloom filter of vertex positions (facet_filter.hpp): a false "maybe" only
   // costs a rerun.
   void record_facets(OpId o, const Worker& w);
   void mark_all_readers(NodeId n);
@@ -333,10 +372,10 @@ class WellSpacedEngine {
   // Its steps: gathering the candidates, clipping, recording the dependencies (engine_cells.cpp).
   struct CellSearch;
   void record_idle_fill(OpId o, VertexId v, Worker& w);
-  // The nodes covering the box of half-side h around p, left in w.covering (when recording): what op
-  // o's commit registers it as a reader of.
+  // The nodes covering the box of half-side h around p, left in w.covering with their code in w.cover
+  // (when recording): what op o's commit registers it as a reader of. p is the operation's vertex's.
   void record_reads(Worker& w, const Point<D>& p, double h) const;
-  void register_reads(OpId o, std::span<const NodeId> nodes);
+  void register_reads(OpId o, std::span<const NodeId> nodes, std::uint32_t cover);
   // The cell cache of one propagation (cell_cache.cpp has the argument why reuse equals recomputing).
   struct CachedCell;
   // v's entry, stale or not: its last cell, and what the leaves around v held when it was computed.
@@ -353,11 +392,9 @@ class WellSpacedEngine {
   Point<D> pick_steiner(VertexId v, Worker& w, const Point<D>* aim = nullptr) const;
   VertexId new_vertex(const Point<D>& p);
   void kill_vertex(VertexId v);
-  void lay_out_pools();
-  struct PoolEntries {
-    std::size_t children = 0, reads = 0;
-  };
-  PoolEntries live_pool_entries() const;
+  void lay_out_children();
+  // The children pool's entries that the live operations' runs take (their blocks, not their lengths).
+  std::size_t live_children_entries() const;
   void release_reads(RecordedOp& op);
   void release_children(RecordedOp& op);
   void store_children(OpId o);
@@ -368,7 +405,11 @@ class WellSpacedEngine {
   // Returns the new id of each old vertex id.
   std::vector<VertexId> renumber_vertices_by_place();
   void renumber_operations_by_place();
-  engine::FacetFilter<D> facet_bits(VertexId w) const { return engine::FacetFilter<D>::of(filter_keys_[w]); }
+  // A vertex's bits in the facet filters: its position's (a vertex keeps its place for its life).
+  engine::FacetFilter<D> facet_bits(VertexId w) const { return facet_bits_at(positions_[w]); }
+  static engine::FacetFilter<D> facet_bits_at(const Point<D>& p) {
+    return engine::FacetFilter<D>::of(engine::FacetFilter<D>::key_of(p));
+  }
   double squared_distance(VertexId a, VertexId b) const;
 
   DerivedParameters<D> params_;
@@ -377,10 +418,6 @@ class WellSpacedEngine {
   std::vector<Vertex> vertices_;
   std::vector<VertexOps> vertex_ops_;   // by vertex id; only in a build for updates
   std::vector<Point<D>> positions_;     // by vertex id
-  // By vertex id, what its facet bits hash (facet_filter.hpp): its id when it was made, so that filters
-  // recorded before the build renumbered the vertices by place keep meaning the same vertices. Only
-  // updates read facets: empty after a one-shot build.
-  std::vector<std::uint32_t> filter_keys_;
   std::size_t input_count_ = 0;
   // The operations: a one-shot build's in lean_ops_, a build for updates' in recorded_ops_ (the other
   // one empty). op_at reaches either.
@@ -388,7 +425,6 @@ class WellSpacedEngine {
   std::vector<RecordedOp> recorded_ops_;
   Op& op_at(OpId o) { return recording_ ? static_cast<Op&>(recorded_ops_[o]) : lean_ops_[o]; }
   engine::BlockPool children_;  // each operation's run: children_count from children_begin
-  engine::BlockPool reads_;     // reads_count from reads_begin
   std::vector<OpId> new_children_;  // the children of the operation being executed, stored when it ends
   // Per quadtree node: the operations that read it (reader_lists.hpp).
   engine::ReaderLists readers_;
@@ -430,6 +466,7 @@ class WellSpacedEngine {
   // Scratch of the operation being executed serially (reused: no allocation per operation).
   Worker serial_;
   Outcome serial_outcome_;
+  std::vector<NodeId> undone_reads_;  // undo's scratch: the nodes the operation undone read
   // A vertex's cell is computed about three times per update (its dispatch and its fills at several
   // times), and half of the time nothing that can change it was born in between: the cache keeps, for
   // the length of one propagation, each vertex's last cell with what decides whether it still holds.
@@ -444,6 +481,7 @@ class WellSpacedEngine {
     // The nodes its operation read (covering the box it searched): the tree's shape does not change
     // during a propagation (Steiner vertices only enter and leave leaves), so they stay the same.
     std::vector<NodeId> covering;
+    std::uint32_t cover = 0;
     VertexId nearest = engine::kNoVertex;
     // Every vertex of the leaves that meet the box [p - searched, p + searched]: those born before the
     // cell's time (candidates), those born later (unborn), and those fills inserted there since

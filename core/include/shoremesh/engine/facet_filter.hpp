@@ -7,9 +7,10 @@
 // 15 % of the removed vertices near a 3D cell that do not bound it, about 100 reruns per update; these
 // filters measure 1.6 % in 3D (n about 15) and 0.8 % in 2D (n about 7).
 #include <array>
+#include <bit>
 #include <cstdint>
 
-#include "shoremesh/engine/ids.hpp"
+#include "shoremesh/point.hpp"
 
 namespace shoremesh::engine {
 
@@ -26,15 +27,17 @@ class FacetFilter {
     f.words_.fill(~std::uint64_t(0));
     return f;
   }
-  // The bits of one vertex, computed once per test of many filters.
-  static FacetFilter of(VertexId w) {
+  // A vertex's key: its position's bits, mixed. A vertex keeps its place for its life, whatever its id
+  // (the engine renumbers vertices by place after a build), so no key is stored beside it.
+  static std::uint64_t key_of(const Point<D>& p) {
+    std::uint64_t h = 0;
+    for (int i = 0; i < D; ++i) h = mix(h ^ std::bit_cast<std::uint64_t>(p[i]));
+    return h;
+  }
+  // The bits of the vertex of this key, computed once per test of many filters.
+  static FacetFilter of(std::uint64_t key) {
     FacetFilter f;
-    // splitmix64's finalizer: every bit of the hash depends on every bit of the id, so consecutive ids
-    // (Steiner vertices born together, often neighbours) do not share bits.
-    std::uint64_t h = std::uint64_t(w) + 0x9E3779B97F4A7C15ull;
-    h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
-    h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
-    h ^= h >> 31;
+    const std::uint64_t h = mix(key);
     constexpr int kIndexBits = kWords == 1 ? 6 : 7;
     for (int k = 0; k < kBitsPerVertex; ++k) {
       const unsigned bit = unsigned(h >> (k * kIndexBits)) & ((1u << kIndexBits) - 1);
@@ -53,6 +56,15 @@ class FacetFilter {
   }
 
  private:
+  // splitmix64's finalizer: every bit of the hash depends on every bit of the input, so neighbouring
+  // places (whose coordinates share their high bits) do not share filter bits.
+  static std::uint64_t mix(std::uint64_t h) {
+    h += 0x9E3779B97F4A7C15ull;
+    h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ull;
+    h = (h ^ (h >> 27)) * 0x94D049BB133111EBull;
+    return h ^ (h >> 31);
+  }
+
   std::array<std::uint64_t, kWords> words_{};
 };
 

@@ -95,8 +95,8 @@ class Quadtree {
     NodeId first_child = kNoNode;        // the 2^D children are contiguous; kNoNode for a leaf
     int level = -1;
     Coords coords{};                     // cell index at its level
-    // Input points in the subtree, and a leaf's input vertex (kNoVertex: none). A one-shot tree keeps no
-    // counts: there a leaf reports the vertex of tag 0 it holds (the input's) and an internal node 0.
+    // Input points in the subtree, and a leaf's input vertex (kNoVertex: none): the vertex of tag 0 it
+    // holds. A one-shot tree keeps no counts of internal nodes: it reports 0 for them.
     std::uint32_t input_count = 0;
     VertexId input_vertex = kNoVertex;
     std::span<const LeafVertex<D>> vertices;  // leaves: every vertex inside (input and Steiner)
@@ -124,15 +124,16 @@ class Quadtree {
   // Builds the canonical tree of `inputs` (ids[i] is the vertex id of inputs[i]). Throws
   // PointInputError when two inputs are closer than the tree's resolution (2^-40 of the box).
   // `editable` false: a one-shot tree, which takes Steiner vertices (insert_vertex, erase_vertex) but
-  // no input edits. It keeps no per-node input counts (only the crowding rule of an edit reads them:
-  // 8 bytes fewer per node) and no room for more nodes.
+  // no input edits. It keeps no input counts of internal nodes (only the crowding rule of an edit reads
+  // them) and no room for more nodes.
   void build(std::span<const Point<D>> inputs, std::span<const VertexId> ids, bool editable = true);
 
   // Adds an input vertex at `position` (ids index `positions`). Returns the structural change.
   Change add_input(VertexId id, std::span<const Point<D>> positions);
   Change remove_input(VertexId id, std::span<const Point<D>> positions);
 
-  // Steiner vertices: inserted into / removed from the leaf containing them. Inputs have tag 0.
+  // Steiner vertices: inserted into / removed from the leaf containing them. Inputs have tag 0, which
+  // is how a leaf tells its input vertex: a Steiner vertex's tag is never 0 (std::logic_error).
   NodeId insert_vertex(VertexId id, const Point<D>& p, std::uint32_t tag, NodeId hint = kNoNode);
   // The same into `leaf`, which locate(p) found (the tree's shape unchanged since).
   void insert_vertex_at(NodeId leaf, VertexId id, const Point<D>& p, std::uint32_t tag);
@@ -152,13 +153,11 @@ class Quadtree {
     out.level = r.level;
     out.coords = r.coords();
     if (e.first_child == kNoNode) out.vertices = leaf_vertices(e);
-    if (editable_) {
-      out.input_count = inputs_[n].count;
-      out.input_vertex = inputs_[n].vertex;
-    } else {
-      for (const LeafVertex<D>& v : out.vertices)
-        if (v.tag == 0) out.input_vertex = v.id;
+    if (e.first_child == kNoNode) {
+      out.input_vertex = leaf_input(e);
       out.input_count = out.input_vertex != kNoVertex;
+    } else if (editable_) {
+      out.input_count = block_inputs_[e.first_child / kChildren];
     }
     return out;
   }
@@ -202,10 +201,14 @@ class Quadtree {
     }
     return true;
   }
-  // Nodes whose union covers the box: the deepest existing node over each of the (at most 2^D) cells
-  // of the finest level whose cells are at least as wide as the box. Operations register their reads
-  // here: a few coarse nodes instead of every leaf they looked into.
-  void covering_nodes(const Point<D>& lo, const Point<D>& hi, std::vector<NodeId>& out) const;
+  // Nodes whose union covers the box [lo, hi], which holds p: the deepest existing node over each of the
+  // (at most 2^D) cells of the finest level whose cells are at least as wide as the box. Operations
+  // register their reads here: a few coarse nodes instead of every leaf they looked into. Returns the
+  // cover's code (the level, and per axis whether the box's cells are p's and the one below, p's alone
+  // or p's and the one above), from which cover_nodes(p, code) finds the same nodes again: the nodes
+  // over given cells change only when a node there is split or merged away.
+  std::uint32_t covering_nodes(const Point<D>& p, const Point<D>& lo, const Point<D>& hi, std::vector<NodeId>& out) const;
+  void cover_nodes(const Point<D>& p, std::uint32_t code, std::vector<NodeId>& out) const;
 
   // Every leaf as (level, coords), sorted: two trees are equal iff these lists are.
   std::vector<std::pair<int, Coords>> leaf_cells() const;
@@ -270,12 +273,6 @@ class Quadtree {
     std::uint32_t vertices = 0;    // leaf: where its array starts in pool_
     NodeId parent = kNoNode;
   };
-  // What only an edit's crowding rule reads of a node, in its own array (same ids), which a one-shot
-  // tree leaves empty.
-  struct Inputs {
-    std::uint32_t count = 0;        // input points in the subtree
-    VertexId vertex = kNoVertex;    // leaves: the input vertex inside, if any
-  };
   template <class T>
   struct LineAligned {
     using value_type = T;
@@ -294,6 +291,20 @@ class Quadtree {
   }
   std::span<LeafVertex<D>> leaf_vertices(NodeId n) {
     return {pool_.data() + search_[n].vertices, search_[n].occupied_or_size};
+  }
+  // A leaf's input vertex: the one of tag 0 (the first, while add_input's leaf holds two), or kNoVertex.
+  VertexId leaf_input(const SearchEntry& e) const {
+    for (const LeafVertex<D>& v : leaf_vertices(e))
+      if (v.tag == 0) return v.id;
+    return kNoVertex;
+  }
+  // Input points in node n's subtree (an editable tree): a leaf's from its vertices' tags.
+  std::uint32_t input_count(NodeId n) const {
+    const SearchEntry& e = search_[n];
+    if (e.first_child != kNoNode) return block_inputs_[e.first_child / kChildren];
+    std::uint32_t count = 0;
+    for (const LeafVertex<D>& v : leaf_vertices(e)) count += v.tag == 0;
+    return count;
   }
   bool is_leaf(NodeId n) const { return search_[n].first_child == kNoNode; }
   // The pool of leaf arrays: a leaf's array is a block of 2^(c-1) slots (size class c), blocks freed by
@@ -335,6 +346,8 @@ class Quadtree {
   // Clamps [lo_in, hi_in] to the unit box into [lo, hi]; returns the finest level whose cells are at
   // least as wide as it (the box meets at most 2^D cells of that level).
   static int box_level(const Point<D>& lo_in, const Point<D>& hi_in, Point<D>& lo, Point<D>& hi);
+  static constexpr int kLevelBits = 6;  // a level, 0 to kMaxLevel, in a cover's code
+  static_assert(kMaxLevel < (1 << kLevelBits) && kLevelBits + 2 * D <= 32);
   bool cell_in_domain(int level, const std::array<std::int64_t, D>& c) const;
   std::uint32_t inputs_in_cell(int level, const Coords& c, std::span<const Point<D>> positions) const;
   bool crowded(NodeId n, std::span<const Point<D>> positions) const;
@@ -350,7 +363,11 @@ class Quadtree {
 
   std::vector<Record> nodes_;
   std::vector<SearchEntry, LineAligned<SearchEntry>> search_;
-  std::vector<Inputs> inputs_;           // empty in a one-shot tree
+  // What only an edit's crowding rule reads: each internal node's count of input points in its subtree,
+  // kept at its children's block (block_inputs_[first_child / 2^D]; block 0, the root's, is nobody's):
+  // a leaf's count and input vertex are its vertices of tag 0. 4 bytes per 2^D nodes instead of 8 per
+  // node. Empty in a one-shot tree.
+  std::vector<std::uint32_t> block_inputs_;
   bool editable_ = true;
   std::vector<NodeId> free_blocks_;      // first ids of freed blocks of 2^D children
   std::vector<LeafVertex<D>> pool_;
