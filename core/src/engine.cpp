@@ -255,8 +255,7 @@ void WellSpacedEngine<D>::mark_redo(OpId o) {
 }
 
 template <int D>
-void WellSpacedEngine<D>::mark_readers_at(VertexId w, const Point<D>& p, NodeId leaf, VertexChange change, int rank,
-                                          std::uint32_t color) {
+void WellSpacedEngine<D>::mark_readers_at(const Point<D>& p, NodeId leaf, VertexChange change, int rank, std::uint32_t color) {
   const bool inserted = change == VertexChange::Inserted;
   const auto bits = facet_bits_at(p);
   // The lists of the coarse nodes hold hundreds of readers each, scattered over recorded_ops_ (an array too large
@@ -433,7 +432,7 @@ void WellSpacedEngine<D>::undo(OpId o) {
       mark_obsolete(d);
       if (!vertices_[w].alive) continue;
       tree_.erase_vertex(w, vertices_[w].leaf);
-      mark_readers_at(w, positions_[w], vertices_[w].leaf, VertexChange::Removed, rank, color);
+      mark_readers_at(positions_[w], vertices_[w].leaf, VertexChange::Removed, rank, color);
       kill_vertex(w);
       if (stats_) stats_->steiner_removed.push_back(positions_[w]);
     }
@@ -514,7 +513,6 @@ typename WellSpacedEngine<D>::VertexId WellSpacedEngine<D>::new_vertex(const Poi
     if (recording_) vertex_ops_[id] = VertexOps{};
     return id;
   }
-  const VertexId id = VertexId(vertices_.size());
   if (!dynamic_) {
     room_for_one(vertices_);
     room_for_one(positions_);
@@ -630,7 +628,7 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::apply(s
       vertices_[v].leaf = tree_.locate(e.point);
       apply_tree_change(change);
       // The new vertex changes what every reader of its square saw.
-      mark_readers_at(v, e.point, vertices_[v].leaf, VertexChange::Inserted, kBeforeEverything, 0);
+      mark_readers_at(e.point, vertices_[v].leaf, VertexChange::Inserted, kBeforeEverything, 0);
       if (vertex_ops_[v].dispatch == kNoOp || recorded_ops_[vertex_ops_[v].dispatch].vertex != v) redispatch_input(v);
       added.push_back(v);
     } else {
@@ -640,7 +638,7 @@ std::vector<typename WellSpacedEngine<D>::VertexId> WellSpacedEngine<D>::apply(s
       --input_count_;
       apply_tree_change(change);
       const NodeId leaf = tree_.locate(p);
-      mark_readers_at(v, p, leaf, VertexChange::Removed, kBeforeEverything, 0);
+      mark_readers_at(p, leaf, VertexChange::Removed, kBeforeEverything, 0);
       // The input vertex of the leaf that now holds p has a new neighbourhood too.
       if (tree_.node(leaf).input_vertex != kNoVertex) redispatch_input(tree_.node(leaf).input_vertex);
       kill_vertex(v);  // an input, not a Steiner change: the report does not list it

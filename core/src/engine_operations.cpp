@@ -367,7 +367,7 @@ void WellSpacedEngine<D>::commit_fill(OpId o, Outcome& out) {
     vertices_[id].leaf = leaf;
     tree_.insert_vertex_at(leaf, id, q, time_key(op_rank, op_color));
     ++counters_.steiner_points;
-    if (dynamic_) mark_readers_at(id, q, vertices_[id].leaf, VertexChange::Inserted, op_rank, op_color);
+    if (dynamic_) mark_readers_at(q, vertices_[id].leaf, VertexChange::Inserted, op_rank, op_color);
     if (caching_) vertex_arrived(id, q, time_key(op_rank, op_color));
     if constexpr (D == 2)
       if (delaunay_) delaunay_->defer(id, q, v, time_key(op_rank, op_color));
@@ -384,7 +384,7 @@ void WellSpacedEngine<D>::commit_fill(OpId o, Outcome& out) {
     const VertexId w = op_at(d).vertex;
     mark_obsolete(d);
     tree_.erase_vertex(w, vertices_[w].leaf);
-    mark_readers_at(w, positions_[w], vertices_[w].leaf, VertexChange::Removed, op_rank, op_color);
+    mark_readers_at(positions_[w], vertices_[w].leaf, VertexChange::Removed, op_rank, op_color);
     kill_vertex(w);
     if (stats_) stats_->steiner_removed.push_back(positions_[w]);
   }

@@ -931,7 +931,6 @@ typename Quadtree<D>::Change Quadtree<D>::remove_input(VertexId id, std::span<co
 
 template <int D>
 NodeId Quadtree<D>::insert_vertex(VertexId id, const Point<D>& p, std::uint32_t tag, NodeId hint) {
-  if (tag == 0) throw std::logic_error("quadtree insert_vertex: tag 0 marks an input");
   const NodeId leaf = locate(p, hint);
   insert_vertex_at(leaf, id, p, tag);
   return leaf;
@@ -939,6 +938,7 @@ NodeId Quadtree<D>::insert_vertex(VertexId id, const Point<D>& p, std::uint32_t 
 
 template <int D>
 void Quadtree<D>::insert_vertex_at(NodeId leaf, VertexId id, const Point<D>& p, std::uint32_t tag) {
+  if (tag == 0) throw std::logic_error("quadtree insert_vertex: tag 0 marks an input");
   leaf_push(leaf, {p, tag, id});
   if (search_[leaf].occupied_or_size == 1) mark_occupied(leaf);
 }

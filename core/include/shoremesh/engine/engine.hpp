@@ -314,11 +314,11 @@ class WellSpacedEngine {
   void mark_fresh(OpId o);
   void mark_obsolete(OpId o);
   void mark_redo(OpId o);
-  // Vertex w at p was inserted or removed at time (rank, color) (before everything when rank is the
+  // The vertex at p was inserted or removed at time (rank, color) (before everything when rank is the
   // minimum int): marks inconsistent every later operation that depends on it, among the readers
-  // registered on p's leaf and its ancestors.
+  // registered on p's leaf and its ancestors (its facet bits are its position's).
   enum class VertexChange { Inserted, Removed };
-  void mark_readers_at(VertexId w, const Point<D>& p, NodeId leaf, VertexChange change, int rank,
+  void mark_readers_at(const Point<D>& p, NodeId leaf, VertexChange change, int rank,
                        std::uint32_t color);
   // Dispatches and fills that insert nothing decide from v's nearest neighbour and the set of vertices
   // whose bisectors bound v's cell: removing any other vertex leaves the cell and the decision as they
