@@ -25,31 +25,40 @@ CellReach<D> reach_of(const ConvexCell<D>& cell) {
   return CellReach<D>::of([&](auto&& f) { cell.for_each_vertex_box(f); });
 }
 
+// v's cell among 30 D random neighbours within 0.3 s of it (none nearer than 0.1 s, so that the cell
+// keeps some size), cut to the box of half-side 0.2 s around v, as compute_cell makes it. id counts the
+// neighbours.
+template <int D>
+void random_cell(Lcg& rnd, const Point<D>& v, double s, ConvexCell<D>& cell, VertexId& id) {
+  Point<D> lo, hi;
+  for (int i = 0; i < D; ++i) {
+    lo[i] = v[i] - 0.2 * s;
+    hi[i] = v[i] + 0.2 * s;
+  }
+  cell.reset(v, lo, hi);
+  id = 0;
+  for (int k = 0; k < 30 * D; ++k) {
+    Point<D> w;
+    double d2 = 0;
+    for (int i = 0; i < D; ++i) {
+      w[i] = v[i] + 0.3 * s * (2 * rnd() - 1);
+      d2 += (w[i] - v[i]) * (w[i] - v[i]);
+    }
+    if (d2 > 0.01 * s * s) cell.clip(id++, w, d2);
+  }
+}
+
 template <int D>
 void never_misses_a_cut_and_rarely_says_maybe(std::uint64_t seed) {
   RoundingGuard guard;
   Lcg rnd{seed};
   std::size_t cuts = 0, reach_false = 0, radius_false = 0;
   for (int trial = 0; trial < 40; ++trial) {
-    // v's cell among random neighbours, cut to a box around v, as compute_cell makes it.
     ConvexCell<D> cell;
-    Point<D> v, lo, hi;
-    for (int i = 0; i < D; ++i) {
-      v[i] = 0.5;
-      lo[i] = 0.5 - 0.2;
-      hi[i] = 0.5 + 0.2;
-    }
-    cell.reset(v, lo, hi);
+    Point<D> v;
+    for (int i = 0; i < D; ++i) v[i] = 0.5;
     VertexId id = 0;
-    for (int k = 0; k < 30 * D; ++k) {
-      Point<D> w;
-      double d2 = 0;
-      for (int i = 0; i < D; ++i) {
-        w[i] = 0.5 + 0.3 * (2 * rnd() - 1);
-        d2 += (w[i] - 0.5) * (w[i] - 0.5);
-      }
-      if (d2 > 0.01) cell.clip(id++, w, d2);  // not too near v, so that the cell keeps some size
-    }
+    random_cell<D>(rnd, v, 1.0, cell, id);
     const CellReach<D> reach = reach_of(cell);
     const double radius = std::sqrt(cell.max_vertex_distance2());
     for (int k = 0; k < 500; ++k) {
@@ -91,22 +100,8 @@ void tiny_cells_never_miss_a_cut(std::uint64_t seed) {
   std::size_t cuts = 0;
   for (int trial = 0; trial < 20; ++trial) {
     ConvexCell<D> cell;
-    Point<D> v{}, lo, hi;
-    for (int i = 0; i < D; ++i) {
-      lo[i] = -0.2 * s;
-      hi[i] = 0.2 * s;
-    }
-    cell.reset(v, lo, hi);
     VertexId id = 0;
-    for (int k = 0; k < 30 * D; ++k) {
-      Point<D> w;
-      double d2 = 0;
-      for (int i = 0; i < D; ++i) {
-        w[i] = 0.3 * s * (2 * rnd() - 1);
-        d2 += w[i] * w[i];
-      }
-      if (d2 > 0.01 * s * s) cell.clip(id++, w, d2);
-    }
+    random_cell<D>(rnd, Point<D>{}, s, cell, id);
     const CellReach<D> reach = reach_of(cell);
     for (int k = 0; k < 300; ++k) {
       Point<D> d;
